@@ -1,0 +1,64 @@
+#pragma once
+// Named GPU time spans per frame from GL_TIMESTAMP queries, read back a few frames later only
+// once the driver says they are available, so reading never stalls the frame.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/gl/objects.h"
+
+namespace engine::gl {
+
+struct GpuSpan {
+    std::string name;
+    double milliseconds = 0.0;
+};
+
+class GpuTimers {
+public:
+    static constexpr int frames_in_flight = 4;
+
+    GpuTimers() = default;
+    void begin_frame();
+    // Starts and ends a named span; spans may nest.
+    int begin(const std::string& name);
+    void end(int span);
+    void end_frame();
+
+    // The newest frame whose queries have all completed (without waiting), if any.
+    const std::optional<std::vector<GpuSpan>>& latest() const { return latest_; }
+    std::uint64_t frames_dropped() const { return dropped_; }
+    // Blocks until every recorded frame is read; for tools and tests, never inside a frame loop.
+    void wait_all();
+
+private:
+    struct Frame {
+        std::vector<std::string> names;
+        std::vector<Query> start, stop;
+        std::size_t used = 0;
+        bool pending = false;
+    };
+    bool try_collect(Frame& frame, bool wait);
+
+    Frame frames_[frames_in_flight];
+    int current_ = -1;
+    std::uint64_t frame_counter_ = 0;
+    std::uint64_t dropped_ = 0;
+    std::optional<std::vector<GpuSpan>> latest_;
+};
+
+// RAII span: GpuTimerScope scope(timers, "mesh");
+class GpuTimerScope {
+public:
+    GpuTimerScope(GpuTimers& timers, const std::string& name) : timers_(timers), span_(timers.begin(name)) {}
+    ~GpuTimerScope() { timers_.end(span_); }
+    GpuTimerScope(const GpuTimerScope&) = delete;
+    GpuTimerScope& operator=(const GpuTimerScope&) = delete;
+
+private:
+    GpuTimers& timers_;
+    int span_;
+};
+
+}  // namespace engine::gl

@@ -1,0 +1,125 @@
+#include "engine/gl/shader_preprocessor.h"
+
+#include <algorithm>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "engine/core/error.h"
+
+namespace engine::gl {
+namespace {
+
+std::string trim(const std::string& s) {
+    const auto b = s.find_first_not_of(" \t\r");
+    if (b == std::string::npos) return {};
+    const auto e = s.find_last_not_of(" \t\r");
+    return s.substr(b, e - b + 1);
+}
+
+bool starts_with_directive(const std::string& line, const char* directive) {
+    const std::string t = trim(line);
+    if (t.empty() || t[0] != '#') return false;
+    const std::string rest = trim(t.substr(1));
+    return rest.rfind(directive, 0) == 0;
+}
+
+}  // namespace
+
+ShaderPreprocessor::ShaderPreprocessor(std::filesystem::path root, FileReader reader)
+    : root_(std::move(root)), reader_(std::move(reader)) {
+    if (!reader_) {
+        reader_ = [](const std::filesystem::path& path) -> std::optional<std::string> {
+            std::ifstream in(path, std::ios::binary);
+            if (!in) return std::nullopt;
+            std::ostringstream ss;
+            ss << in.rdbuf();
+            return ss.str();
+        };
+    }
+}
+
+std::optional<std::string> ShaderPreprocessor::read(const std::filesystem::path& file) const {
+    return reader_(root_ / file);
+}
+
+PreprocessedShader ShaderPreprocessor::process(const std::string& file, const std::vector<std::string>& defines) const {
+    PreprocessedShader out;
+    out.source = "#version 450 core\n";
+    for (const auto& define : defines) {
+        const auto eq = define.find('=');
+        const std::string name = define.substr(0, eq);
+        if (name.empty() || !std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }))
+            fail(file + ": invalid shader define '" + define + "'");
+        out.source += "#define " + name + (eq == std::string::npos ? "" : " " + define.substr(eq + 1)) + "\n";
+    }
+    std::vector<std::string> stack;
+    expand(std::filesystem::path(file).lexically_normal(), out, stack, "");
+    return out;
+}
+
+void ShaderPreprocessor::expand(const std::filesystem::path& file, PreprocessedShader& out,
+                                std::vector<std::string>& stack, const std::string& included_from) const {
+    const std::string name = file.generic_string();
+    if (std::find(stack.begin(), stack.end(), name) != stack.end())
+        fail(included_from + ": include cycle through '" + name + "'");
+    if (std::find(out.files.begin(), out.files.end(), name) != out.files.end()) return;  // once per file
+    const auto text = read(file);
+    if (!text) {
+        if (included_from.empty()) fail((root_ / file).string() + ": shader file not found");
+        fail(included_from + ": cannot find include '" + name + "' (searched next to the file and in " + root_.string() + ")");
+    }
+    const int index = static_cast<int>(out.files.size());
+    out.files.push_back(name);
+    stack.push_back(name);
+
+    out.source += "#line 1 " + std::to_string(index) + "\n";
+    std::istringstream lines(*text);
+    std::string line;
+    int number = 0;
+    static const std::regex include_re(R"(^\s*#\s*include\s+\"([^\"]+)\"\s*$)");
+    while (std::getline(lines, line)) {
+        ++number;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        const std::string where = name + ":" + std::to_string(number);
+        if (starts_with_directive(line, "version")) {
+            fail(where + ": '#version' is added by the engine; remove it from the file");
+        } else if (starts_with_directive(line, "pragma once")) {
+            out.source += "\n";
+        } else if (starts_with_directive(line, "include")) {
+            std::smatch match;
+            if (!std::regex_match(line, match, include_re)) fail(where + ": malformed #include (use #include \"file\")");
+            std::filesystem::path target = (file.parent_path() / match[1].str()).lexically_normal();
+            if (!read(target)) target = std::filesystem::path(match[1].str()).lexically_normal();
+            expand(target, out, stack, where);
+            out.source += "#line " + std::to_string(number + 1) + " " + std::to_string(index) + "\n";
+        } else {
+            out.source += line + "\n";
+        }
+    }
+    stack.pop_back();
+}
+
+std::string map_shader_log(const std::string& log, const std::vector<std::string>& files) {
+    // Mesa: "0:12(5): error: ..."; NVIDIA: "0(12) : error C0000: ...".
+    static const std::regex mesa_re(R"((\d+):(\d+)\((\d+)\))");
+    static const std::regex nvidia_re(R"(^(\d+)\((\d+)\))");
+    std::istringstream in(log);
+    std::string line, result;
+    while (std::getline(in, line)) {
+        std::smatch m;
+        auto file_name = [&](const std::string& index) {
+            const auto i = static_cast<std::size_t>(std::stoul(index));
+            return i < files.size() ? files[i] : "source " + index;
+        };
+        if (std::regex_search(line, m, mesa_re) && m.position(0) == 0) {
+            line = file_name(m[1]) + ":" + m[2].str() + ":" + m[3].str() + m.suffix().str();
+        } else if (std::regex_search(line, m, nvidia_re)) {
+            line = file_name(m[1]) + ":" + m[2].str() + m.suffix().str();
+        }
+        result += line + "\n";
+    }
+    return result;
+}
+
+}  // namespace engine::gl

@@ -1,0 +1,83 @@
+#include <map>
+
+#include <gtest/gtest.h>
+
+#include "engine/core/error.h"
+#include "engine/gl/shader_preprocessor.h"
+
+using engine::gl::ShaderPreprocessor;
+
+namespace {
+
+ShaderPreprocessor make(std::map<std::string, std::string> files) {
+    return ShaderPreprocessor("/virtual", [files](const std::filesystem::path& p) -> std::optional<std::string> {
+        const auto key = p.lexically_relative("/virtual").generic_string();
+        const auto it = files.find(key);
+        if (it == files.end()) return std::nullopt;
+        return it->second;
+    });
+}
+
+std::string error_of(const ShaderPreprocessor& pre, const std::string& file) {
+    try {
+        pre.process(file);
+    } catch (const engine::Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(ShaderPreprocessor, AddsVersionDefinesAndLineDirectives) {
+    const auto pre = make({{"a/main.comp.glsl", "void main() {}\n"}});
+    const auto out = pre.process("a/main.comp.glsl", {"FOO", "BAR=3"});
+    EXPECT_EQ(out.source.rfind("#version 450 core\n#define FOO\n#define BAR 3\n#line 1 0\n", 0), 0u) << out.source;
+    ASSERT_EQ(out.files.size(), 1u);
+    EXPECT_EQ(out.files[0], "a/main.comp.glsl");
+}
+
+TEST(ShaderPreprocessor, ResolvesIncludesRelativeThenFromRootOncePerFile) {
+    const auto pre = make({
+        {"a/main.comp.glsl", "#include \"near.glsl\"\n#include \"common/math.glsl\"\n#include \"near.glsl\"\nvoid main() {}\n"},
+        {"a/near.glsl", "// near\n#include \"../common/math.glsl\"\n"},
+        {"common/math.glsl", "#pragma once\nfloat sq(float x) { return x * x; }\n"},
+    });
+    const auto out = pre.process("a/main.comp.glsl");
+    ASSERT_EQ(out.files.size(), 3u);
+    EXPECT_EQ(out.files[1], "a/near.glsl");
+    EXPECT_EQ(out.files[2], "common/math.glsl");
+    // math.glsl appears once even though it is included twice.
+    EXPECT_EQ(out.source.find("float sq"), out.source.rfind("float sq"));
+    // After the include of near.glsl the main file resumes at its line 2.
+    EXPECT_NE(out.source.find("#line 2 0\n"), std::string::npos) << out.source;
+}
+
+TEST(ShaderPreprocessor, ReportsMissingIncludeWithFileAndLine) {
+    const auto pre = make({{"m.comp.glsl", "void f();\n#include \"gone.glsl\"\n"}});
+    const std::string e = error_of(pre, "m.comp.glsl");
+    EXPECT_NE(e.find("m.comp.glsl:2"), std::string::npos) << e;
+    EXPECT_NE(e.find("gone.glsl"), std::string::npos) << e;
+}
+
+TEST(ShaderPreprocessor, ReportsIncludeCycle) {
+    const auto pre = make({{"a.glsl", "#include \"b.glsl\"\n"}, {"b.glsl", "#include \"a.glsl\"\n"}});
+    const std::string e = error_of(pre, "a.glsl");
+    EXPECT_NE(e.find("include cycle"), std::string::npos) << e;
+    EXPECT_NE(e.find("b.glsl:1"), std::string::npos) << e;
+}
+
+TEST(ShaderPreprocessor, RejectsVersionLineAndBadDefine) {
+    const auto pre = make({{"v.comp.glsl", "#version 430\n"}, {"ok.comp.glsl", "\n"}});
+    EXPECT_NE(error_of(pre, "v.comp.glsl").find("v.comp.glsl:1"), std::string::npos);
+    EXPECT_THROW(pre.process("ok.comp.glsl", {"BAD NAME"}), engine::Error);
+    EXPECT_NE(error_of(pre, "missing.comp.glsl").find("not found"), std::string::npos);
+}
+
+TEST(ShaderPreprocessor, MapsMesaAndNvidiaLogsToFileLine) {
+    const std::vector<std::string> files{"main.comp.glsl", "common/math.glsl"};
+    EXPECT_EQ(engine::gl::map_shader_log("1:12(5): error: `x' undeclared", files),
+              "common/math.glsl:12:5: error: `x' undeclared\n");
+    EXPECT_EQ(engine::gl::map_shader_log("0(7) : error C1008: undefined variable", files),
+              "main.comp.glsl:7 : error C1008: undefined variable\n");
+}
