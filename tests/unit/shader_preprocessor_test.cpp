@@ -49,8 +49,11 @@ TEST(ShaderPreprocessor, ResolvesIncludesRelativeThenFromRootOncePerFile) {
     EXPECT_EQ(out.files[2], "common/math.glsl");
     // math.glsl appears once even though it is included twice.
     EXPECT_EQ(out.source.find("float sq"), out.source.rfind("float sq"));
-    // After the include of near.glsl the main file resumes at its line 2.
+    // After the include of near.glsl the main file resumes at its line 2; included files'
+    // lines carry their index (k * 100000 + line).
     EXPECT_NE(out.source.find("#line 2 0\n"), std::string::npos) << out.source;
+    EXPECT_NE(out.source.find("#line 100001 1\n"), std::string::npos) << out.source;
+    EXPECT_NE(out.source.find("#line 200001 2\n"), std::string::npos) << out.source;
 }
 
 TEST(ShaderPreprocessor, ReportsMissingIncludeWithFileAndLine) {
@@ -80,4 +83,7 @@ TEST(ShaderPreprocessor, MapsMesaAndNvidiaLogsToFileLine) {
               "common/math.glsl:12:5: error: `x' undeclared\n");
     EXPECT_EQ(engine::gl::map_shader_log("0(7) : error C1008: undefined variable", files),
               "main.comp.glsl:7 : error C1008: undefined variable\n");
+    // Mesa drops the source-string number: the index comes from the encoded line.
+    EXPECT_EQ(engine::gl::map_shader_log("0:100012(5): error: x", files), "common/math.glsl:12:5: error: x\n");
+    EXPECT_EQ(engine::gl::map_shader_log("1(100003) : error C0000: y", files), "common/math.glsl:3 : error C0000: y\n");
 }

@@ -22,6 +22,7 @@ bool GpuTimers::try_collect(Frame& frame, bool wait) {
             spans.push_back({frame.names[i], t1 >= t0 ? static_cast<double>(t1 - t0) * 1e-6 : 0.0});
         }
         latest_ = std::move(spans);
+        latest_frame_ = static_cast<std::int64_t>(frame.number);
     }
     frame.pending = false;
     return true;
@@ -38,6 +39,7 @@ void GpuTimers::begin_frame() {
     if (frame.pending && !try_collect(frame, false)) ++dropped_;  // reuse without waiting
     frame.pending = false;
     frame.used = 0;
+    frame.number = frame_counter_;
     frame.names.clear();
 }
 
@@ -59,6 +61,9 @@ void GpuTimers::end(int span) {
 }
 
 void GpuTimers::end_frame() {
+    // Submit the frame's commands so its queries can complete while the CPU moves on (a window's
+    // buffer swap does this too; headless frames have no swap).
+    glFlush();
     frames_[current_].pending = true;
     ++frame_counter_;
     current_ = -1;

@@ -10,6 +10,14 @@
 namespace engine::gl {
 namespace {
 
+// Mesa ignores the source-string number of `#line`, so the file index is also encoded in the
+// line number itself: line L of file k is reported as k * line_stride + L by every driver.
+constexpr long line_stride = 100000;
+
+std::string line_directive(int line, int index) {
+    return "#line " + std::to_string(static_cast<long>(index) * line_stride + line) + " " + std::to_string(index) + "\n";
+}
+
 std::string trim(const std::string& s) {
     const auto b = s.find_first_not_of(" \t\r");
     if (b == std::string::npos) return {};
@@ -73,7 +81,7 @@ void ShaderPreprocessor::expand(const std::filesystem::path& file, PreprocessedS
     out.files.push_back(name);
     stack.push_back(name);
 
-    out.source += "#line 1 " + std::to_string(index) + "\n";
+    out.source += line_directive(1, index);
     std::istringstream lines(*text);
     std::string line;
     int number = 0;
@@ -92,7 +100,7 @@ void ShaderPreprocessor::expand(const std::filesystem::path& file, PreprocessedS
             std::filesystem::path target = (file.parent_path() / match[1].str()).lexically_normal();
             if (!read(target)) target = std::filesystem::path(match[1].str()).lexically_normal();
             expand(target, out, stack, where);
-            out.source += "#line " + std::to_string(number + 1) + " " + std::to_string(index) + "\n";
+            out.source += line_directive(number + 1, index);
         } else {
             out.source += line + "\n";
         }
@@ -108,14 +116,18 @@ std::string map_shader_log(const std::string& log, const std::vector<std::string
     std::string line, result;
     while (std::getline(in, line)) {
         std::smatch m;
-        auto file_name = [&](const std::string& index) {
-            const auto i = static_cast<std::size_t>(std::stoul(index));
-            return i < files.size() ? files[i] : "source " + index;
+        // Prefer the index encoded in the line number; fall back to the source-string number.
+        auto location = [&](const std::string& source, const std::string& line_text) {
+            const long reported = std::stol(line_text);
+            std::size_t index = static_cast<std::size_t>(std::stoul(source));
+            if (reported >= line_stride) index = static_cast<std::size_t>(reported / line_stride);
+            const std::string name = index < files.size() ? files[index] : "source " + std::to_string(index);
+            return name + ":" + std::to_string(reported % line_stride);
         };
         if (std::regex_search(line, m, mesa_re) && m.position(0) == 0) {
-            line = file_name(m[1]) + ":" + m[2].str() + ":" + m[3].str() + m.suffix().str();
+            line = location(m[1], m[2]) + ":" + m[3].str() + m.suffix().str();
         } else if (std::regex_search(line, m, nvidia_re)) {
-            line = file_name(m[1]) + ":" + m[2].str() + m.suffix().str();
+            line = location(m[1], m[2]) + m.suffix().str();
         }
         result += line + "\n";
     }

@@ -28,6 +28,8 @@ public:
 
     // The newest frame whose queries have all completed (without waiting), if any.
     const std::optional<std::vector<GpuSpan>>& latest() const { return latest_; }
+    // The frame number (counting begin_frame() calls from 0) that latest() was measured in.
+    std::int64_t latest_frame() const { return latest_frame_; }
     std::uint64_t frames_dropped() const { return dropped_; }
     // Blocks until every recorded frame is read; for tools and tests, never inside a frame loop.
     void wait_all();
@@ -37,6 +39,7 @@ private:
         std::vector<std::string> names;
         std::vector<Query> start, stop;
         std::size_t used = 0;
+        std::uint64_t number = 0;
         bool pending = false;
     };
     bool try_collect(Frame& frame, bool wait);
@@ -46,6 +49,7 @@ private:
     std::uint64_t frame_counter_ = 0;
     std::uint64_t dropped_ = 0;
     std::optional<std::vector<GpuSpan>> latest_;
+    std::int64_t latest_frame_ = -1;
 };
 
 // RAII span: GpuTimerScope scope(timers, "mesh");

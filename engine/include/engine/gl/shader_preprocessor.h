@@ -1,8 +1,10 @@
 #pragma once
 // Turns a GLSL file from shaders/ into one compilable source: a `#version 450 core` line, a
 // `#define` preamble for the variant, `#include "..."` resolved (relative to the including file,
-// then to the shader root; each file at most once), and `#line <n> <file-index>` directives so
-// that compiler messages can be mapped back to `file:line`. Needs no GL, so tests run it alone.
+// then to the shader root; each file at most once), and `#line` directives so that compiler
+// messages map back to `file:line`. Because Mesa ignores the source-string number of `#line`,
+// line L of file k is numbered k·100000 + L (and k is also given as the source-string number);
+// map_shader_log() decodes both. Needs no GL, so tests run it alone.
 #include <filesystem>
 #include <functional>
 #include <optional>

@@ -1,0 +1,53 @@
+#pragma once
+// A glTF model flattened for drawing: every triangle primitive of the default scene with the
+// transform of its node, materials (base colour factor and texture) and decoded images.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace engine {
+
+struct MeshVertex {
+    glm::vec3 position;
+    glm::vec3 normal;
+    glm::vec2 uv;
+};
+
+struct MeshPrimitive {
+    std::vector<MeshVertex> vertices;
+    std::vector<std::uint32_t> indices;  // triangles
+    int material = -1;                   // −1: the default material (white)
+    glm::mat4 transform{1.0f};           // node → model root
+};
+
+struct MeshMaterial {
+    std::string name;
+    glm::vec4 base_color_factor{1.0f};   // linear
+    int base_color_image = -1;           // index into MeshAsset::images, sRGB-encoded texels
+    bool double_sided = false;
+};
+
+struct MeshImage {
+    std::string name;
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba;
+};
+
+struct MeshAsset {
+    std::filesystem::path source;
+    std::vector<MeshPrimitive> primitives;
+    std::vector<MeshMaterial> materials;
+    std::vector<MeshImage> images;
+    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // model space, after node transforms
+    std::size_t triangle_count() const;
+};
+
+// Loads .gltf (external or embedded buffers) and .glb. Errors name the file and the element
+// (e.g. "Box.gltf: unsupported required extension KHR_draco_mesh_compression").
+MeshAsset load_gltf(const std::filesystem::path& path);
+
+}  // namespace engine

@@ -1,0 +1,63 @@
+#include "engine/render/render_target.h"
+
+#include <limits>
+
+#include "engine/core/error.h"
+#include "engine/render/image.h"
+
+namespace engine {
+
+glm::mat4 flip_y_for_target(const glm::mat4& projection) {
+    glm::mat4 flip(1.0f);
+    flip[1][1] = -1.0f;
+    return flip * projection;
+}
+
+RenderTarget::RenderTarget(int width, int height) : width_(width), height_(height) {
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (width <= 0 || height <= 0 || width > max_size || height > max_size)
+        fail("render target size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." + std::to_string(max_size));
+    color_ = gl::Texture(GL_TEXTURE_2D, "frame colour");
+    glTextureStorage2D(color_.id(), 1, GL_RGBA8, width, height);
+    depth_ = gl::Texture(GL_TEXTURE_2D, "frame depth");
+    glTextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, width, height);
+    view_depth_ = gl::Texture(GL_TEXTURE_2D, "frame view depth");
+    glTextureStorage2D(view_depth_.id(), 1, GL_R32F, width, height);
+    for (GLuint t : {color_.id(), view_depth_.id()}) {
+        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    framebuffer_ = gl::Framebuffer("frame");
+    glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, color_.id(), 0);
+    glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT1, view_depth_.id(), 0);
+    glNamedFramebufferTexture(framebuffer_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(framebuffer_.id(), 2, buffers);
+    const GLenum status = glCheckNamedFramebufferStatus(framebuffer_.id(), GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) fail("render target framebuffer incomplete: status " + std::to_string(status));
+}
+
+void RenderTarget::clear(float r, float g, float b) {
+    const float color[] = {r, g, b, 1.0f};
+    const float far_depth[] = {std::numeric_limits<float>::infinity(), 0, 0, 0};
+    const float depth = 1.0f;
+    glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 0, color);
+    glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 1, far_depth);
+    glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &depth);
+}
+
+Image RenderTarget::read_color() const {
+    Image image{width_, height_, std::vector<std::uint8_t>(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4)};
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(color_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(image.rgba.size()), image.rgba.data());
+    return image;
+}
+
+std::vector<float> RenderTarget::read_view_depth() const {
+    std::vector<float> out(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
+    glGetTextureImage(view_depth_.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(float)), out.data());
+    return out;
+}
+
+}  // namespace engine

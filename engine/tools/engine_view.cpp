@@ -1,0 +1,295 @@
+// engine_view: opens a window on a scene file, with a fly camera and the ImGui overlay.
+//   engine_view --scene FILE [--width W --height H] [--frames N --screenshot OUT.png] [--no-ui]
+// Each frame renders offscreen through Engine::renderer() (the same path as the headless tools
+// and tests), blits that frame to the window and draws the overlay on top.
+// Controls: W/A/S/D move, E/Q up/down, Shift faster, right mouse button + drag turns, the
+// wheel scales the speed, F1 toggles the overlay, Escape quits.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
+
+#include "engine/assets/mesh_asset.h"
+#include "engine/core/error.h"
+#include "engine/engine.h"
+#include "engine/gl/gl.h"
+#include "engine/platform/window.h"
+#include "engine/render/camera.h"
+#include "engine/render/image.h"
+#include "engine/render/render_target.h"
+#include "engine/scene/builtin_components.h"
+#include "engine/ui/fly_camera.h"
+#include "engine/ui/overlay.h"
+
+namespace {
+
+struct Options {
+    std::filesystem::path scene;
+    int width = 1280;
+    int height = 720;
+    int frames = 0;  // 0: until the window closes
+    std::filesystem::path screenshot;
+    std::filesystem::path offscreen;
+    bool no_ui = false;
+};
+
+// Where the view starts and the lens it keeps; scene_size scales the fly speed.
+struct ViewSetup {
+    glm::mat4 camera_to_world{1.0f};
+    float fov_y = glm::radians(50.0f);
+    float znear = 0.1f;
+    float zfar = 1000.0f;
+    float scene_size = 1.0f;
+};
+
+struct Bounds {
+    glm::vec3 min{std::numeric_limits<float>::max()};
+    glm::vec3 max{std::numeric_limits<float>::lowest()};
+    bool empty() const { return min.x > max.x; }
+};
+
+Bounds mesh_bounds(const engine::Scene& scene) {
+    Bounds bounds;
+    for (const engine::MeshComponent* mesh : scene.components<engine::MeshComponent>()) {
+        if (!mesh->mesh || mesh->node() == nullptr) continue;
+        const glm::mat4 world = mesh->node()->world_matrix();
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::vec3 local((corner & 1) ? mesh->mesh->bounds_max.x : mesh->mesh->bounds_min.x,
+                                  (corner & 2) ? mesh->mesh->bounds_max.y : mesh->mesh->bounds_min.y,
+                                  (corner & 4) ? mesh->mesh->bounds_max.z : mesh->mesh->bounds_min.z);
+            const glm::vec3 p = glm::vec3(world * glm::vec4(local, 1.0f));
+            bounds.min = glm::min(bounds.min, p);
+            bounds.max = glm::max(bounds.max, p);
+        }
+    }
+    return bounds;
+}
+
+// A scene without a camera: look at the meshes' bounding sphere from the front and a little above.
+ViewSetup frame_scene(const Bounds& bounds, ViewSetup view) {
+    glm::vec3 centre(0.0f);
+    float radius = 1.0f;
+    if (!bounds.empty()) {
+        centre = 0.5f * (bounds.min + bounds.max);
+        radius = std::max(0.5f * glm::length(bounds.max - bounds.min), 1e-3f);
+    }
+    const float distance = 1.2f * radius / std::sin(0.5f * view.fov_y);
+    const glm::vec3 eye = centre + distance * glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f));
+    view.camera_to_world = glm::inverse(engine::make_look_at_camera(eye, centre, {0, 1, 0}, view.fov_y, 1, 1, 1.0f, 2.0f).view);
+    view.znear = std::max(1e-3f, 0.01f * radius);
+    view.zfar = distance + 10.0f * radius;
+    return view;
+}
+
+ViewSetup initial_view(const engine::Scene& scene) {
+    ViewSetup view;
+    const Bounds bounds = mesh_bounds(scene);
+    if (!bounds.empty()) view.scene_size = std::max(glm::length(bounds.max - bounds.min), 1e-2f);
+    const auto cameras = scene.components<engine::CameraComponent>();
+    if (cameras.empty() || cameras.front()->node() == nullptr) return frame_scene(bounds, view);
+    const engine::CameraComponent& camera = *cameras.front();
+    glm::mat4 m = camera.node()->world_matrix();
+    // make_camera() expects a rigid transform; a scaled node must not scale the view.
+    for (int axis = 0; axis < 3; ++axis) m[axis] = glm::vec4(glm::normalize(glm::vec3(m[axis])), 0.0f);
+    view.camera_to_world = m;
+    view.fov_y = glm::radians(camera.fov_y_deg);
+    view.znear = camera.znear;
+    view.zfar = camera.zfar;
+    return view;
+}
+
+// The scene's own camera matrix is used exactly (roll included) until the user first moves.
+struct ViewerCamera {
+    explicit ViewerCamera(const ViewSetup& setup) : view(setup), fly(setup.camera_to_world) {
+        fly.speed = 0.5f * setup.scene_size;
+    }
+    glm::mat4 camera_to_world() const { return moved ? fly.camera_to_world() : view.camera_to_world; }
+
+    ViewSetup view;
+    engine::FlyCamera fly;
+    bool moved = false;
+};
+
+engine::FlyCameraInput read_input(const engine::Window& window, bool ui_has_mouse, bool ui_has_keyboard) {
+    using engine::Key;
+    engine::FlyCameraInput input;
+    if (!ui_has_keyboard) {
+        input.forward = window.key_down(Key::w);
+        input.back = window.key_down(Key::s);
+        input.left = window.key_down(Key::a);
+        input.right = window.key_down(Key::d);
+        input.up = window.key_down(Key::e);
+        input.down = window.key_down(Key::q);
+        input.fast = window.key_down(Key::left_shift);
+    }
+    if (!ui_has_mouse) {
+        input.look = window.mouse_down(engine::MouseButton::right);
+        input.mouse_delta = window.mouse_delta();
+        input.scroll = window.scroll_delta();
+    }
+    return input;
+}
+
+bool changes_view(const engine::FlyCameraInput& in) {
+    return in.forward || in.back || in.left || in.right || in.up || in.down ||
+           (in.look && (in.mouse_delta.x != 0.0f || in.mouse_delta.y != 0.0f));
+}
+
+// The target's texel row 0 is the top image row while the window's row 0 is the bottom one,
+// so the blit flips Y once here.
+void present(const engine::RenderTarget& target, glm::ivec2 size) {
+    const GLuint source = target.framebuffer().id();
+    glNamedFramebufferReadBuffer(source, GL_COLOR_ATTACHMENT0);
+    glDisable(GL_SCISSOR_TEST);  // the blit obeys the scissor box a pass may have left set
+    glDisable(GL_FRAMEBUFFER_SRGB);  // the target already holds display-space values
+    glBlitNamedFramebuffer(source, 0, 0, 0, target.width(), target.height(), 0, size.y, size.x, 0,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, size.x, size.y);
+}
+
+// Reads the back buffer (before the swap, when its contents are defined), top row first.
+engine::Image read_window(glm::ivec2 size) {
+    engine::Image image{size.x, size.y, std::vector<std::uint8_t>(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y) * 4)};
+    std::vector<std::uint8_t> rows(image.rgba.size());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadnPixels(0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(rows.size()), rows.data());
+    const std::size_t stride = static_cast<std::size_t>(size.x) * 4;
+    for (int y = 0; y < size.y; ++y) {
+        const std::size_t from = static_cast<std::size_t>(size.y - 1 - y) * stride;
+        std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(from), stride, image.rgba.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * stride));
+    }
+    // The window's alpha is whatever ImGui's blending left; a screenshot is opaque.
+    for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
+    return image;
+}
+
+class Viewer {
+public:
+    explicit Viewer(const Options& options);
+    void run();
+
+private:
+    bool draw_frame(bool last);
+    void update_camera(float seconds);
+    void write_screenshots();
+
+    const Options& options_;
+    // Declared first so it is destroyed last: everything below frees GL objects in its context.
+    std::unique_ptr<engine::Window> window_;
+    engine::Engine engine_;
+    std::unique_ptr<engine::Scene> scene_;
+    std::unique_ptr<engine::UiOverlay> overlay_;
+    std::unique_ptr<engine::RenderTarget> target_;
+    std::optional<ViewerCamera> camera_;
+    bool show_ui_;
+    bool f1_was_down_ = false;
+};
+
+Viewer::Viewer(const Options& options) : options_(options), show_ui_(!options.no_ui) {
+    // A fixed frame count is a test or benchmark run: waiting for vertical blank only slows it.
+    window_ = engine::Window::create("engine_view: " + options.scene.filename().string(), options.width,
+                                     options.height, options.frames == 0);
+    scene_ = engine_.load_scene(options.scene);
+    camera_.emplace(initial_view(*scene_));
+    overlay_ = std::make_unique<engine::UiOverlay>(*window_, engine_.bus());
+    overlay_->set_scene(scene_.get());
+}
+
+void Viewer::update_camera(float seconds) {
+    const bool f1 = window_->key_down(engine::Key::f1);
+    if (f1 && !f1_was_down_) show_ui_ = !show_ui_;
+    f1_was_down_ = f1;
+    if (window_->key_down(engine::Key::escape)) window_->request_close();
+    const engine::FlyCameraInput input =
+        read_input(*window_, show_ui_ && overlay_->wants_mouse(), show_ui_ && overlay_->wants_keyboard());
+    camera_->fly.update(input, seconds);
+    camera_->moved = camera_->moved || changes_view(input);
+}
+
+// Returns false when there was nothing to draw into (a minimised window).
+bool Viewer::draw_frame(bool last) {
+    const glm::ivec2 size = window_->framebuffer_size();
+    if (size.x <= 0 || size.y <= 0) return false;
+    if (!target_ || target_->width() != size.x || target_->height() != size.y)
+        target_ = std::make_unique<engine::RenderTarget>(size.x, size.y);
+    const ViewSetup& lens = camera_->view;
+    const engine::CameraView view =
+        engine::make_camera(camera_->camera_to_world(), lens.fov_y, size.x, size.y, lens.znear, lens.zfar);
+    engine_.renderer().render(*scene_, view, *target_);
+    present(*target_, size);
+    if (show_ui_) {
+        overlay_->new_frame();
+        overlay_->render();
+    }
+    if (last) write_screenshots();
+    window_->swap_buffers();
+    return true;
+}
+
+void Viewer::write_screenshots() {
+    if (!options_.screenshot.empty()) engine::write_png(options_.screenshot, read_window(window_->framebuffer_size()));
+    if (!options_.offscreen.empty()) engine::write_png(options_.offscreen, target_->read_color());
+}
+
+void Viewer::run() {
+    using clock = std::chrono::steady_clock;
+    auto previous = clock::now();
+    int drawn = 0;
+    while (!window_->should_close() && (options_.frames == 0 || drawn < options_.frames)) {
+        window_->poll_events();
+        const auto now = clock::now();
+        // Clamped so that a stall (window drag, breakpoint) does not fling the camera away.
+        const float seconds = std::min(std::chrono::duration<float>(now - previous).count(), 0.1f);
+        previous = now;
+        update_camera(seconds);
+        if (draw_frame(options_.frames > 0 && drawn + 1 == options_.frames)) ++drawn;
+    }
+    if (options_.frames > 0 && drawn < options_.frames && !options_.screenshot.empty())
+        engine::fail("the window closed after " + std::to_string(drawn) + " of " + std::to_string(options_.frames) +
+                     " frames; no screenshot written");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Opens a window on a scene with a fly camera and the engine's overlay."};
+    Options options;
+    // No ExistingFile check: the scene loader's message names the file in the tool's own format.
+    app.add_option("--scene", options.scene, "Scene file (JSON)")->required();
+    app.add_option("--width", options.width, "Window width in pixels")->check(CLI::Range(16, 16384));
+    app.add_option("--height", options.height, "Window height in pixels")->check(CLI::Range(16, 16384));
+    auto* frames = app.add_option("--frames", options.frames, "Quit after this many frames")->check(CLI::PositiveNumber);
+    app.add_option("--screenshot", options.screenshot, "After the last frame, write the window (overlay included) as PNG")
+        ->needs(frames);
+    app.add_option("--offscreen", options.offscreen,
+                   "After the last frame, also write the offscreen frame without overlay as PNG (checks the blit)")
+        ->needs(frames);
+    app.add_flag("--no-ui", options.no_ui, "Start with the overlay hidden (F1 toggles it)");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help
+        std::fprintf(stderr, "engine_view: %s\n", e.what());
+        return 1;
+    }
+    try {
+        Viewer viewer(options);
+        viewer.run();
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "engine_view: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,215 @@
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "plugin_msgs/plugin_msgs.h"
+
+using nlohmann::json;
+using namespace plugin_msgs;
+
+namespace {
+
+// to_json → text → parse → from_json must give back the original.
+template <class M>
+void expect_round_trip(const M& original) {
+    const std::string text = json(original).dump();
+    const M back = json::parse(text).get<M>();
+    EXPECT_EQ(back, original) << text;
+}
+
+// The message of the std::invalid_argument that parsing `text` as M throws; empty when it parses.
+template <class M>
+std::string parse_error(const std::string& text) {
+    try {
+        json::parse(text).get<M>();
+    } catch (const std::invalid_argument& e) {
+        return e.what();
+    }
+    return "";
+}
+
+struct Rejection {
+    std::string text;
+    std::string named;  // what the message must contain: the kind and the key
+};
+
+template <class M>
+void expect_rejected(const std::vector<Rejection>& cases) {
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.text);
+        const std::string error = parse_error<M>(c.text);
+        EXPECT_NE(error.find(c.named), std::string::npos) << "message: '" << error << "'";
+    }
+}
+
+}  // namespace
+
+TEST(PluginMsgs, KindsAreDistinct) {
+    const std::vector<std::string_view> kinds{CameraState::kind, FrameStatistics::kind, LodSettings::kind,
+                                              StreamEvent::kind, ResidencyReport::kind};
+    for (std::size_t i = 0; i < kinds.size(); ++i)
+        for (std::size_t j = i + 1; j < kinds.size(); ++j) EXPECT_NE(kinds[i], kinds[j]);
+    EXPECT_EQ(LodSettings::kind, "lod_settings");
+    EXPECT_EQ(StreamEvent::kind, "stream_event");
+    EXPECT_EQ(ResidencyReport::kind, "residency");
+}
+
+TEST(PluginMsgs, CameraStateRoundTrips) {
+    CameraState camera;
+    camera.frame_index = 12345678901234ull;
+    camera.position = {1.5f, -2.25f, 1e-7f};
+    camera.forward = {0.0f, 0.70710677f, -0.70710677f};
+    camera.fov_y_deg = 63.3f;
+    camera.width = 1920;
+    camera.height = 1080;
+    expect_round_trip(camera);
+}
+
+TEST(PluginMsgs, FrameStatisticsRoundTrips) {
+    FrameStatistics stats;
+    stats.frame_index = 42;
+    stats.gpu_frame_index = 39;
+    stats.width = 640;
+    stats.height = 360;
+    stats.cpu_frame_ms = 16.6666;
+    stats.passes = {{"mesh", 1.25, 0.5}, {"splat_lod.raster", 3.0, -1.0}};
+    expect_round_trip(stats);
+    expect_round_trip(FrameStatistics{});
+}
+
+TEST(PluginMsgs, LodSettingsDefaultsFollowTheDesign) {
+    const LodSettings settings;
+    EXPECT_EQ(settings.mode, LodMode::full);
+    EXPECT_EQ(settings.size_threshold_px, 2.0f);
+    EXPECT_EQ(settings.rel_min, 0.5f);
+    EXPECT_EQ(settings.rel_max, 1.5f);
+    EXPECT_EQ(settings.render_scale, 1.0f);
+    EXPECT_EQ(settings.upscaler, Upscaler::spline);
+    EXPECT_FALSE(settings.mip_filter);
+    EXPECT_FALSE(settings.level_colouring);
+    EXPECT_EQ(settings.validate(), "");
+    EXPECT_EQ(json::parse("{}").get<LodSettings>(), settings);  // missing keys keep defaults
+}
+
+TEST(PluginMsgs, LodSettingsRoundTripEveryModeAndUpscaler) {
+    for (const auto mode : {LodMode::baseline, LodMode::filter_small, LodMode::insert_large, LodMode::full}) {
+        for (const auto upscaler : {Upscaler::spline, Upscaler::bicubic, Upscaler::bilinear, Upscaler::lanczos3}) {
+            LodSettings settings;
+            settings.mode = mode;
+            settings.upscaler = upscaler;
+            settings.size_threshold_px = 3.7f;
+            settings.rel_min = 0.25f;
+            settings.rel_max = 2.0f;
+            settings.render_scale = 1.0f / 3.0f;
+            settings.mip_filter = true;
+            settings.level_colouring = true;
+            expect_round_trip(settings);
+        }
+    }
+}
+
+TEST(PluginMsgs, LodSettingsEnumsTravelAsNames) {
+    LodSettings settings;
+    settings.mode = LodMode::insert_large;
+    settings.upscaler = Upscaler::lanczos3;
+    const json j = settings;
+    EXPECT_EQ(j.at("mode"), "insert_large");
+    EXPECT_EQ(j.at("upscaler"), "lanczos3");
+    EXPECT_EQ(to_string(LodMode::filter_small), "filter_small");
+}
+
+TEST(PluginMsgs, LodSettingsRejectBadEnumNamesNamingTheKey) {
+    expect_rejected<LodSettings>({
+        {R"({"mode": "ultra"})", "lod_settings.mode: unknown value 'ultra'"},
+        {R"({"mode": 2})", "lod_settings.mode"},
+        {R"({"upscaler": "nearest"})", "lod_settings.upscaler: unknown value 'nearest'"},
+    });
+    // The message lists what would have been accepted.
+    EXPECT_NE(parse_error<LodSettings>(R"({"upscaler": "Spline"})").find("spline, bicubic, bilinear, lanczos3"),
+              std::string::npos);
+}
+
+TEST(PluginMsgs, LodSettingsRejectOutOfRangeValuesNamingTheKey) {
+    expect_rejected<LodSettings>({
+        {R"({"render_scale": 0})", "lod_settings.render_scale: must be in (0, 1]"},
+        {R"({"render_scale": 1.5})", "lod_settings.render_scale"},
+        {R"({"render_scale": -0.5})", "lod_settings.render_scale"},
+        {R"({"render_scale": 1e300})", "lod_settings.render_scale"},
+        {R"({"size_threshold_px": 0})", "lod_settings.size_threshold_px"},
+        {R"({"size_threshold_px": -2})", "lod_settings.size_threshold_px"},
+        {R"({"rel_min": 0})", "lod_settings.rel_min"},
+        {R"({"rel_min": 2.0})", "lod_settings.rel_min: must be in (0, rel_max = 1.5]"},
+        {R"({"rel_min": 0.5, "rel_max": 0.4})", "lod_settings.rel_min"},
+        {R"({"rel_max": -1})", "lod_settings.rel_max"},
+    });
+}
+
+TEST(PluginMsgs, LodSettingsRejectWrongTypesAndUnknownKeys) {
+    expect_rejected<LodSettings>({
+        {R"({"render_scale": "half"})", "lod_settings.render_scale: expected a number"},
+        {R"({"mip_filter": 1})", "lod_settings.mip_filter: expected true or false"},
+        {R"({"render_scal": 0.5})", "lod_settings.render_scal: unknown key"},
+        {R"([1, 2])", "lod_settings: expected a JSON object"},
+    });
+}
+
+TEST(PluginMsgs, LodSettingsValidateCatchesValuesSetInCode) {
+    LodSettings settings;
+    settings.render_scale = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_NE(settings.validate().find("lod_settings.render_scale"), std::string::npos);
+    settings = LodSettings{};
+    settings.size_threshold_px = std::numeric_limits<float>::infinity();
+    EXPECT_NE(settings.validate().find("lod_settings.size_threshold_px"), std::string::npos);
+    settings = LodSettings{};
+    settings.rel_min = settings.rel_max;  // the upper end of (0, rel_max] is allowed
+    EXPECT_EQ(settings.validate(), "");
+}
+
+TEST(PluginMsgs, StreamEventRoundTripsEveryEventType) {
+    for (const auto type : {StreamEventType::requested, StreamEventType::loaded, StreamEventType::uploaded,
+                            StreamEventType::evicted, StreamEventType::failed}) {
+        StreamEvent event;
+        event.chunk_id = "chunk_+003_-002";
+        event.event = type;
+        event.level = 3;
+        event.bytes = 5'000'000'000ull;  // beyond 32 bits
+        event.message = type == StreamEventType::failed ? "truncated file: \"x.ply\" at byte 17" : "";
+        expect_round_trip(event);
+    }
+    EXPECT_EQ(json(StreamEvent{}).at("event"), "requested");
+}
+
+TEST(PluginMsgs, StreamEventRejectsBadValuesNamingTheKey) {
+    expect_rejected<StreamEvent>({
+        {R"({"event": "vanished"})", "stream_event.event: unknown value 'vanished'"},
+        {R"({"level": 5})", "stream_event.level"},
+        {R"({"level": -1})", "stream_event.level"},
+        {R"({"level": 1.5})", "stream_event.level: expected an integer"},
+        {R"({"bytes": -1})", "stream_event.bytes: expected a non-negative integer"},
+        {R"({"chunk_id": 7})", "stream_event.chunk_id"},
+        {R"({"chunk": "a"})", "stream_event.chunk: unknown key"},
+    });
+}
+
+TEST(PluginMsgs, ResidencyReportRoundTrips) {
+    ResidencyReport report;
+    report.frame_index = 900;
+    report.resident_bytes = 3'000'000'000ull;
+    report.budget_bytes = 2'500'000'000ull;
+    report.chunks = {4, 2, 57, 1};
+    expect_round_trip(report);
+    expect_round_trip(ResidencyReport{});
+}
+
+TEST(PluginMsgs, ResidencyReportRejectsBadValuesNamingTheKey) {
+    expect_rejected<ResidencyReport>({
+        {R"({"budget_bytes": -5})", "residency.budget_bytes"},
+        {R"({"chunks": {"resident": -3}})", "residency.chunks.resident"},
+        {R"({"chunks": {"evicting": 1}})", "residency.chunks.evicting: unknown key"},
+        {R"({"chunks": 3})", "residency.chunks: expected a JSON object"},
+    });
+}
