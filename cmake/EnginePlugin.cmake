@@ -1,5 +1,5 @@
 # engine_add_plugin(<name> SOURCES ... [SHARED]): a plugin library linked against the engine.
-# Static plugins register through engine::PluginRegistry::add_static(); shared ones export
+# Static plugins register through engine::PluginManager::add_static(); shared ones export
 # the C entry points declared in engine/plugin/plugin_abi.h and are loaded with dlopen.
 function(engine_add_plugin name)
   cmake_parse_arguments(ARG "SHARED" "" "SOURCES" ${ARGN})

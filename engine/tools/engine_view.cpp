@@ -26,6 +26,7 @@
 #include "engine/render/camera.h"
 #include "engine/render/image.h"
 #include "engine/render/render_target.h"
+#include "engine/render/scene_camera.h"
 #include "engine/scene/builtin_components.h"
 #include "engine/ui/fly_camera.h"
 #include "engine/ui/overlay.h"
@@ -51,59 +52,16 @@ struct ViewSetup {
     float scene_size = 1.0f;
 };
 
-struct Bounds {
-    glm::vec3 min{std::numeric_limits<float>::max()};
-    glm::vec3 max{std::numeric_limits<float>::lowest()};
-    bool empty() const { return min.x > max.x; }
-};
-
-Bounds mesh_bounds(const engine::Scene& scene) {
-    Bounds bounds;
-    for (const engine::MeshComponent* mesh : scene.components<engine::MeshComponent>()) {
-        if (!mesh->mesh || mesh->node() == nullptr) continue;
-        const glm::mat4 world = mesh->node()->world_matrix();
-        for (int corner = 0; corner < 8; ++corner) {
-            const glm::vec3 local((corner & 1) ? mesh->mesh->bounds_max.x : mesh->mesh->bounds_min.x,
-                                  (corner & 2) ? mesh->mesh->bounds_max.y : mesh->mesh->bounds_min.y,
-                                  (corner & 4) ? mesh->mesh->bounds_max.z : mesh->mesh->bounds_min.z);
-            const glm::vec3 p = glm::vec3(world * glm::vec4(local, 1.0f));
-            bounds.min = glm::min(bounds.min, p);
-            bounds.max = glm::max(bounds.max, p);
-        }
-    }
-    return bounds;
-}
-
-// A scene without a camera: look at the meshes' bounding sphere from the front and a little above.
-ViewSetup frame_scene(const Bounds& bounds, ViewSetup view) {
-    glm::vec3 centre(0.0f);
-    float radius = 1.0f;
-    if (!bounds.empty()) {
-        centre = 0.5f * (bounds.min + bounds.max);
-        radius = std::max(0.5f * glm::length(bounds.max - bounds.min), 1e-3f);
-    }
-    const float distance = 1.2f * radius / std::sin(0.5f * view.fov_y);
-    const glm::vec3 eye = centre + distance * glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f));
-    view.camera_to_world = glm::inverse(engine::make_look_at_camera(eye, centre, {0, 1, 0}, view.fov_y, 1, 1, 1.0f, 2.0f).view);
-    view.znear = std::max(1e-3f, 0.01f * radius);
-    view.zfar = distance + 10.0f * radius;
-    return view;
-}
-
-ViewSetup initial_view(const engine::Scene& scene) {
+// The scene's first camera, or a view that frames its bounds (render/scene_camera.h).
+ViewSetup initial_view(const engine::Scene& scene, int width, int height) {
+    const engine::CameraView camera = engine::scene_camera(scene, "", width, height)
+                                          .value_or(engine::framing_camera(scene, width, height, glm::radians(50.0f)));
     ViewSetup view;
-    const Bounds bounds = mesh_bounds(scene);
-    if (!bounds.empty()) view.scene_size = std::max(glm::length(bounds.max - bounds.min), 1e-2f);
-    const auto cameras = scene.components<engine::CameraComponent>();
-    if (cameras.empty() || cameras.front()->node() == nullptr) return frame_scene(bounds, view);
-    const engine::CameraComponent& camera = *cameras.front();
-    glm::mat4 m = camera.node()->world_matrix();
-    // make_camera() expects a rigid transform; a scaled node must not scale the view.
-    for (int axis = 0; axis < 3; ++axis) m[axis] = glm::vec4(glm::normalize(glm::vec3(m[axis])), 0.0f);
-    view.camera_to_world = m;
-    view.fov_y = glm::radians(camera.fov_y_deg);
+    view.camera_to_world = glm::inverse(camera.view);
+    view.fov_y = camera.fov_y;
     view.znear = camera.znear;
     view.zfar = camera.zfar;
+    if (const auto bounds = scene.world_bounds()) view.scene_size = std::max(glm::length(bounds->max - bounds->min), 1e-2f);
     return view;
 }
 
@@ -202,7 +160,7 @@ Viewer::Viewer(const Options& options) : options_(options), show_ui_(!options.no
     window_ = engine::Window::create("engine_view: " + options.scene.filename().string(), options.width,
                                      options.height, options.frames == 0);
     scene_ = engine_.load_scene(options.scene);
-    camera_.emplace(initial_view(*scene_));
+    camera_.emplace(initial_view(*scene_, options.width, options.height));
     overlay_ = std::make_unique<engine::UiOverlay>(*window_, engine_.bus());
     overlay_->set_scene(scene_.get());
 }

@@ -134,3 +134,14 @@ TEST(MessageBus, KeepsKindsApart) {
     EXPECT_EQ(bus.subscriber_count(CameraState::kind), 1u);
     EXPECT_EQ(bus.subscriber_count(plugin_msgs::StreamEvent::kind), 0u);
 }
+
+TEST(MessageBus, HandlerRemovedByAnotherDuringDeliveryIsNotCalled) {
+    engine::MessageBus bus;
+    int second_calls = 0;
+    engine::Subscription second;
+    auto first = bus.subscribe<plugin_msgs::CameraState>([&](const plugin_msgs::CameraState&) { second.reset(); });
+    second = bus.subscribe<plugin_msgs::CameraState>([&](const plugin_msgs::CameraState&) { ++second_calls; });
+    bus.publish(plugin_msgs::CameraState{});
+    EXPECT_EQ(second_calls, 0);
+    EXPECT_EQ(bus.subscriber_count(plugin_msgs::CameraState::kind), 1u);
+}

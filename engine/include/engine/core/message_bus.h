@@ -4,6 +4,8 @@
 // shared-library boundaries. Delivery is synchronous, on the publishing thread, in subscription
 // order; the bus also keeps the latest message of each kind for late readers (UI, tests).
 #include <any>
+#include <atomic>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -71,13 +73,19 @@ public:
 private:
     friend class Subscription;
     using Handler = std::function<void(const std::any&)>;
+    // `active` turns false on unsubscribe, so a handler removed during a delivery (by another
+    // handler) is not called for the rest of it.
+    struct Entry {
+        Handler handler;
+        std::atomic<bool> active{true};
+    };
     std::uint64_t add(std::string kind, Handler handler);
     void remove(const std::string& kind, std::uint64_t id);
     void deliver(const std::string& kind, std::any message);
 
     mutable std::mutex mutex_;
     std::uint64_t next_id_ = 1;
-    std::map<std::string, std::vector<std::pair<std::uint64_t, std::shared_ptr<Handler>>>> handlers_;
+    std::map<std::string, std::vector<std::pair<std::uint64_t, std::shared_ptr<Entry>>>> handlers_;
     std::map<std::string, std::any> latest_;
 };
 
