@@ -120,6 +120,15 @@ void GLAPIENTRY debug_callback(GLenum, GLenum type, GLuint id, GLenum severity, 
 
 }  // namespace
 
+bool gl_debug_requested() {
+#ifndef NDEBUG
+    return true;
+#else
+    const char* env = std::getenv("ENGINE_GL_DEBUG");
+    return env != nullptr && env[0] == '1';
+#endif
+}
+
 void install_gl_debug_output() {
     if (!epoxy_has_gl_extension("GL_KHR_debug") && epoxy_gl_version() < 43) return;
     glEnable(GL_DEBUG_OUTPUT);
@@ -170,8 +179,7 @@ std::unique_ptr<HeadlessGlContext> HeadlessGlContext::create(bool debug) {
     result->context_ = context;
     result->info_ = query_current_gl_info(choice.platform);
     require_compute_support(result->info_);
-    const char* env = std::getenv("ENGINE_GL_DEBUG");
-    if (debug || (env != nullptr && env[0] == '1')) install_gl_debug_output();
+    if (debug) install_gl_debug_output();
     log(LogLevel::debug, "GL " + result->info_.version + " on " + result->info_.renderer + " (EGL " + choice.platform + ")");
     return result;
 }

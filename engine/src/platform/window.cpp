@@ -64,8 +64,7 @@ GLFWwindow* open_window(const ContextRequest& request, const std::string& title,
         glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
         glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     }
-    const char* debug = std::getenv("ENGINE_GL_DEBUG");
-    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, debug != nullptr && debug[0] == '1' ? GLFW_TRUE : GLFW_FALSE);
+    glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, gl_debug_requested() ? GLFW_TRUE : GLFW_FALSE);
     return glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
 }
 
@@ -149,8 +148,7 @@ std::unique_ptr<Window> Window::create(const std::string& title, int width, int 
     glfwSwapInterval(vsync ? 1 : 0);
     window->info_ = query_current_gl_info(platform);
     require_compute_support(window->info_);
-    const char* debug = std::getenv("ENGINE_GL_DEBUG");
-    if (debug != nullptr && debug[0] == '1') install_gl_debug_output();
+    if (gl_debug_requested()) install_gl_debug_output();
 
     // Installed before ImGui's backend, which chains to callbacks already present.
     glfwSetWindowUserPointer(handle, window.get());

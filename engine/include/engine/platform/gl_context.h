@@ -24,11 +24,14 @@ void require_compute_support(const GlInfo& info);
 // Installs a KHR_debug callback that routes driver messages to the log (debug builds, or when
 // ENGINE_GL_DEBUG=1). High-severity messages are logged as errors.
 void install_gl_debug_output();
+// True in debug builds or when ENGINE_GL_DEBUG=1.
+bool gl_debug_requested();
 
 class HeadlessGlContext {
 public:
-    // Creates the context and makes it current. `debug` requests a debug context.
-    static std::unique_ptr<HeadlessGlContext> create(bool debug = false);
+    // Creates the context and makes it current. `debug` requests a debug context with KHR_debug
+    // output routed to the log (on in debug builds; ENGINE_GL_DEBUG=1 turns it on anywhere).
+    static std::unique_ptr<HeadlessGlContext> create(bool debug = gl_debug_requested());
     ~HeadlessGlContext();
     HeadlessGlContext(const HeadlessGlContext&) = delete;
     HeadlessGlContext& operator=(const HeadlessGlContext&) = delete;
