@@ -2,16 +2,18 @@
 //   engine_render --scene content/scenes/helmet.json --out helmet.png [--width 960 --height 540]
 //                 [--camera NODE | --eye X,Y,Z --target X,Y,Z [--up X,Y,Z] [--fov-y DEG]]
 //                 [--plugin LIB.so ...] [--frames N]
+// Static plugins built with the engine (e.g. splat_lod) are always started; --plugin loads more.
 // Prints the GL renderer and the per-pass CPU/GPU times of the last frame.
 #include <cstdio>
-#include <sstream>
 
 #include <CLI/CLI.hpp>
 #include <plugin_msgs/frame_statistics.h>
 
+#include "engine/core/cli_values.h"
 #include "engine/core/error.h"
 #include "engine/engine.h"
 #include "engine/platform/gl_context.h"
+#include "engine/plugin/static_plugins.h"
 #include "engine/render/image.h"
 #include "engine/render/render_target.h"
 #include "engine/render/scene_camera.h"
@@ -25,23 +27,14 @@ struct Options {
     float fov_y_deg = 50.0f;
 };
 
-glm::vec3 parse_vec3(const std::string& text, const char* option) {
-    glm::vec3 v;
-    char c1 = 0, c2 = 0;
-    std::istringstream in(text);
-    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof())
-        engine::fail(std::string(option) + ": expected X,Y,Z, got '" + text + "'");
-    return v;
-}
-
 engine::CameraView choose_camera(const engine::Scene& scene, const Options& o) {
     const float fov = glm::radians(o.fov_y_deg);
     if (!o.eye.empty() || !o.target.empty()) {
         if (o.eye.empty() || o.target.empty()) engine::fail("--eye and --target go together");
-        const glm::vec3 eye = parse_vec3(o.eye, "--eye"), target = parse_vec3(o.target, "--target");
+        const glm::vec3 eye = engine::parse_vec3(o.eye, "--eye"), target = engine::parse_vec3(o.target, "--target");
         const auto bounds = scene.world_bounds();
         const float reach = bounds ? glm::length(bounds->max - bounds->min) + glm::length(target - eye) : 1000.0f;
-        return engine::make_look_at_camera(eye, target, parse_vec3(o.up, "--up"), fov, o.width, o.height,
+        return engine::make_look_at_camera(eye, target, engine::parse_vec3(o.up, "--up"), fov, o.width, o.height,
                                            std::max(reach * 1e-4f, 1e-3f), reach * 4.0f);
     }
     if (auto camera = engine::scene_camera(scene, o.camera_node, o.width, o.height)) return *camera;
@@ -51,6 +44,7 @@ engine::CameraView choose_camera(const engine::Scene& scene, const Options& o) {
 int run(const Options& o) {
     auto context = engine::HeadlessGlContext::create();
     engine::Engine engine;
+    engine_add_static_plugins(engine.plugins());
     for (const auto& plugin : o.plugins) engine.plugins().load_shared(plugin);
     const auto scene = engine.load_scene(o.scene);
     const engine::CameraView camera = choose_camera(*scene, o);

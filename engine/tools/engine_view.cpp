@@ -23,6 +23,7 @@
 #include "engine/engine.h"
 #include "engine/gl/gl.h"
 #include "engine/platform/window.h"
+#include "engine/plugin/static_plugins.h"
 #include "engine/render/camera.h"
 #include "engine/render/image.h"
 #include "engine/render/render_target.h"
@@ -159,6 +160,7 @@ Viewer::Viewer(const Options& options) : options_(options), show_ui_(!options.no
     // A fixed frame count is a test or benchmark run: waiting for vertical blank only slows it.
     window_ = engine::Window::create("engine_view: " + options.scene.filename().string(), options.width,
                                      options.height, options.frames == 0);
+    engine_add_static_plugins(engine_.plugins());
     scene_ = engine_.load_scene(options.scene);
     camera_.emplace(initial_view(*scene_, options.width, options.height));
     overlay_ = std::make_unique<engine::UiOverlay>(*window_, engine_.bus());

@@ -7,6 +7,7 @@
 #include "engine/scene/builtin_components.h"
 #include "engine/scene/component_registry.h"
 #include "engine/scene/scene_loader.h"
+#include "splat_lod/splat_component.h"
 #include "test_support.h"
 
 namespace {
@@ -111,6 +112,7 @@ TEST_F(SceneLoaderTest, MissingSceneFileIsAClearError) {
 
 TEST_F(SceneLoaderTest, EveryShowcaseSceneLoads) {
     ENGINE_REQUIRE_SHARED_DATA();
+    splat_lod::register_splat_component(registry, "splat_lod");  // showcase scenes use the plugin's type
     int count = 0;
     for (const auto& entry : std::filesystem::directory_iterator(engine::test::repo_dir() / "content/scenes")) {
         if (entry.path().extension() != ".json") continue;

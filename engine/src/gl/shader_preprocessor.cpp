@@ -94,6 +94,11 @@ void ShaderPreprocessor::expand(const std::filesystem::path& file, PreprocessedS
             fail(where + ": '#version' is added by the engine; remove it from the file");
         } else if (starts_with_directive(line, "pragma once")) {
             out.source += "\n";
+        } else if (starts_with_directive(line, "include") && line.find('<') != std::string::npos &&
+                   line.find('"') == std::string::npos) {
+            // `#include <...>` is for C++ only, in the `#ifdef __cplusplus` part of *_shared.h
+            // headers; GLSL skips that part, so the line passes through untouched.
+            out.source += line + "\n";
         } else if (starts_with_directive(line, "include")) {
             std::smatch match;
             if (!std::regex_match(line, match, include_re)) fail(where + ": malformed #include (use #include \"file\")");

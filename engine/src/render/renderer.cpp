@@ -58,6 +58,12 @@ std::vector<std::string> Renderer::pass_names() const {
     return names;
 }
 
+RenderPass* Renderer::find_pass(const std::string& name) const {
+    for (const auto& p : passes_)
+        if (p->name() == name) return p.get();
+    return nullptr;
+}
+
 gl::ShaderLibrary& Renderer::shaders() {
     if (!shaders_) shaders_ = std::make_unique<gl::ShaderLibrary>();
     return *shaders_;

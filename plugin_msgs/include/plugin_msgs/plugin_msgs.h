@@ -5,4 +5,5 @@
 #include "plugin_msgs/camera_state.h"
 #include "plugin_msgs/frame_statistics.h"
 #include "plugin_msgs/lod_settings.h"
+#include "plugin_msgs/splat_statistics.h"
 #include "plugin_msgs/stream_events.h"

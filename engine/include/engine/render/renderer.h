@@ -24,6 +24,7 @@ public:
     void add_pass(std::shared_ptr<RenderPass> pass);
     void remove_pass(const std::string& name);
     std::vector<std::string> pass_names() const;
+    RenderPass* find_pass(const std::string& name) const;
 
     // Draws the scene from `camera` into `target`; needs a current GL context.
     void render(const Scene& scene, const CameraView& camera, RenderTarget& target);

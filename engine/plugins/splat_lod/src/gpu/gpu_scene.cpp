@@ -1,0 +1,146 @@
+#include "gpu/gpu_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <bit>
+#include <limits>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "engine/core/error.h"
+#include "engine/core/log.h"
+#include "engine/scene/node.h"
+#include "splat_lod/splat_component.h"
+
+namespace splat_lod::gpu {
+namespace {
+
+double sigmoid(double x) { return x >= 0 ? 1.0 / (1.0 + std::exp(-x)) : std::exp(x) / (1.0 + std::exp(x)); }
+
+int drawn_degree(const SplatComponent& c) { return std::min(c.sh_degree_cap, c.cloud->sh_degree); }
+
+// World → local directions for SH: the rotation part of the model matrix (columns normalised,
+// so uniform and axis-aligned non-uniform scales are removed), transposed.
+glm::mat4 inverse_rotation(const glm::mat4& model) {
+    glm::mat3 r(model);
+    for (int i = 0; i < 3; ++i) {
+        const float len = glm::length(r[i]);
+        r[i] = len > 0.0f ? r[i] / len : glm::vec3(0.0f);
+    }
+    return glm::mat4(glm::transpose(r));
+}
+
+// Readers already drop such Gaussians (sanitise()); clouds made in code may still hold them.
+bool drawable(const SplatCloud& cloud, std::size_t i, std::size_t sh_stride_floats) {
+    const Rotation& q = cloud.rotations[i];
+    const double norm = std::sqrt(double(q.w) * q.w + double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z);
+    bool finite = std::isfinite(norm) && norm > 1e-12 && std::isfinite(cloud.opacity_logits[i]);
+    for (int c = 0; c < 3; ++c)
+        finite = finite && std::isfinite(cloud.positions[i][c]) && std::isfinite(cloud.log_scales[i][c]) &&
+                 std::isfinite(cloud.sh_dc[i][c]);
+    for (std::size_t k = 0; k < sh_stride_floats && finite; ++k) finite = std::isfinite(cloud.sh_rest[i * sh_stride_floats + k]);
+    return finite;
+}
+
+}  // namespace
+
+std::size_t pack_gaussians(const SplatCloud& cloud, std::uint32_t instance, std::vector<GpuGaussian>& out) {
+    out.reserve(out.size() + cloud.size());
+    const float instance_bits = std::bit_cast<float>(instance);
+    std::size_t dropped = 0;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        if (!drawable(cloud, i, cloud.sh_rest_stride())) {
+            // Kept in place (indices stay aligned with the SH buffer) but never drawn: opacity 0.
+            GpuGaussian g{};
+            g.covariance_b.w = instance_bits;
+            out.push_back(g);
+            ++dropped;
+            continue;
+        }
+        const Rotation& q = cloud.rotations[i];
+        const glm::dmat3 r = glm::mat3_cast(glm::normalize(glm::dquat(q.w, q.x, q.y, q.z)));
+        const glm::dvec3 s = glm::exp(glm::dvec3(cloud.log_scales[i]));
+        glm::dmat3 m = r;
+        for (int c = 0; c < 3; ++c) m[c] *= s[c];
+        const glm::dmat3 sigma = m * glm::transpose(m);
+        GpuGaussian g;
+        g.position_opacity = glm::vec4(cloud.positions[i], static_cast<float>(sigmoid(cloud.opacity_logits[i])));
+        g.covariance_a = glm::vec4(sigma[0][0], sigma[0][1], sigma[0][2], sigma[1][1]);
+        g.covariance_b = glm::vec4(static_cast<float>(sigma[1][2]), static_cast<float>(sigma[2][2]), 0.0f, instance_bits);
+        const float level = cloud.lod_level.empty() ? 1.0f : static_cast<float>(cloud.lod_level[i]);
+        const float cmin = cloud.coverage_min.empty() ? -1.0f : cloud.coverage_min[i];
+        const float cmax = cloud.coverage_max.empty() ? -1.0f : cloud.coverage_max[i];
+        g.lod = glm::vec4(cmin, cmax, level, 0.0f);
+        out.push_back(g);
+    }
+    return dropped;
+}
+
+void pack_sh(const SplatCloud& cloud, int degree, std::uint32_t stride, std::vector<float>& out) {
+    const std::size_t base = out.size();
+    out.resize(base + cloud.size() * stride, 0.0f);
+    const int rest = sh_rest_coeffs(degree);
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        float* dst = &out[base + i * stride];
+        dst[0] = cloud.sh_dc[i].x;
+        dst[1] = cloud.sh_dc[i].y;
+        dst[2] = cloud.sh_dc[i].z;
+        for (int k = 1; k <= rest; ++k)
+            for (int c = 0; c < 3; ++c) dst[k * 3 + c] = cloud.sh_rest_at(i, k, c);
+    }
+}
+
+bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
+    std::vector<Resident> wanted;
+    for (const auto* c : components) wanted.push_back({c->cloud.get(), drawn_degree(*c)});
+    const bool rebuild = wanted != resident_ || !gaussians_;
+    if (rebuild) upload(components, std::move(wanted));
+
+    std::vector<GpuInstance> instances;
+    std::uint32_t first = 0;
+    for (const auto* c : components) {
+        GpuInstance inst;
+        inst.model = c->node()->world_matrix();
+        inst.rotation_inverse = inverse_rotation(inst.model);
+        const auto count = static_cast<std::uint32_t>(c->cloud->size());
+        inst.info = glm::uvec4(first, count, static_cast<std::uint32_t>(drawn_degree(*c)), 0u);
+        first += count;
+        instances.push_back(inst);
+    }
+    const std::size_t bytes = std::max<std::size_t>(instances.size(), 1) * sizeof(GpuInstance);
+    instances_.ensure_size(bytes, "splat instances");
+    if (!instances.empty()) instances_.upload(0, instances.size() * sizeof(GpuInstance), instances.data());
+    return rebuild;
+}
+
+void GpuScene::upload(const std::vector<const SplatComponent*>& components, std::vector<Resident> wanted) {
+    int max_degree = 0;
+    std::size_t total = 0;
+    for (const auto* c : components) {
+        max_degree = std::max(max_degree, drawn_degree(*c));
+        total += c->cloud->size();
+    }
+    if (total > std::numeric_limits<std::uint32_t>::max() / 2)
+        engine::fail("splat_lod: " + std::to_string(total) + " Gaussians exceed what one scene can draw");
+    sh_stride_ = static_cast<std::uint32_t>(3 * (max_degree + 1) * (max_degree + 1));
+    std::vector<GpuGaussian> gaussians;
+    std::vector<float> sh;
+    dropped_ = 0;
+    gaussians.reserve(total);
+    sh.reserve(total * sh_stride_);
+    for (std::uint32_t i = 0; i < components.size(); ++i) {
+        dropped_ += pack_gaussians(*components[i]->cloud, i, gaussians);
+        pack_sh(*components[i]->cloud, drawn_degree(*components[i]), sh_stride_, sh);
+    }
+    gaussian_count_ = static_cast<std::uint32_t>(total);
+    if (dropped_ > 0) engine::log_warning("splat_lod: " + std::to_string(dropped_) + " Gaussians with NaN/Inf values or a zero rotation are not drawn");
+    gaussians_ = engine::gl::Buffer("splat gaussians");
+    gaussians_.storage(gaussians.size() * sizeof(GpuGaussian), gaussians.data(), 0);
+    sh_ = engine::gl::Buffer("splat sh");
+    sh_.storage(sh.size() * sizeof(float), sh.data(), 0);
+    resident_ = std::move(wanted);
+    keep_alive_.clear();
+    for (const auto* c : components) keep_alive_.push_back(c->cloud);
+}
+
+}  // namespace splat_lod::gpu

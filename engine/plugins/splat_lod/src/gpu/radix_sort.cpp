@@ -1,0 +1,183 @@
+#include "gpu/radix_sort.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "engine/core/error.h"
+#include "splat_lod/splat_lod_shared.h"
+
+namespace splat_lod::gpu {
+namespace {
+
+static_assert(sizeof(SortParams) == 32, "SortParams is 32 bytes in std430");
+static_assert(offsetof(SortParams, histogram_count) == 24 && offsetof(SortParams, histogram_total) == 28);
+static_assert(SORT_RADIX_SIZE == 1 << SORT_RADIX_BITS);
+static_assert(32 % SORT_RADIX_BITS == 0, "a digit must not straddle the low and high key words");
+static_assert(SORT_WORKGROUP_SIZE % 32 == 0, "the scatter keeps one 32-bit lane mask word per 32 invocations");
+static_assert((2 * SORT_RADIX_SIZE * SORT_MASK_WORDS + SORT_RADIX_SIZE) * 4 <= 32768,
+              "the scatter's shared memory must fit the GL minimum of 32 KiB");
+
+constexpr std::uint32_t max_groups = 65535;  // GL_MAX_COMPUTE_WORK_GROUP_COUNT guarantees this
+constexpr GLbitfield results_visible = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
+
+const char* const error_prefix = "splat_lod::gpu::RadixSort::record(): ";
+
+void set_uint(const engine::gl::Program& program, const char* name, std::uint32_t value) {
+    glProgramUniform1ui(program.id(), glGetUniformLocation(program.id(), name), value);
+}
+
+std::uint32_t tiles_for(std::uint32_t count) { return (count + SORT_TILE_SIZE - 1) / SORT_TILE_SIZE; }
+
+void check_job(const SortJob& job) {
+    const auto fail = [](const std::string& message) { engine::fail(error_prefix + message); };
+    if (!job.count_buffer || job.count_offset % 4 != 0 || job.count_offset + 4 > job.count_buffer.size())
+        fail("count offset " + std::to_string(job.count_offset) + " is not a 4-byte-aligned word inside its buffer of " +
+             std::to_string(job.count_buffer.size()) + " bytes");
+    if (job.hi_bits > 32) fail("hi_bits " + std::to_string(job.hi_bits) + " exceeds the 32 bits of the high word");
+    if (job.max_count > RadixSort::max_sort_count())
+        fail("max_count " + std::to_string(job.max_count) + " exceeds the limit " + std::to_string(RadixSort::max_sort_count()));
+    if (!job.keys || job.keys.size() < std::size_t{job.max_count} * 8)
+        fail("keys buffer of " + std::to_string(job.keys.size()) + " bytes is smaller than max_count " +
+             std::to_string(job.max_count) + " uvec2 keys");
+    if (!job.values || job.values.size() < std::size_t{job.max_count} * 4)
+        fail("values buffer of " + std::to_string(job.values.size()) + " bytes is smaller than max_count " +
+             std::to_string(job.max_count) + " uint values");
+}
+
+// A GPU timer span when timers are given, nothing otherwise.
+class OptionalSpan {
+public:
+    OptionalSpan(engine::gl::GpuTimers* timers, const std::string& name) {
+        if (timers != nullptr) scope_.emplace(*timers, name);
+    }
+
+private:
+    std::optional<engine::gl::GpuTimerScope> scope_;
+};
+
+}  // namespace
+
+RadixSort::RadixSort(engine::gl::ShaderLibrary& shaders) : shaders_(shaders), scan_(shaders) {}
+
+std::uint32_t RadixSort::max_sort_count() {
+    return std::min<std::uint32_t>(max_groups * SORT_TILE_SIZE, PrefixScan::max_scan_count() / SORT_RADIX_SIZE * SORT_TILE_SIZE);
+}
+
+std::uint32_t RadixSort::pass_count(std::uint32_t hi_bits) { return (32 + hi_bits + SORT_RADIX_BITS - 1) / SORT_RADIX_BITS; }
+
+void RadixSort::record(const SortJob& job, engine::gl::GpuTimers* timers) {
+    check_job(job);
+    const OptionalSpan total_span(timers, "radix_sort");
+    prepare_buffers(job.max_count);
+    // The keys, values and count were written by earlier passes.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    {
+        const OptionalSpan stage(timers, "radix_sort.arguments");
+        record_arguments(job);
+    }
+    const std::uint32_t passes = pass_count(job.hi_bits);
+    for (std::uint32_t index = 0; index < passes; ++index) record_pass(job, index, timers);
+    // Passes alternate caller -> swap -> caller; after an odd number the result is in the swap.
+    if (passes % 2 == 1) {
+        const OptionalSpan stage(timers, "radix_sort.copy");
+        record_copy({keys_swap_, values_swap_}, {job.keys, job.values});
+    }
+    glMemoryBarrier(results_visible);
+}
+
+// Internal buffers follow the largest capacity seen; ensure_size grows them, never shrinks.
+void RadixSort::prepare_buffers(std::uint32_t max_count) {
+    max_count_ = max_count;
+    params_.ensure_size(sizeof(SortParams), "radix_sort params");
+    histogram_.ensure_size(std::size_t{SORT_RADIX_SIZE} * tiles_for(max_count) * 4, "radix_sort histogram");
+    keys_swap_.ensure_size(std::size_t{max_count} * 8, "radix_sort keys swap");
+    values_swap_.ensure_size(std::size_t{max_count} * 4, "radix_sort values swap");
+}
+
+void RadixSort::record_arguments(const SortJob& job) {
+    const auto& program = shaders_.program({"splat_lod/radix_sort_dispatch_args.comp.glsl"});
+    glUseProgram(program.id());
+    set_uint(program, "u_count_index", static_cast<std::uint32_t>(job.count_offset / 4));
+    set_uint(program, "u_max_count", job.max_count);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_COUNT, job.count_buffer.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_PARAMS, params_.id());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+// One stable counting pass on one digit: histogram per tile, scan of all (digit, tile) counts,
+// scatter. Even passes read the caller's buffers and write the swap buffers, odd passes the reverse.
+void RadixSort::record_pass(const SortJob& job, std::uint32_t index, engine::gl::GpuTimers* timers) {
+    const std::uint32_t total_bits = 32 + job.hi_bits;
+    const std::uint32_t first_bit = index * SORT_RADIX_BITS;
+    const Pass pass{first_bit / 32, first_bit % 32, std::min<std::uint32_t>(SORT_RADIX_BITS, total_bits - first_bit)};
+    const Pair caller{job.keys, job.values};
+    const Pair swap{keys_swap_, values_swap_};
+    const Pair& in = index % 2 == 0 ? caller : swap;
+    const Pair& out = index % 2 == 0 ? swap : caller;
+    const std::string name = "radix_sort.pass" + std::to_string(index);
+    {
+        const OptionalSpan stage(timers, name + ".histogram");
+        record_histogram(pass, in);
+    }
+    {
+        const OptionalSpan stage(timers, name + ".scan");
+        scan_.record({.values = histogram_,
+                      .count_buffer = params_,
+                      .count_offset = offsetof(SortParams, histogram_count),
+                      .max_count = SORT_RADIX_SIZE * tiles_for(max_count_),
+                      .total_buffer = params_,
+                      .total_offset = offsetof(SortParams, histogram_total)});
+    }
+    const OptionalSpan stage(timers, name + ".scatter");
+    record_scatter(pass, in, out);
+}
+
+void RadixSort::record_histogram(const Pass& pass, const Pair& in) {
+    const auto& program = shaders_.program({"splat_lod/radix_sort_histogram.comp.glsl"});
+    glUseProgram(program.id());
+    set_uint(program, "u_word", pass.word);
+    set_uint(program, "u_shift", pass.shift);
+    set_uint(program, "u_digit_bits", pass.bits);
+    bind_pairs(in, in);
+    dispatch_tiles();
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void RadixSort::record_scatter(const Pass& pass, const Pair& in, const Pair& out) {
+    const auto& program = shaders_.program({"splat_lod/radix_sort_scatter.comp.glsl"});
+    glUseProgram(program.id());
+    set_uint(program, "u_word", pass.word);
+    set_uint(program, "u_shift", pass.shift);
+    set_uint(program, "u_digit_bits", pass.bits);
+    bind_pairs(in, out);
+    dispatch_tiles();
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void RadixSort::record_copy(const Pair& in, const Pair& out) {
+    const auto& program = shaders_.program({"splat_lod/radix_sort_copy.comp.glsl"});
+    glUseProgram(program.id());
+    bind_pairs(in, out);
+    dispatch_tiles();
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void RadixSort::bind_pairs(const Pair& in, const Pair& out) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_KEYS_IN, in.keys.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_VALUES_IN, in.values.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_KEYS_OUT, out.keys.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_VALUES_OUT, out.values.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_HISTOGRAM, histogram_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_PARAMS, params_.id());
+}
+
+// One workgroup per tile of the real count, sized on the GPU by radix_sort_dispatch_args.
+void RadixSort::dispatch_tiles() {
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, params_.id());
+    glDispatchComputeIndirect(static_cast<GLintptr>(offsetof(SortParams, dispatch)));
+}
+
+}  // namespace splat_lod::gpu

@@ -1,0 +1,73 @@
+#pragma once
+// GPU stable LSD radix sort of 64-bit (tile, depth) keys with uint values. The element count
+// lives in a GPU buffer (written by an earlier pass, never read back by the CPU inside a frame);
+// every dispatch is indirect, sized on the GPU from that count, so work follows the real count
+// while the CPU only knows the capacity.
+#include <cstddef>
+#include <cstdint>
+
+#include "engine/gl/gpu_timers.h"
+#include "engine/gl/objects.h"
+#include "engine/gl/shader_library.h"
+#include "gpu/prefix_scan.h"
+
+namespace splat_lod::gpu {
+
+struct SortJob {
+    // uvec2 per element: x = low word (bits of a positive float depth, which order like the
+    // value), y = high word (tile index, below 2^hi_bits). Sorted ascending by (y, x) in place.
+    engine::gl::Buffer& keys;
+    engine::gl::Buffer& values;               // uint per element, moved along with its key
+    const engine::gl::Buffer& count_buffer;   // holds the element count as a uint ...
+    std::size_t count_offset = 0;             // ... at this byte offset (a multiple of 4)
+    std::uint32_t max_count = 0;              // capacity; a larger count on the GPU is clamped
+    // Significant bits of the high word, 0..32: ceil(log2(tile_count)). Higher bits are ignored.
+    std::uint32_t hi_bits = 0;
+};
+
+class RadixSort {
+public:
+    // Programs come from `shaders`, which must outlive this object.
+    explicit RadixSort(engine::gl::ShaderLibrary& shaders);
+
+    // Records the sort. Stable: equal keys keep their input order. The result is in job.keys and
+    // job.values; elements at and beyond the count stay untouched. Ends with a barrier that makes
+    // the results visible to shaders, indirect commands and buffer reads. Spans "radix_sort*" go
+    // to `timers` when given. Throws engine::Error for buffers too small, misaligned offsets,
+    // hi_bits above 32 or max_count above max_sort_count().
+    void record(const SortJob& job, engine::gl::GpuTimers* timers = nullptr);
+
+    // The largest max_count: indirect dispatches are limited to 65535 workgroups per dimension.
+    static std::uint32_t max_sort_count();
+    // Digit passes for `hi_bits`: all 32 low bits plus hi_bits, SORT_RADIX_BITS at a time.
+    static std::uint32_t pass_count(std::uint32_t hi_bits);
+
+private:
+    struct Pass {
+        std::uint32_t word = 0;   // 0: low word, 1: high word
+        std::uint32_t shift = 0;  // first bit of the digit in that word
+        std::uint32_t bits = 0;   // digit width
+    };
+    struct Pair {
+        const engine::gl::Buffer& keys;
+        const engine::gl::Buffer& values;
+    };
+    void prepare_buffers(std::uint32_t max_count);
+    void record_arguments(const SortJob& job);
+    void record_pass(const SortJob& job, std::uint32_t index, engine::gl::GpuTimers* timers);
+    void record_histogram(const Pass& pass, const Pair& in);
+    void record_scatter(const Pass& pass, const Pair& in, const Pair& out);
+    void record_copy(const Pair& in, const Pair& out);
+    void bind_pairs(const Pair& in, const Pair& out);
+    void dispatch_tiles();
+
+    engine::gl::ShaderLibrary& shaders_;
+    PrefixScan scan_;
+    std::uint32_t max_count_ = 0;
+    engine::gl::Buffer params_{engine::gl::NoCreate};        // SortParams, GPU-written
+    engine::gl::Buffer histogram_{engine::gl::NoCreate};     // per-tile digit counts, then offsets
+    engine::gl::Buffer keys_swap_{engine::gl::NoCreate};     // ping-pong partner of job.keys
+    engine::gl::Buffer values_swap_{engine::gl::NoCreate};   // ping-pong partner of job.values
+};
+
+}  // namespace splat_lod::gpu

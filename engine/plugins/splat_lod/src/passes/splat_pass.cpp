@@ -1,0 +1,203 @@
+#include "passes/splat_pass.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "engine/core/error.h"
+#include "engine/core/message_bus.h"
+#include "engine/gl/gpu_timers.h"
+#include "engine/gl/shader_library.h"
+#include "engine/render/render_target.h"
+#include "engine/scene/scene.h"
+#include "gpu/prefix_scan.h"
+#include "gpu/radix_sort.h"
+#include "splat_lod/splat_component.h"
+
+namespace splat_lod {
+namespace {
+
+using engine::gl::GpuTimerScope;
+constexpr std::uint32_t initial_keys_per_gaussian = 4;
+constexpr std::uint32_t minimum_key_capacity = 1u << 16;
+
+std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + size - 1) / size; }
+
+const engine::gl::Program& program(engine::FrameContext& frame, const char* file) {
+    return frame.shaders.program({std::string("splat_lod/") + file});
+}
+
+void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT); }
+
+}  // namespace
+
+SplatPass::SplatPass() = default;
+SplatPass::~SplatPass() = default;
+
+void SplatPass::ensure_frame_buffers(std::uint32_t gaussians, std::uint32_t tile_count) {
+    using gpu::ProjectedSplat;
+    if (!uniforms_) {
+        uniforms_ = engine::gl::Buffer("splat frame uniforms");
+        uniforms_.storage(sizeof(gpu::FrameUniforms));
+        counters_ = engine::gl::Buffer("splat frame counters");
+        counters_.storage(sizeof(gpu::FrameCounters));
+        args_ = engine::gl::Buffer("splat dispatch args");
+        args_.storage(sizeof(glm::uvec4));
+        count_ = engine::gl::Buffer("splat gaussian count");
+        count_.storage(sizeof(std::uint32_t));
+        for (auto& r : readbacks_) {
+            r.buffer = engine::gl::Buffer("splat counters readback");
+            r.buffer.storage(sizeof(gpu::FrameCounters), nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+        }
+    }
+    projected_.ensure_size(std::size_t(gaussians) * sizeof(ProjectedSplat), "splat projected");
+    tile_counts_.ensure_size((std::size_t(gaussians) + 1) * sizeof(std::uint32_t), "splat tile counts");
+    tile_ranges_.ensure_size(std::size_t(tile_count) * sizeof(glm::uvec2), "splat tile ranges");
+    const std::uint32_t wanted = std::max({key_capacity_, minimum_key_capacity, gaussians * initial_keys_per_gaussian,
+                                           pending_growth_ + pending_growth_ / 4});
+    const std::uint32_t capacity = std::min(wanted, gpu::RadixSort::max_sort_count());
+    if (capacity != key_capacity_) {
+        keys_.ensure_size(std::size_t(capacity) * sizeof(glm::uvec2), "splat tile keys");
+        values_.ensure_size(std::size_t(capacity) * sizeof(std::uint32_t), "splat tile values");
+        key_capacity_ = capacity;
+    }
+    pending_growth_ = 0;
+}
+
+void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, std::uint32_t tiles_x, std::uint32_t tiles_y) {
+    const engine::CameraView& camera = frame.camera;
+    const float f = camera.focal_length();
+    const glm::vec2 c = camera.principal_point();
+    const float tan_y = std::tan(0.5f * camera.fov_y);
+    const float tan_x = tan_y * static_cast<float>(camera.width) / static_cast<float>(camera.height);
+    gpu::FrameUniforms u;
+    u.view = camera.view;
+    u.camera_position = glm::vec4(camera.position, 1.0f);
+    u.focal_principal = glm::vec4(f, f, c.x, c.y);
+    u.image = glm::vec4(camera.width, camera.height, 1.3f * tan_x, 1.3f * tan_y);
+    u.params = glm::vec4(settings.znear, settings.dilation, settings.mip_filter ? 1.0f : 0.0f, 0.0f);
+    u.counts = glm::uvec4(scene_.gaussian_count(), scene_.sh_stride(), key_capacity_, scene_.instance_count());
+    u.tiles = glm::uvec4(tiles_x, tiles_y, tiles_x * tiles_y, 0u);
+    uniforms_.upload(0, sizeof(u), &u);
+    const std::uint32_t count = scene_.gaussian_count();
+    count_.upload(0, sizeof(count), &count);
+}
+
+// The sort and the scan bind their own buffers; every pass of ours binds the whole set again.
+void SplatPass::bind_all(const engine::FrameContext& frame) {
+    glBindBufferBase(GL_UNIFORM_BUFFER, SPLAT_UNIFORM_FRAME, uniforms_.id());
+    const std::pair<GLuint, GLuint> storage[] = {
+        {SPLAT_BINDING_GAUSSIANS, scene_.gaussians().id()}, {SPLAT_BINDING_SH, scene_.sh().id()},
+        {SPLAT_BINDING_INSTANCES, scene_.instances().id()}, {SPLAT_BINDING_PROJECTED, projected_.id()},
+        {SPLAT_BINDING_TILE_COUNTS, tile_counts_.id()},     {SPLAT_BINDING_KEYS, keys_.id()},
+        {SPLAT_BINDING_VALUES, values_.id()},               {SPLAT_BINDING_TILE_RANGES, tile_ranges_.id()},
+        {SPLAT_BINDING_STATS, counters_.id()},              {SPLAT_BINDING_ARGS, args_.id()}};
+    for (const auto& [binding, buffer] : storage) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer);
+    glBindImageTexture(SPLAT_IMAGE_COLOR, frame.target.color().id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
+    glBindTextureUnit(SPLAT_TEXTURE_VIEW_DEPTH, frame.target.view_depth().id());
+}
+
+void SplatPass::execute(engine::FrameContext& frame) {
+    collect_statistics(frame.bus, false);
+    std::vector<const SplatComponent*> components;
+    for (const auto* c : frame.scene.components<SplatComponent>())
+        if (c->cloud && !c->cloud->empty()) components.push_back(c);
+    scene_.update(components);
+    const std::uint32_t n = scene_.gaussian_count();
+    if (n == 0) return;
+    if (!scan_) {
+        scan_ = std::make_unique<gpu::PrefixScan>(frame.shaders);
+        sort_ = std::make_unique<gpu::RadixSort>(frame.shaders);
+    }
+    const auto tiles_x = groups(static_cast<std::uint32_t>(frame.target.width()), SPLAT_TILE_SIZE);
+    const auto tiles_y = groups(static_cast<std::uint32_t>(frame.target.height()), SPLAT_TILE_SIZE);
+    ensure_frame_buffers(n, tiles_x * tiles_y);
+    upload_frame_uniforms(frame, tiles_x, tiles_y);
+    glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    glClearNamedBufferData(tile_ranges_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+
+    {  // 1. cull + project + SH colour; tiles touched per Gaussian
+        GpuTimerScope t(frame.timers, "splat.project");
+        bind_all(frame);
+        glUseProgram(program(frame, "splat_project.comp.glsl").id());
+        glDispatchCompute(groups(n, SPLAT_PROJECT_WORKGROUP_SIZE), 1, 1);
+        barrier();
+    }
+    {  // 2. exclusive scan of tile counts: each splat's key range; the total lands at [n]
+        GpuTimerScope t(frame.timers, "splat.scan");
+        scan_->record({tile_counts_, count_, 0, n, tile_counts_, std::size_t(n) * sizeof(std::uint32_t)});
+    }
+    {  // 3. bin: one (depth, tile) key per tile touched, within the key capacity
+        GpuTimerScope t(frame.timers, "splat.bin");
+        bind_all(frame);
+        glUseProgram(program(frame, "splat_dispatch_args.comp.glsl").id());
+        glDispatchCompute(1, 1, 1);
+        glUseProgram(program(frame, "splat_bin.comp.glsl").id());
+        glDispatchCompute(groups(n, SPLAT_BIN_WORKGROUP_SIZE), 1, 1);
+        barrier();
+    }
+    {  // 4. stable radix sort by (tile, depth); the key count stays on the GPU
+        GpuTimerScope t(frame.timers, "splat.sort");
+        const auto hi_bits = static_cast<std::uint32_t>(std::bit_width(tiles_x * tiles_y - 1));
+        sort_->record({keys_, values_, args_, 3 * sizeof(std::uint32_t), key_capacity_, hi_bits});
+    }
+    {  // 5. tile ranges in the sorted keys
+        GpuTimerScope t(frame.timers, "splat.ranges");
+        bind_all(frame);
+        glUseProgram(program(frame, "splat_tile_ranges.comp.glsl").id());
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, args_.id());
+        glDispatchComputeIndirect(0);
+        barrier();
+    }
+    {  // 6. per-tile front-to-back raster, stopping at the mesh depth; composite C + T·mesh
+        GpuTimerScope t(frame.timers, "splat.raster");
+        bind_all(frame);
+        glUseProgram(program(frame, "splat_tile_raster.comp.glsl").id());
+        glDispatchCompute(tiles_x, tiles_y, 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
+                        GL_TEXTURE_UPDATE_BARRIER_BIT);
+    }
+    glUseProgram(0);
+    record_statistics(frame);
+}
+
+void SplatPass::record_statistics(engine::FrameContext& frame) {
+    Readback& r = readbacks_[frames_ % readbacks_.size()];
+    if (r.fence.pending()) collect_statistics(frame.bus, true);  // all four in flight: rare, bounded
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glCopyNamedBufferSubData(counters_.id(), r.buffer.id(), 0, 0, sizeof(gpu::FrameCounters));
+    r.fence.insert();
+    r.frame = frame.frame_index;
+    r.resident_bytes = scene_.resident_bytes() + projected_.size() + tile_counts_.size() + keys_.size() +
+                       values_.size() + tile_ranges_.size();
+    ++frames_;
+}
+
+void SplatPass::collect_statistics(engine::MessageBus& bus, bool wait) {
+    for (std::size_t k = 0; k < readbacks_.size(); ++k) {
+        Readback& r = readbacks_[(frames_ + k) % readbacks_.size()];  // oldest first
+        if (!r.fence.pending()) continue;
+        if (!wait && !r.fence.signalled()) continue;
+        gpu::FrameCounters c;
+        glGetNamedBufferSubData(r.buffer.id(), 0, sizeof(c), &c);
+        r.fence.reset();
+        plugin_msgs::SplatStatistics s;
+        s.frame_index = r.frame;
+        s.considered = c.considered;
+        s.visible = c.visible;
+        for (int l = 0; l < 4; ++l) s.per_level[static_cast<std::size_t>(l)] = c.per_level[l];
+        s.tile_splat_pairs = c.keys_needed;
+        s.key_capacity = key_capacity_;
+        s.overflowed = c.overflowed != 0;
+        s.resident_bytes = r.resident_bytes;
+        if (s.overflowed) pending_growth_ = std::max(pending_growth_, c.keys_needed);
+        if (!latest_ || latest_->frame_index <= s.frame_index) latest_ = s;
+        bus.publish(s);
+    }
+}
+
+// glGetNamedBufferSubData waits for the copy, so reading with `wait` blocks until it is done.
+void SplatPass::wait_for_statistics(engine::MessageBus& bus) { collect_statistics(bus, true); }
+
+}  // namespace splat_lod

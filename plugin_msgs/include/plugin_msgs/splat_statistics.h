@@ -1,0 +1,30 @@
+#pragma once
+// What the splat pass drew in a frame, read back from the GPU a few frames late (never stalling
+// the frame): `frame_index` says which frame the counts belong to.
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+namespace plugin_msgs {
+
+struct SplatStatistics {
+    static constexpr std::string_view kind = "splat_statistics";
+
+    std::uint64_t frame_index = 0;
+    std::uint64_t considered = 0;          // Gaussians of every splat component
+    std::uint64_t visible = 0;             // after culling (and LOD selection)
+    std::array<std::uint64_t, 4> per_level{0, 0, 0, 0};  // visible per LOD level 1..4
+    std::uint64_t tile_splat_pairs = 0;    // keys the frame needed
+    std::uint64_t key_capacity = 0;
+    bool overflowed = false;               // the frame needed more keys than the capacity (grown after)
+    std::uint64_t resident_bytes = 0;      // GPU bytes held for the scene's splats
+
+    friend bool operator==(const SplatStatistics&, const SplatStatistics&) = default;
+};
+
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(SplatStatistics, frame_index, considered, visible, per_level,
+                                                tile_splat_pairs, key_capacity, overflowed, resident_bytes)
+
+}  // namespace plugin_msgs

@@ -1,0 +1,17 @@
+// Radix sort, final copy: after an odd number of passes the result is in the internal buffers;
+// this brings elements [0, count) back to the caller's, leaving the rest untouched.
+#include "radix_sort_common.glsl"
+
+layout(std430, binding = SORT_BINDING_KEYS_OUT) writeonly buffer SortKeysOut { uvec2 keys_out[]; };
+layout(std430, binding = SORT_BINDING_VALUES_OUT) writeonly buffer SortValuesOut { uint values_out[]; };
+
+void main() {
+    const uint count = sort_params.count;
+    for (uint round = 0u; round < SORT_ELEMENTS_PER_THREAD; ++round) {
+        const uint i = tile_element(round);
+        if (i < count) {
+            keys_out[i] = keys_in[i];
+            values_out[i] = values_in[i];
+        }
+    }
+}

@@ -1,0 +1,81 @@
+// Pass 1, cull + project + colour (ALGORITHMS §1): one invocation per Gaussian. Survivors get
+// their projected form at their own index and the number of 16×16 tiles their extent touches;
+// culled ones get 0 tiles. A scan of the counts then gives every splat its key range.
+#include "common_splat_bindings.glsl"
+
+layout(local_size_x = SPLAT_PROJECT_WORKGROUP_SIZE) in;
+layout(std430, binding = SPLAT_BINDING_GAUSSIANS) readonly buffer Gaussians { GpuGaussian gaussians[]; };
+layout(std430, binding = SPLAT_BINDING_SH) readonly buffer ShCoefficients { float sh[]; };
+layout(std430, binding = SPLAT_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
+layout(std430, binding = SPLAT_BINDING_PROJECTED) writeonly buffer Projected { ProjectedSplat projected[]; };
+layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) writeonly buffer TileCounts { uint tile_counts[]; };
+layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
+
+#include "common_splat_sh.glsl"
+
+// The view transform into a camera frame whose y points down the image and z forward (so that
+// the 3DGS Jacobian applies as written); F = diag(1, −1, −1).
+const mat3 VIEW_TO_CAMERA = mat3(1, 0, 0, 0, -1, 0, 0, 0, -1);
+
+mat3 local_covariance(GpuGaussian g) {
+    vec4 a = g.covariance_a, b = g.covariance_b;
+    return mat3(a.x, a.y, a.z, a.y, a.w, b.x, a.z, b.x, b.y);
+}
+
+// Returns the tile count; 0 means culled.
+uint project(uint index) {
+    GpuGaussian g = gaussians[index];
+    GpuInstance inst = instances[floatBitsToUint(g.covariance_b.w)];
+    vec3 world = (inst.model * vec4(g.position_opacity.xyz, 1.0)).xyz;
+    vec3 cam = VIEW_TO_CAMERA * (frame.view * vec4(world, 1.0)).xyz;
+    float z = cam.z;
+    float opacity = g.position_opacity.w;
+    if (!(z > frame.params.x) || !(opacity > 1.0 / 255.0)) return 0u;
+
+    // Σ2D = J T Σ Tᵀ Jᵀ, T = F·W·M; x/z and y/z clamped to 1.3·tan(fov/2) as 3DGS does.
+    mat3 t = VIEW_TO_CAMERA * mat3(frame.view) * mat3(inst.model);
+    mat3 sigma = t * local_covariance(g) * transpose(t);
+    float fx = frame.focal_principal.x, fy = frame.focal_principal.y;
+    float tx = clamp(cam.x / z, -frame.image.z, frame.image.z) * z;
+    float ty = clamp(cam.y / z, -frame.image.w, frame.image.w) * z;
+    mat3x2 j = mat3x2(fx / z, 0.0, 0.0, fy / z, -fx * tx / (z * z), -fy * ty / (z * z));
+    mat2 cov = mat2(j * sigma * transpose(j));
+    float det_undilated = cov[0][0] * cov[1][1] - cov[0][1] * cov[0][1];
+    float dilation = frame.params.y;
+    cov[0][0] += dilation;
+    cov[1][1] += dilation;
+    float det = cov[0][0] * cov[1][1] - cov[0][1] * cov[0][1];
+    if (!(det > 0.0)) return 0u;
+    if (frame.params.z > 0.5) opacity *= sqrt(max(det_undilated, 0.0) / det);  // optional 2D mip filter
+    if (!(opacity > 1.0 / 255.0)) return 0u;
+
+    // Extent: the ellipse where α reaches 1/255 (ALGORITHMS §1), as pixel-centre bounds.
+    vec2 mean = vec2(frame.focal_principal.z + fx * cam.x / z, frame.focal_principal.w + fy * cam.y / z);
+    float level_set = 2.0 * log(255.0 * opacity);
+    vec2 radius = sqrt(level_set * vec2(cov[0][0], cov[1][1]));
+    vec2 lo = ceil(mean - radius - 0.5), hi = floor(mean + radius - 0.5);
+    vec2 size = frame.image.xy;
+    if (any(isnan(lo)) || any(isnan(hi)) || hi.x < 0.0 || hi.y < 0.0 || lo.x > size.x - 1.0 || lo.y > size.y - 1.0 || any(greaterThan(lo, hi)))
+        return 0u;
+    uvec2 pmin = uvec2(max(lo, vec2(0.0))), pmax = uvec2(min(hi, size - 1.0));
+    uvec4 rect = uvec4(pmin / SPLAT_TILE_SIZE, pmax / SPLAT_TILE_SIZE + 1u);
+
+    uint sh_base = index * frame.counts.y;
+    vec3 direction = normalize(mat3(inst.rotation_inverse) * (world - frame.camera_position.xyz));
+    vec3 color = evaluate_sh(sh_base, inst.info.z, direction);
+
+    projected[index] = ProjectedSplat(vec4(mean, z, opacity), vec4(cov[1][1], -cov[0][1], cov[0][0], 0.0) / det,
+                                      vec4(color, 0.0), rect);
+    uint level = clamp(uint(g.lod.z), 1u, 4u);
+    atomicAdd(stats.visible, 1u);
+    atomicAdd(stats.per_level[level - 1u], 1u);
+    return (rect.z - rect.x) * (rect.w - rect.y);
+}
+
+void main() {
+    uint index = gl_GlobalInvocationID.x;
+    uint count = frame.counts.x;
+    if (index == 0u) tile_counts[count] = 0u;  // the scan's extra slot, which receives the total
+    if (index >= count) return;
+    tile_counts[index] = project(index);
+}
