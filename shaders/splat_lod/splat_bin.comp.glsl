@@ -1,4 +1,4 @@
-// Pass 2, bin: every visible splat writes one (depth, tile) key per tile its extent touches,
+// Step 3, bin: every visible splat writes one (depth, tile) key per tile its extent touches,
 // into the key range the scan of tile counts gave it. Pairs beyond the key capacity are
 // dropped and the frame is flagged (splat_dispatch_args), never written out of bounds.
 #include "common_splat_bindings.glsl"

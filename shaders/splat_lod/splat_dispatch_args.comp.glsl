@@ -1,4 +1,4 @@
-// Between bin and sort: turns the key total (on the GPU) into the clamped sort count, the
+// Step 3, before binning: turns the key total (on the GPU) into the clamped sort count, the
 // overflow flag and the indirect dispatch size of the tile-range pass, without a CPU read-back.
 #include "common_splat_bindings.glsl"
 

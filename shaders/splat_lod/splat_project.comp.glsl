@@ -1,4 +1,4 @@
-// Pass 1, cull + project + colour (ALGORITHMS §1): one invocation per Gaussian. Survivors get
+// Step 1, cull + project + colour (ALGORITHMS §1): one invocation per Gaussian. Survivors get
 // their projected form at their own index and the number of 16×16 tiles their extent touches;
 // culled ones get 0 tiles. A scan of the counts then gives every splat its key range.
 #include "common_splat_bindings.glsl"

@@ -1,4 +1,4 @@
-// Pass 4, tile ranges: after the sort, each tile's keys are contiguous; record [begin, end).
+// Step 5, tile ranges: after the sort, each tile's keys are contiguous; record [begin, end).
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = SPLAT_RANGES_WORKGROUP_SIZE) in;

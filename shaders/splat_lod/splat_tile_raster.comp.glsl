@@ -1,6 +1,7 @@
-// Pass 5, raster + composite: one workgroup per 16×16 tile, one invocation per pixel. Splats of
-// the tile arrive sorted front to back; batches are staged in shared memory. Per pixel
-// (ALGORITHMS §1): α = min(0.99, o·exp(−½ dᵀ Σ⁻¹ d)), skip α < 1/255, stop before T would fall
+// Step 6, raster + composite: one workgroup per 16×16 tile, one invocation per pixel, reading the
+// tile's splats (sorted front to back) straight from the buffers. Staging batches in shared
+// memory with barriers was measured 1.8× slower on llvmpipe (biker, 1280×720: 1360 ms against
+// 740 ms). Per pixel (ALGORITHMS §1): α = min(0.99, o·exp(−½ dᵀ Σ⁻¹ d)), skip α < 1/255, stop before T would fall
 // below 1e−4, stop at the mesh surface; output C + T·mesh_colour (display space).
 #include "common_splat_bindings.glsl"
 
@@ -10,12 +11,6 @@ layout(std430, binding = SPLAT_BINDING_VALUES) readonly buffer Values { uint val
 layout(std430, binding = SPLAT_BINDING_TILE_RANGES) readonly buffer Ranges { uvec2 ranges[]; };
 layout(binding = SPLAT_IMAGE_COLOR, rgba8) uniform coherent image2D color_image;
 layout(binding = SPLAT_TEXTURE_VIEW_DEPTH) uniform sampler2D view_depth;
-
-const uint BATCH = SPLAT_TILE_SIZE * SPLAT_TILE_SIZE;
-shared vec4 batch_mean_depth[BATCH];
-shared vec4 batch_conic[BATCH];
-shared vec4 batch_color[BATCH];
-shared uint done_count;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -28,44 +23,19 @@ void main() {
 
     vec3 color = vec3(0.0);
     float transmittance = 1.0;
-    bool done = !inside;
-    if (gl_LocalInvocationIndex == 0u) done_count = 0u;
-    barrier();
-    if (done) atomicAdd(done_count, 1u);
-
-    for (uint start = range.x; start < range.y; start += BATCH) {
-        barrier();
-        if (done_count == BATCH) break;  // every pixel of the tile has finished
-        uint k = start + gl_LocalInvocationIndex;
-        if (k < range.y) {
-            ProjectedSplat s = projected[values[k]];
-            batch_mean_depth[gl_LocalInvocationIndex] = s.mean_depth;
-            batch_conic[gl_LocalInvocationIndex] = s.conic;
-            batch_color[gl_LocalInvocationIndex] = s.color;
-        }
-        barrier();
-        uint n = min(BATCH, range.y - start);
-        for (uint i = 0u; i < n && !done; ++i) {
-            vec4 md = batch_mean_depth[i];
-            if (md.z >= mesh_depth) {  // sorted by depth: everything after is behind the mesh too
-                done = true;
-                atomicAdd(done_count, 1u);
-                break;
-            }
-            vec2 d = centre - md.xy;
-            vec4 q = batch_conic[i];
-            float power = -0.5 * (q.x * d.x * d.x + 2.0 * q.y * d.x * d.y + q.z * d.y * d.y);
-            float alpha = min(0.99, md.w * exp(power));
-            if (alpha < 1.0 / 255.0) continue;
-            float next = transmittance * (1.0 - alpha);
-            if (next < 1e-4) {
-                done = true;
-                atomicAdd(done_count, 1u);
-                break;
-            }
-            color += batch_color[i].rgb * (alpha * transmittance);
-            transmittance = next;
-        }
+    for (uint k = range.x; inside && k < range.y; ++k) {
+        ProjectedSplat s = projected[values[k]];
+        vec4 md = s.mean_depth;
+        if (md.z >= mesh_depth) break;  // sorted by depth: everything after is behind the mesh too
+        vec2 d = centre - md.xy;
+        vec4 q = s.conic;
+        float power = -0.5 * (q.x * d.x * d.x + 2.0 * q.y * d.x * d.y + q.z * d.y * d.y);
+        float alpha = min(0.99, md.w * exp(power));
+        if (alpha < 1.0 / 255.0) continue;
+        float next = transmittance * (1.0 - alpha);
+        if (next < 1e-4) break;  // stop before T would fall below 1e-4
+        color += s.color.rgb * (alpha * transmittance);
+        transmittance = next;
     }
     if (inside) {
         vec3 behind = imageLoad(color_image, pixel).rgb;  // mesh colour or background

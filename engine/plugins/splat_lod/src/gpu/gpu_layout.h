@@ -3,7 +3,7 @@
 // in agreement (std430/std140 offsets of vec4/uvec4/mat4 members are 16-byte multiples).
 #include <cstddef>
 
-#include <splat_lod/splat_pipeline_shared.h>
+#include <splat_lod/splat_lod_shared.h>
 
 namespace splat_lod::gpu {
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "engine/core/error.h"
+#include "engine/core/log.h"
 #include "engine/core/message_bus.h"
 #include "engine/gl/gpu_timers.h"
 #include "engine/gl/shader_library.h"
@@ -191,7 +192,13 @@ void SplatPass::collect_statistics(engine::MessageBus& bus, bool wait) {
         s.key_capacity = key_capacity_;
         s.overflowed = c.overflowed != 0;
         s.resident_bytes = r.resident_bytes;
-        if (s.overflowed) pending_growth_ = std::max(pending_growth_, c.keys_needed);
+        if (s.overflowed) {
+            // That frame dropped tile-splat pairs; the next frames get room for them.
+            if (c.keys_needed > pending_growth_)
+                engine::log_warning("splat_lod: frame " + std::to_string(r.frame) + " needed " + std::to_string(c.keys_needed) +
+                                    " tile-splat pairs but the buffer holds " + std::to_string(key_capacity_) + "; growing it");
+            pending_growth_ = std::max(pending_growth_, c.keys_needed);
+        }
         if (!latest_ || latest_->frame_index <= s.frame_index) latest_ = s;
         bus.publish(s);
     }
