@@ -50,7 +50,7 @@ TEST_F(SplatPipelineTest, RealScenesMatchTheReference) {
     for (const auto& scene : engine::test::real_splat_scenes()) {
         SCOPED_TRACE(scene.name);
         const auto cloud = shared(splat_lod::load_splat_file(scene.path));
-        const auto cameras = engine::test::orbit_cameras(*cloud, scene.up, 2, 200, 150);
+        const auto cameras = engine::test::orbit_cameras(*cloud, scene.up, 3, 200, 150);
         for (std::size_t v = 0; v < cameras.size(); ++v) {
             const auto gpu = harness.render({cloud}, cameras[v]);
             const auto cpu = reference(*cloud, cameras[v]);

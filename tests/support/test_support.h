@@ -11,7 +11,8 @@ namespace engine::test {
 std::filesystem::path source_dir();          // tests/
 std::filesystem::path repo_dir();            // the repository root
 std::filesystem::path shared_data_dir();     // ../shared/data (may be absent on a user's clone)
-std::filesystem::path output_dir(const std::string& suite);  // build/test_output/<suite>, created
+// build/test_output/<suite>/<TestSuite.TestName>/ (created): each test writes only its own folder.
+std::filesystem::path output_dir(const std::string& suite);
 
 // Skips the calling test with a clear message when ../shared/data is absent.
 #define ENGINE_REQUIRE_SHARED_DATA()                                                            \
