@@ -1,0 +1,86 @@
+// The contact sheet: one row per image source (the reference, then each method), one column per
+// scale, every tile brought to the same display size so that the low scales show their pixels.
+// Labels are drawn with stb_easy_font's quads (no font files needed).
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include <stb/stb_easy_font.h>
+
+#include "engine/core/error.h"
+#include "splat_lod/eval/eval_report.h"
+
+namespace splat_lod::eval {
+namespace {
+
+constexpr int kLabelWidth = 96;
+constexpr int kLabelHeight = 16;
+constexpr int kGap = 2;
+
+// Area average when shrinking (a scale-1 tile should look like its reference), nearest neighbour
+// when enlarging (a scale-64 tile should show its few pixels).
+void draw_tile(engine::Image& sheet, const engine::Image& tile, int x0, int y0, int tw, int th) {
+    for (int y = 0; y < th; ++y)
+        for (int x = 0; x < tw; ++x) {
+            const int sx0 = x * tile.width / tw, sy0 = y * tile.height / th;
+            const int sx1 = std::max(sx0 + 1, (x + 1) * tile.width / tw), sy1 = std::max(sy0 + 1, (y + 1) * tile.height / th);
+            int sum[3] = {0, 0, 0}, n = 0;
+            for (int sy = sy0; sy < sy1; ++sy)
+                for (int sx = sx0; sx < sx1; ++sx, ++n)
+                    for (int c = 0; c < 3; ++c) sum[c] += tile.pixel(sx, sy)[c];
+            for (int c = 0; c < 3; ++c) sheet.pixel(x0 + x, y0 + y)[c] = static_cast<std::uint8_t>(sum[c] / n);
+        }
+}
+
+void draw_text(engine::Image& sheet, int x0, int y0, const std::string& text) {
+    std::vector<char> buffer(text.begin(), text.end());
+    buffer.push_back('\0');
+    struct Vertex {
+        float x, y, z;
+        unsigned char colour[4];
+    };
+    std::vector<Vertex> vertices(4 * 400);
+    unsigned char white[4] = {255, 255, 255, 255};
+    const int quads = stb_easy_font_print(0.0f, 0.0f, buffer.data(), white, vertices.data(),
+                                          static_cast<int>(vertices.size() * sizeof(Vertex)));
+    for (int q = 0; q < quads; ++q) {
+        const Vertex& a = vertices[static_cast<std::size_t>(q) * 4];
+        const Vertex& b = vertices[static_cast<std::size_t>(q) * 4 + 2];
+        for (int y = static_cast<int>(a.y); y < static_cast<int>(b.y); ++y)
+            for (int x = static_cast<int>(a.x); x < static_cast<int>(b.x); ++x)
+                if (x0 + x >= 0 && x0 + x < sheet.width && y0 + y >= 0 && y0 + y < sheet.height)
+                    std::fill_n(sheet.pixel(x0 + x, y0 + y), 3, std::uint8_t{255});
+    }
+}
+
+const engine::Image* find_tile(const EvalResults& results, const std::string& row, int scale) {
+    for (const auto& tile : results.tiles)
+        if (tile.method == row && tile.factor == scale) return &tile.image;
+    return nullptr;
+}
+
+}  // namespace
+
+void write_contact_sheet(const EvalResults& results, const std::filesystem::path& path) {
+    const auto& o = results.options;
+    std::vector<std::string> rows{"reference"};
+    for (const auto& m : o.methods) rows.push_back(m.name);
+    const int tw = std::max(1, o.sheet_tile_width > 0 ? o.sheet_tile_width : o.width / 4);
+    const int th = std::max(1, tw * o.height / o.width);
+    const int columns = static_cast<int>(o.scales.size());
+    engine::Image sheet{kLabelWidth + columns * (tw + kGap), kLabelHeight + static_cast<int>(rows.size()) * (th + kGap), {}};
+    sheet.rgba.assign(static_cast<std::size_t>(sheet.width) * static_cast<std::size_t>(sheet.height) * 4, 0);
+    for (std::size_t i = 3; i < sheet.rgba.size(); i += 4) sheet.rgba[i] = 255;
+    for (int c = 0; c < columns; ++c)
+        draw_text(sheet, kLabelWidth + c * (tw + kGap) + 4, 4, std::to_string(o.scales[static_cast<std::size_t>(c)]) + "x");
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        const int y0 = kLabelHeight + static_cast<int>(r) * (th + kGap);
+        draw_text(sheet, 4, y0 + th / 2 - 4, rows[r]);
+        for (int c = 0; c < columns; ++c)
+            if (const engine::Image* tile = find_tile(results, rows[r], o.scales[static_cast<std::size_t>(c)]))
+                draw_tile(sheet, *tile, kLabelWidth + c * (tw + kGap), y0, tw, th);
+    }
+    engine::write_png(path, sheet);
+}
+
+}  // namespace splat_lod::eval

@@ -1,0 +1,62 @@
+#include "splat_lod/eval/eval_method.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "engine/core/error.h"
+#include "passes/splat_pass.h"
+
+namespace splat_lod::eval {
+
+const std::vector<Method>& method_registry() {
+    static const std::vector<Method> methods = {
+        {"baseline", "the baseline renderer, every Gaussian of the fine model", [](SplatPass&) {}},
+        {"baseline_mip", "the baseline renderer with the optional 2D mip filter",
+         [](SplatPass& pass) { pass.settings.mip_filter = true; }},
+    };
+    return methods;
+}
+
+const Method& reference_method() { return method_registry().front(); }
+
+std::vector<Method> select_methods(const std::string& list) {
+    std::vector<Method> selected;
+    std::stringstream stream(list);
+    std::string name;
+    while (std::getline(stream, name, ',')) {
+        const auto& all = method_registry();
+        const auto it = std::find_if(all.begin(), all.end(), [&](const Method& m) { return m.name == name; });
+        if (it == all.end()) {
+            std::string known;
+            for (const auto& m : all) known += (known.empty() ? "" : ", ") + m.name;
+            engine::fail("--methods: unknown method \"" + name + "\" (known: " + known + ")");
+        }
+        if (std::any_of(selected.begin(), selected.end(), [&](const Method& m) { return m.name == name; }))
+            engine::fail("--methods: \"" + name + "\" is listed twice");
+        selected.push_back(*it);
+    }
+    if (selected.empty()) engine::fail("--methods: no method given");
+    return selected;
+}
+
+std::vector<int> parse_int_list(const std::string& text, const std::string& option) {
+    std::vector<int> values;
+    std::stringstream stream(text);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+        std::size_t used = 0;
+        long value = 0;
+        try {
+            value = std::stol(item, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used == 0 || used != item.size() || value < 1 || value > (1 << 20))
+            engine::fail(option + ": \"" + item + "\" is not a positive integer");
+        values.push_back(static_cast<int>(value));
+    }
+    if (values.empty()) engine::fail(option + ": no value given");
+    return values;
+}
+
+}  // namespace splat_lod::eval

@@ -1,0 +1,128 @@
+// Plots through gnuplot: the numbers go to .dat files (one per sweep and method) and the drawing
+// commands to plots.gp, both kept in the output folder so a plot can be restyled and redrawn by
+// hand with `gnuplot plots.gp`.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#include "engine/core/error.h"
+#include "engine/core/file_io.h"
+#include "engine/core/log.h"
+#include "splat_lod/eval/eval_report.h"
+
+namespace splat_lod::eval {
+namespace {
+
+// The PNG terminal this gnuplot has: pngcairo (antialiased) when built in, else libgd's png
+// (Debian's gnuplot-nox may lack cairo); empty when gnuplot cannot be run.
+std::string png_terminal() {
+    FILE* pipe = popen("gnuplot -e 'set terminal' 2>&1", "r");
+    if (!pipe) return {};
+    std::string text;
+    char buffer[4096];
+    while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
+    const int status = pclose(pipe);
+    if (status != 0) return {};
+    if (text.find("pngcairo") != std::string::npos) return "pngcairo size 720,480 font 'sans,10'";
+    if (text.find(" png ") != std::string::npos) return "png size 720,480";
+    return {};
+}
+
+// gnuplot skips "NaN" points, which is what a missing or infinite PSNR should be on a plot.
+std::string dat_value(const std::optional<double>& value) {
+    if (!value || !std::isfinite(*value)) return "NaN";
+    return std::to_string(*value);
+}
+
+void write_dat(const EvalResults& results, Sweep sweep, const std::string& method, const std::vector<int>& factors,
+               const std::filesystem::path& path) {
+    std::ostringstream out;
+    out << "# factor splat_gpu_ms wall_ms psnr_db ssim drawn tile_splat_pairs (means over views)\n";
+    for (int f : factors) {
+        const Summary s = summarize(results, sweep, method, f);
+        out << f << ' ' << s.splat_gpu_ms << ' ' << s.wall_ms << ' ' << dat_value(s.psnr) << ' ' << dat_value(s.ssim) << ' '
+            << s.visible << ' ' << s.tile_splat_pairs << '\n';
+    }
+    engine::write_text_file_atomic(path, out.str());
+}
+
+std::string plot_list(const EvalResults& results, const std::string& prefix, const std::string& using_columns,
+                      const std::string& style, const std::string& suffix = "") {
+    std::string list;
+    int colour = 1;
+    for (const auto& method : results.options.methods) {
+        if (!list.empty()) list += ", \\\n     ";
+        list += "'" + prefix + "_" + method.name + ".dat' using " + using_columns + " with " + style + " lc " +
+                std::to_string(colour++) + " title '" + method.name + suffix + "'";
+    }
+    return list;
+}
+
+std::string scale_script(const EvalResults& results) {
+    std::string labels;
+    for (const auto& method : results.options.methods)
+        labels += ", \\\n     'scale_" + method.name +
+                  ".dat' using 2:4:(sprintf('%dx', $1)) with labels offset char 1,0.6 font ',8' notitle";
+    return "set output 'time_vs_error.png'\nset title '" + results.options.scene_name +
+           ": splat pass time against error (labels: scale)'\nset xlabel 'GPU splat pass time (ms)'\n"
+           "set ylabel 'PSNR (dB) vs reference'\nset logscale x\nunset logscale y\nplot " +
+           plot_list(results, "scale", "2:4", "linespoints pt 7") + labels + "\n";
+}
+
+std::string distance_script(const EvalResults& results) {
+    const std::string& scene = results.options.scene_name;
+    return "set output 'time_vs_distance.png'\nset title '" + scene +
+           ": frame time as the camera moves away'\nset xlabel 'distance factor d (screen size 1/d)'\n"
+           "set ylabel 'time (ms)'\nset logscale x 2\nset logscale y\nplot " +
+           plot_list(results, "distance", "1:3", "linespoints pt 7", " wall") + ", \\\n     " +
+           plot_list(results, "distance", "1:2", "linespoints dt 2 pt 6", " GPU splat pass") +
+           "\nset output 'gaussians_vs_distance.png'\nset title '" + scene +
+           ": Gaussians drawn (solid) and tile-splat pairs (dashed)'\nset ylabel 'count'\nplot " +
+           plot_list(results, "distance", "1:6", "linespoints pt 7", " drawn") + ", \\\n     " +
+           plot_list(results, "distance", "1:7", "linespoints dt 2 pt 6", " pairs") + "\n";
+}
+
+bool has(const EvalResults& results, Sweep sweep) {
+    for (Sweep s : results.options.sweeps)
+        if (s == sweep) return true;
+    return false;
+}
+
+std::string quoted(const std::filesystem::path& path) {
+    std::string out = "'";
+    for (char c : path.string()) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> write_plots(const EvalResults& results, const std::filesystem::path& folder) {
+    const std::string terminal = png_terminal();
+    if (terminal.empty()) {
+        engine::log_warning("splat_eval: gnuplot with a PNG terminal was not found; no plots written");
+        return {};
+    }
+    std::string script = "set terminal " + terminal + "\nset termoption noenhanced\nset grid\nset key below\nset datafile missing 'NaN'\n";
+    std::vector<std::filesystem::path> plots;
+    const auto& o = results.options;
+    if (has(results, Sweep::scale)) {
+        for (const auto& m : o.methods) write_dat(results, Sweep::scale, m.name, o.scales, folder / ("scale_" + m.name + ".dat"));
+        script += scale_script(results);
+        plots.push_back(folder / "time_vs_error.png");
+    }
+    if (has(results, Sweep::distance)) {
+        for (const auto& m : o.methods)
+            write_dat(results, Sweep::distance, m.name, o.distances, folder / ("distance_" + m.name + ".dat"));
+        script += distance_script(results);
+        plots.push_back(folder / "time_vs_distance.png");
+        plots.push_back(folder / "gaussians_vs_distance.png");
+    }
+    engine::write_text_file_atomic(folder / "plots.gp", script);
+    const std::string command = "cd " + quoted(folder) + " && gnuplot plots.gp";
+    if (std::system(command.c_str()) != 0)
+        engine::fail(folder.string() + "/plots.gp: gnuplot failed (run `gnuplot plots.gp` there to see why)");
+    return plots;
+}
+
+}  // namespace splat_lod::eval

@@ -1,0 +1,116 @@
+#include "splat_lod/eval/eval_run.h"
+
+#include "engine/core/error.h"
+#include "splat_lod/eval/frame_measurer.h"
+#include "splat_lod/eval/image_metrics.h"
+
+namespace splat_lod::eval {
+namespace {
+
+struct Progress {
+    const EvalOptions& options;
+    int total = 0;
+    int done = 0;
+
+    void step(int view, const std::string& method, int factor, Sweep sweep) {
+        ++done;
+        if (options.progress)
+            options.progress("[" + std::to_string(done) + "/" + std::to_string(total) + "] " + options.scene_name +
+                             " view " + std::to_string(view) + " " + method + " " + std::to_string(factor) + "\u00d7 (" +
+                             sweep_name(sweep) + ")");
+    }
+};
+
+Measurement make_row(const EvalOptions& o, Sweep sweep, int view, const CameraPose& pose, const Method& method,
+                     int factor, const FrameMeasurement& m) {
+    Measurement row;
+    row.scene = o.scene_name;
+    row.sweep = sweep;
+    row.view = view;
+    row.view_name = pose.name;
+    row.method = method.name;
+    row.factor = factor;
+    row.width = m.image.width;
+    row.height = m.image.height;
+    row.wall_ms = m.wall_ms;
+    row.gpu_ms = m.gpu_ms;
+    row.statistics = m.statistics;
+    return row;
+}
+
+void score(Measurement& row, const FloatImage& reference, const engine::Image& image) {
+    const FloatImage rendered = to_float(image);
+    row.psnr = psnr(rendered, reference);
+    row.ssim = ssim(rendered, reference);
+}
+
+void scale_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, Progress& progress, EvalResults& results) {
+    const EvalOptions& o = results.options;
+    const FloatImage full = to_float(measurer.render(reference_method(), make_view(pose, o.width, o.height)));
+    std::map<int, FloatImage> references;
+    for (int k : o.scales) {
+        references[k] = area_average(full, k);
+        if (view == 0) results.tiles.push_back({"reference", k, to_rgba8(references[k])});
+    }
+    for (const Method& method : o.methods)
+        for (int k : o.scales) {
+            progress.step(view, method.name, k, Sweep::scale);
+            FrameMeasurement m = measurer.measure(method, make_view(pose, o.width / k, o.height / k), o.frames, o.warmup);
+            if (view == 0) results.tiles.push_back({method.name, k, m.image});
+            Measurement row = make_row(o, Sweep::scale, view, pose, method, k, m);
+            score(row, references[k], m.image);
+            results.rows.push_back(std::move(row));
+        }
+}
+
+void distance_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, Progress& progress, EvalResults& results) {
+    const EvalOptions& o = results.options;
+    for (int d : o.distances) {
+        const CameraPose far = dolly(pose, static_cast<float>(d));
+        std::optional<FloatImage> reference;
+        if (d * o.width <= o.max_reference_side && d * o.height <= o.max_reference_side) {
+            reference = area_average(to_float(measurer.render(reference_method(), make_view(far, d * o.width, d * o.height))), d);
+            results.max_reference_distance = std::max(results.max_reference_distance, d);
+        }
+        for (const Method& method : o.methods) {
+            progress.step(view, method.name, d, Sweep::distance);
+            FrameMeasurement m = measurer.measure(method, make_view(far, o.width, o.height), o.frames, o.warmup);
+            Measurement row = make_row(o, Sweep::distance, view, pose, method, d, m);
+            if (reference) score(row, *reference, m.image);
+            results.rows.push_back(std::move(row));
+        }
+    }
+}
+
+}  // namespace
+
+const char* sweep_name(Sweep sweep) { return sweep == Sweep::scale ? "scale" : "distance"; }
+
+void validate_options(const EvalOptions& o) {
+    if (o.width < 1 || o.height < 1) engine::fail("--width/--height: the image size must be positive");
+    if (o.frames < 1) engine::fail("--frames: at least one timed frame is needed");
+    if (o.warmup < 0) engine::fail("--warmup: must not be negative");
+    if (o.methods.empty()) engine::fail("--methods: no method given");
+    for (int k : o.scales) check_scale(k, o.width, o.height, "--scales");
+    for (int d : o.distances)
+        if (d < 1) engine::fail("--distances: distance " + std::to_string(d) + " is not a positive integer");
+}
+
+EvalResults run_evaluation(FrameMeasurer& measurer, const std::vector<CameraPose>& poses, const EvalOptions& options) {
+    validate_options(options);
+    EvalResults results;
+    results.options = options;
+    results.views = static_cast<int>(poses.size());
+    Progress progress{options};
+    for (Sweep sweep : options.sweeps)
+        progress.total += static_cast<int>(poses.size() * options.methods.size() *
+                                           (sweep == Sweep::scale ? options.scales.size() : options.distances.size()));
+    for (Sweep sweep : options.sweeps)
+        for (std::size_t v = 0; v < poses.size(); ++v) {
+            if (sweep == Sweep::scale) scale_sweep(measurer, poses[v], static_cast<int>(v), progress, results);
+            else distance_sweep(measurer, poses[v], static_cast<int>(v), progress, results);
+        }
+    return results;
+}
+
+}  // namespace splat_lod::eval
