@@ -104,6 +104,8 @@ TEST_F(MeshPassTest, PublishesFrameStatisticsWithGpuTimesLater) {
     }
     ASSERT_EQ(seen.size(), static_cast<std::size_t>(frames));
     ASSERT_GE(frames, 2);
+    // However busy the machine, results arrive once max_frames_in_flight frames are outstanding.
+    EXPECT_LE(frames, static_cast<int>(engine::gl::GpuTimers::max_frames_in_flight) + 2);
     EXPECT_EQ(seen.front().passes.at(0).name, "mesh");
     EXPECT_GE(seen.back().passes.at(0).cpu_ms, 0.0);
     EXPECT_GE(seen.back().gpu_frame_index, 0);

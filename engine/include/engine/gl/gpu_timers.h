@@ -2,6 +2,8 @@
 // Named GPU time spans per frame from GL_TIMESTAMP queries, read back a few frames later only
 // once the driver says they are available, so reading never stalls the frame.
 #include <cstdint>
+#include <deque>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,7 +19,9 @@ struct GpuSpan {
 
 class GpuTimers {
 public:
-    static constexpr int frames_in_flight = 4;
+    // Frames whose queries may be outstanding before begin_frame() waits for the oldest. Drivers
+    // throttle long before this; headless loops on a busy software rasteriser may not.
+    static constexpr std::size_t max_frames_in_flight = 16;
 
     GpuTimers() = default;
     void begin_frame();
@@ -30,7 +34,8 @@ public:
     const std::optional<std::vector<GpuSpan>>& latest() const { return latest_; }
     // The frame number (counting begin_frame() calls from 0) that latest() was measured in.
     std::int64_t latest_frame() const { return latest_frame_; }
-    std::uint64_t frames_dropped() const { return dropped_; }
+    // How often begin_frame() had to wait because max_frames_in_flight frames were outstanding.
+    std::uint64_t frames_waited() const { return waited_; }
     // Blocks until every recorded frame is read; for tools and tests, never inside a frame loop.
     void wait_all();
 
@@ -40,14 +45,16 @@ private:
         std::vector<Query> start, stop;
         std::size_t used = 0;
         std::uint64_t number = 0;
-        bool pending = false;
     };
-    bool try_collect(Frame& frame, bool wait);
+    // Reads the frame's results; false when they are not available yet and `wait` is off.
+    bool collect(Frame& frame, bool wait);
+    void collect_ready();
 
-    Frame frames_[frames_in_flight];
-    int current_ = -1;
+    std::deque<std::unique_ptr<Frame>> pending_;  // oldest first; the driver completes them in order
+    std::vector<std::unique_ptr<Frame>> free_;    // read, with their query objects kept for reuse
+    std::unique_ptr<Frame> current_;
     std::uint64_t frame_counter_ = 0;
-    std::uint64_t dropped_ = 0;
+    std::uint64_t waited_ = 0;
     std::optional<std::vector<GpuSpan>> latest_;
     std::int64_t latest_frame_ = -1;
 };
