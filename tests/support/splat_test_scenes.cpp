@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "engine/render/render_target.h"
-#include "passes/splat_pass.h"
 #include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "test_support.h"
@@ -87,12 +86,7 @@ Image SplatRenderHarness::render(const std::vector<std::shared_ptr<const splat_l
         node.attach(std::move(component));
     }
     RenderTarget target(camera.width, camera.height);
-    auto* pass = splat_lod::find_splat_pass(engine_->renderer());
-    for (int attempt = 0; attempt < 8; ++attempt) {
-        engine_->renderer().render(scene, camera, target);
-        pass->wait_for_statistics(engine_->bus());
-        if (!pass->latest_statistics() || !pass->latest_statistics()->overflowed) break;
-    }
+    splat_lod::render_complete(*engine_, scene, camera, target);
     return target.read_color();
 }
 

@@ -45,11 +45,7 @@ double FrameMeasurer::draw(const engine::CameraView& camera, engine::RenderTarge
 }
 
 void FrameMeasurer::draw_until_complete(const engine::CameraView& camera, engine::RenderTarget& target) {
-    for (int i = 0; i < kMaxRedraws; ++i) {
-        draw(camera, target);
-        if (!pass_->latest_statistics() || !pass_->latest_statistics()->overflowed) return;
-    }
-    engine::fail("splat_lod::eval::FrameMeasurer: the key buffer kept overflowing");
+    render_complete(engine_, scene_, camera, target, kMaxRedraws);
 }
 
 engine::Image FrameMeasurer::render(const Method& method, const engine::CameraView& camera) {

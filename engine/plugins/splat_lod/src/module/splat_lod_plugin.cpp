@@ -1,5 +1,7 @@
 #include "splat_lod/splat_lod_plugin.h"
 
+#include "engine/core/error.h"
+#include "engine/engine.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/component_registry.h"
 #include "passes/splat_pass.h"
@@ -29,5 +31,21 @@ public:
 std::unique_ptr<engine::Plugin> make_plugin() { return std::make_unique<SplatLodPlugin>(); }
 
 SplatPass* find_splat_pass(engine::Renderer& renderer) { return dynamic_cast<SplatPass*>(renderer.find_pass("splat")); }
+
+plugin_msgs::SplatStatistics render_complete(engine::Engine& engine, const engine::Scene& scene,
+                                             const engine::CameraView& camera, engine::RenderTarget& target,
+                                             int max_attempts) {
+    SplatPass* pass = find_splat_pass(engine.renderer());
+    if (pass == nullptr) engine::fail("splat_lod::render_complete(): the splat_lod plugin is not started");
+    for (int attempt = 0; attempt < max_attempts; ++attempt) {
+        engine.renderer().render(scene, camera, target);
+        pass->wait_for_statistics(engine.bus());
+        const auto& stats = pass->latest_statistics();
+        if (!stats) return {};  // no splat component drew anything
+        if (!stats->overflowed) return *stats;
+    }
+    engine::fail("splat_lod::render_complete(): the key buffer still overflowed after " + std::to_string(max_attempts) +
+                 " frames");
+}
 
 }  // namespace splat_lod
