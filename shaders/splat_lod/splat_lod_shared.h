@@ -83,6 +83,10 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 #define SPLAT_RANGES_WORKGROUP_SIZE 256
 #define SPLAT_MAX_SH_DEGREE 3
 #define SPLAT_MAX_LEVELS 4
+#define SPLAT_LOD_MODE_BASELINE 0      // finest level only, no filter
+#define SPLAT_LOD_MODE_FILTER_SMALL 1  // finest level only, the rule applied
+#define SPLAT_LOD_MODE_INSERT_LARGE 2  // every level, no filter
+#define SPLAT_LOD_MODE_FULL 3          // every level, the rule applied
 
 // Shader storage bindings.
 #define SPLAT_BINDING_GAUSSIANS 0      // GpuGaussian[N], static per cloud
@@ -130,6 +134,8 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     vec4 params;            // znear, dilation, mip filter (0/1), unused
     uvec4 counts;           // Gaussian count, sh_stride (floats), key capacity, instance count
     uvec4 tiles;            // tiles_x, tiles_y, tile_count, unused
+    vec4 lod_rule;          // S_T (px), S_rel_min, S_rel_max, unused (ALGORITHMS §3)
+    uvec4 lod_levels;       // mode (SPLAT_LOD_MODE_*), finest level, coarsest level, unused
 };
 
 // Written by the GPU each frame and read back asynchronously by the CPU.

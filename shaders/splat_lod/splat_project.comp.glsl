@@ -12,6 +12,7 @@ layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) writeonly buffer TileCounts 
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
 
 #include "common_splat_sh.glsl"
+#include "common_splat_lod.glsl"
 
 // The view transform into a camera frame whose y points down the image and z forward (so that
 // the 3DGS Jacobian applies as written); F = diag(1, −1, −1).
@@ -41,6 +42,7 @@ uint project(uint index) {
     mat3x2 j = mat3x2(fx / z, 0.0, 0.0, fy / z, -fx * tx / (z * z), -fy * ty / (z * z));
     mat2 cov = mat2(j * sigma * transpose(j));
     float det_undilated = cov[0][0] * cov[1][1] - cov[0][1] * cov[0][1];
+    if (!lod_selected(uint(g.lod.z), pixel_coverage(cov, det_undilated, opacity), g.lod.x, g.lod.y)) return 0u;
     float dilation = frame.params.y;
     cov[0][0] += dilation;
     cov[1][1] += dilation;

@@ -1,5 +1,6 @@
 // The GPU splat pipeline against the double-precision CPU reference (ALGORITHMS §1).
 #include <chrono>
+#include <map>
 #include <cmath>
 
 #include "engine/render/render_target.h"
@@ -235,4 +236,66 @@ TEST_F(SplatPipelineTest, MeshesAndSplatsCompositeByDepth) {
     // The front box hides splats: somewhere the composite equals the mesh layer exactly while the
     // splat-only reference there is not the background.
     EXPECT_GT(engine::compare_images(gpu, mesh_colour).fraction_over_threshold, 0.05);
+}
+
+// The GPU's selection (splat_project) against splat_lod::lod_selected on the CPU, for every
+// mode: the same Gaussians per level are drawn, and the image equals the reference render of
+// exactly the CPU-selected Gaussians. Coverage bounds are placed away from the decision
+// thresholds so float and double cannot disagree.
+TEST_F(SplatPipelineTest, LodSelectionMatchesTheCpuRule) {
+    std::vector<GaussianSpec> specs;
+    for (int i = 0; i < 400; ++i) {
+        const float t = static_cast<float>(i);
+        specs.push_back({{1.6f * std::sin(t * 1.3f), 1.2f * std::cos(t * 0.7f), -1.5f * std::sin(t * 0.23f)},
+                         glm::vec3(-3.5f + 0.8f * std::sin(t * 0.5f)), {1, 0, 0, 0}, 1.5f,
+                         {0.5f + 0.5f * std::sin(t), 0.4f, 0.5f + 0.5f * std::cos(t)}});
+    }
+    auto cloud = engine::test::make_cloud(specs);
+    const auto camera = engine::make_look_at_camera({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 160, 120, 0.1f, 100.0f);
+    const auto ref_camera = ref::make_reference_camera(camera);
+    const ref::ReferenceSettings settings;
+    std::vector<double> coverage(cloud.size());
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        const auto p = ref::project_gaussian(cloud, i, glm::dmat4(1.0), ref_camera, settings);
+        const glm::dvec3 c = p.cov2d - glm::dvec3(settings.dilation, 0.0, settings.dilation);
+        coverage[i] = splat_lod::pixel_coverage(c.x, c.y, c.z, p.opacity);
+        cloud.lod_level[i] = static_cast<std::uint8_t>(1 + i % 4);
+        // Ranges a factor 3 or 1/3 away from this view's coverage, or unset: far from any threshold.
+        const double f = (i % 3 == 0) ? 3.0 : (i % 3 == 1 ? 1.0 / 3.0 : 1.0);
+        cloud.coverage_min[i] = (i % 5 == 0) ? -1.0f : static_cast<float>(coverage[i] * f);
+        cloud.coverage_max[i] = (i % 7 == 0) ? -1.0f : static_cast<float>(coverage[i] / f);
+    }
+    const auto shared_cloud = shared(cloud);
+    auto* pass = splat_lod::find_splat_pass(harness.engine().renderer());
+    std::map<plugin_msgs::LodMode, std::array<std::uint64_t, 4>> counts;
+    for (const auto mode : {plugin_msgs::LodMode::baseline, plugin_msgs::LodMode::filter_small,
+                            plugin_msgs::LodMode::insert_large, plugin_msgs::LodMode::full}) {
+        SCOPED_TRACE(std::string(plugin_msgs::to_string(mode)));
+        plugin_msgs::LodSettings lod;
+        lod.mode = mode;
+        harness.engine().bus().publish(lod);  // the plugin takes settings from the bus
+        ASSERT_EQ(pass->settings.lod.mode, mode);
+        splat_lod::LodRule rule = pass->settings.lod;
+        rule.coarsest_level = 4;
+        std::vector<std::uint8_t> keep(cloud.size());
+        std::array<std::uint64_t, 4> per_level{0, 0, 0, 0};
+        for (std::size_t i = 0; i < cloud.size(); ++i) {
+            const bool drawn = ref::project_gaussian(cloud, i, glm::dmat4(1.0), ref_camera, settings).drawn();
+            keep[i] = drawn && splat_lod::lod_selected(rule, cloud.lod_level[i], coverage[i], cloud.coverage_min[i],
+                                                        cloud.coverage_max[i]);
+            if (keep[i]) ++per_level[cloud.lod_level[i] - 1u];
+        }
+        const auto gpu = harness.render({shared_cloud}, camera);
+        EXPECT_EQ(pass->latest_statistics()->per_level, per_level);
+        counts[mode] = per_level;
+        auto selected = cloud;
+        selected.keep_only(keep);
+        EXPECT_GE(engine::compare_images(gpu, reference(selected, camera)).psnr_db, 40.0);
+    }
+    // The case is not vacuous: the modes select different sets.
+    using M = plugin_msgs::LodMode;
+    EXPECT_EQ(counts[M::baseline][1] + counts[M::baseline][2] + counts[M::baseline][3], 0u);
+    EXPECT_LT(counts[M::filter_small][0], counts[M::baseline][0]);
+    for (int l = 0; l < 4; ++l) EXPECT_GT(counts[M::insert_large][static_cast<std::size_t>(l)], 0u);
+    for (int l = 1; l < 4; ++l) EXPECT_LT(counts[M::full][static_cast<std::size_t>(l)], counts[M::insert_large][static_cast<std::size_t>(l)]);
 }

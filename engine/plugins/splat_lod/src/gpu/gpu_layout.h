@@ -3,6 +3,7 @@
 // in agreement (std430/std140 offsets of vec4/uvec4/mat4 members are 16-byte multiples).
 #include <cstddef>
 
+#include <plugin_msgs/lod_settings.h>
 #include <splat_lod/splat_lod_shared.h>
 
 namespace splat_lod::gpu {
@@ -13,9 +14,15 @@ static_assert(sizeof(GpuInstance) == 144);
 static_assert(offsetof(GpuInstance, info) == 128);
 static_assert(sizeof(ProjectedSplat) == 64);
 static_assert(offsetof(ProjectedSplat, tile_rect) == 48);
-static_assert(sizeof(FrameUniforms) == 160);
+static_assert(sizeof(FrameUniforms) == 192);
+static_assert(offsetof(FrameUniforms, lod_levels) == 176);
 static_assert(offsetof(FrameUniforms, tiles) == 144);
 static_assert(sizeof(FrameCounters) == 32);
 static_assert(offsetof(FrameCounters, per_level) == 16);
+
+static_assert(static_cast<int>(plugin_msgs::LodMode::baseline) == SPLAT_LOD_MODE_BASELINE);
+static_assert(static_cast<int>(plugin_msgs::LodMode::filter_small) == SPLAT_LOD_MODE_FILTER_SMALL);
+static_assert(static_cast<int>(plugin_msgs::LodMode::insert_large) == SPLAT_LOD_MODE_INSERT_LARGE);
+static_assert(static_cast<int>(plugin_msgs::LodMode::full) == SPLAT_LOD_MODE_FULL);
 
 }  // namespace splat_lod::gpu

@@ -116,9 +116,11 @@ bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
 void GpuScene::upload(const std::vector<const SplatComponent*>& components, std::vector<Resident> wanted) {
     int max_degree = 0;
     std::size_t total = 0;
+    coarsest_level_ = 1;
     for (const auto* c : components) {
         max_degree = std::max(max_degree, drawn_degree(*c));
         total += c->cloud->size();
+        for (const std::uint8_t level : c->cloud->lod_level) coarsest_level_ = std::max<std::uint32_t>(coarsest_level_, level);
     }
     if (total > std::numeric_limits<std::uint32_t>::max() / 2)
         engine::fail("splat_lod: " + std::to_string(total) + " Gaussians exceed what one scene can draw");

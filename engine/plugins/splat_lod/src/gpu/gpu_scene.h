@@ -33,6 +33,7 @@ public:
     std::uint32_t gaussian_count() const { return gaussian_count_; }
     std::uint32_t instance_count() const { return static_cast<std::uint32_t>(resident_.size()); }
     std::uint32_t sh_stride() const { return sh_stride_; }
+    std::uint32_t coarsest_level() const { return coarsest_level_; }  // highest LOD level present
     std::size_t dropped() const { return dropped_; }  // not drawable (NaN/Inf, zero rotation)
     std::size_t resident_bytes() const { return gaussians_.size() + sh_.size() + instances_.size(); }
 
@@ -53,6 +54,7 @@ private:
     std::uint32_t gaussian_count_ = 0;
     std::size_t dropped_ = 0;
     std::uint32_t sh_stride_ = 3;
+    std::uint32_t coarsest_level_ = 1;
     engine::gl::Buffer gaussians_{engine::gl::NoCreate};
     engine::gl::Buffer sh_{engine::gl::NoCreate};
     engine::gl::Buffer instances_{engine::gl::NoCreate};

@@ -1,6 +1,7 @@
 #include "splat_lod/splat_lod_plugin.h"
 
 #include "engine/core/error.h"
+#include "engine/core/message_bus.h"
 #include "engine/engine.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/component_registry.h"
@@ -17,13 +18,21 @@ public:
 
     void startup(engine::PluginContext& context) override {
         register_splat_component(context.components, name());
-        context.renderer.add_pass(std::make_shared<SplatPass>());
+        auto pass = std::make_shared<SplatPass>();
+        // Settings arrive as plugin_msgs::LodSettings from the UI, tools or the game.
+        settings_ = context.bus.subscribe<plugin_msgs::LodSettings>(
+            [pass = pass.get()](const plugin_msgs::LodSettings& lod) { pass->apply(lod); });
+        context.renderer.add_pass(std::move(pass));
     }
 
     void shutdown(engine::PluginContext& context) override {
+        settings_.reset();
         context.renderer.remove_pass("splat");
         context.components.remove("splat");
     }
+
+private:
+    engine::Subscription settings_;
 };
 
 }  // namespace

@@ -33,6 +33,14 @@ void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARR
 }  // namespace
 
 SplatPass::SplatPass() = default;
+
+void SplatPass::apply(const plugin_msgs::LodSettings& lod) {
+    settings.lod.mode = lod.mode;
+    settings.lod.size_threshold_px = lod.size_threshold_px;
+    settings.lod.rel_min = lod.rel_min;
+    settings.lod.rel_max = lod.rel_max;
+    settings.mip_filter = lod.mip_filter;
+}
 SplatPass::~SplatPass() = default;
 
 void SplatPass::ensure_frame_buffers(std::uint32_t gaussians, std::uint32_t tile_count) {
@@ -79,6 +87,10 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, std::ui
     u.params = glm::vec4(settings.znear, settings.dilation, settings.mip_filter ? 1.0f : 0.0f, 0.0f);
     u.counts = glm::uvec4(scene_.gaussian_count(), scene_.sh_stride(), key_capacity_, scene_.instance_count());
     u.tiles = glm::uvec4(tiles_x, tiles_y, tiles_x * tiles_y, 0u);
+    const LodRule& lod = settings.lod;
+    u.lod_rule = glm::vec4(lod.size_threshold_px, lod.rel_min, lod.rel_max, 0.0f);
+    u.lod_levels = glm::uvec4(static_cast<std::uint32_t>(lod.mode), static_cast<std::uint32_t>(lod.finest_level),
+                              scene_.coarsest_level(), 0u);
     uniforms_.upload(0, sizeof(u), &u);
     const std::uint32_t count = scene_.gaussian_count();
     count_.upload(0, sizeof(count), &count);

@@ -11,6 +11,7 @@
 #include "engine/gl/objects.h"
 #include "engine/render/render_pass.h"
 #include "gpu/gpu_scene.h"
+#include "splat_lod/lod_selection.h"
 
 namespace splat_lod {
 
@@ -23,6 +24,7 @@ struct SplatPassSettings {
     float znear = 0.2f;       // ALGORITHMS §1
     float dilation = 0.3f;    // the EWA low-pass, in px²
     bool mip_filter = false;  // the optional 2D mip filter
+    LodRule lod;              // selection by pixel coverage (coarsest_level is set from the scene)
 };
 
 class SplatPass : public engine::RenderPass {
@@ -34,6 +36,8 @@ public:
     void execute(engine::FrameContext& frame) override;
 
     SplatPassSettings settings;
+    // Takes the mode, thresholds and mip filter of a LodSettings message (published on the bus).
+    void apply(const plugin_msgs::LodSettings& lod);
 
     // The newest statistics read back so far (also published on the bus).
     const std::optional<plugin_msgs::SplatStatistics>& latest_statistics() const { return latest_; }
