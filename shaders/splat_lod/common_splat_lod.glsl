@@ -19,3 +19,10 @@ bool lod_selected(uint level, float coverage, float coverage_min, float coverage
                          coverage / coverage_min >= frame.lod_rule.y;
     return not_too_large && not_too_small;
 }
+
+// Debug view: each level tinted (1 grey, 2 green, 3 blue, 4 red), keeping the shading's brightness.
+vec3 level_colour(uint level, vec3 colour) {
+    const vec3 tint[4] = vec3[](vec3(0.8), vec3(0.2, 0.9, 0.2), vec3(0.25, 0.45, 1.0), vec3(1.0, 0.25, 0.2));
+    float brightness = dot(colour, vec3(0.299, 0.587, 0.114));
+    return tint[level - 1u] * (0.35 + 0.65 * clamp(brightness, 0.0, 1.0));
+}

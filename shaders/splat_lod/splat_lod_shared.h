@@ -135,7 +135,7 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     uvec4 counts;           // Gaussian count, sh_stride (floats), key capacity, instance count
     uvec4 tiles;            // tiles_x, tiles_y, tile_count, unused
     vec4 lod_rule;          // S_T (px), S_rel_min, S_rel_max, unused (ALGORITHMS §3)
-    uvec4 lod_levels;       // mode (SPLAT_LOD_MODE_*), finest level, coarsest level, unused
+    uvec4 lod_levels;       // mode (SPLAT_LOD_MODE_*), finest level, coarsest level, level colouring (0/1)
 };
 
 // Written by the GPU each frame and read back asynchronously by the CPU.

@@ -65,10 +65,11 @@ uint project(uint index) {
     uint sh_base = index * frame.counts.y;
     vec3 direction = normalize(mat3(inst.rotation_inverse) * (world - frame.camera_position.xyz));
     vec3 color = evaluate_sh(sh_base, inst.info.z, direction);
+    uint level = clamp(uint(g.lod.z), 1u, 4u);
+    if (frame.lod_levels.w != 0u) color = level_colour(level, color);  // debug view
 
     projected[index] = ProjectedSplat(vec4(mean, z, opacity), vec4(cov[1][1], -cov[0][1], cov[0][0], 0.0) / det,
                                       vec4(color, 0.0), rect);
-    uint level = clamp(uint(g.lod.z), 1u, 4u);
     atomicAdd(stats.visible, 1u);
     atomicAdd(stats.per_level[level - 1u], 1u);
     return (rect.z - rect.x) * (rect.w - rect.y);

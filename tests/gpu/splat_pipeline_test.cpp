@@ -299,3 +299,22 @@ TEST_F(SplatPipelineTest, LodSelectionMatchesTheCpuRule) {
     for (int l = 0; l < 4; ++l) EXPECT_GT(counts[M::insert_large][static_cast<std::size_t>(l)], 0u);
     for (int l = 1; l < 4; ++l) EXPECT_LT(counts[M::full][static_cast<std::size_t>(l)], counts[M::insert_large][static_cast<std::size_t>(l)]);
 }
+
+TEST_F(SplatPipelineTest, LevelColouringTintsEachLevel) {
+    auto cloud = engine::test::make_cloud({{{-0.6f, 0, 0}, glm::vec3(-1.5f), {1, 0, 0, 0}, 4.0f, {0.9f, 0.9f, 0.9f}},
+                                          {{0.6f, 0, 0}, glm::vec3(-1.5f), {1, 0, 0, 0}, 4.0f, {0.9f, 0.9f, 0.9f}}});
+    cloud.lod_level[1] = 2;
+    plugin_msgs::LodSettings lod;
+    lod.mode = plugin_msgs::LodMode::insert_large;
+    lod.level_colouring = true;
+    harness.engine().bus().publish(lod);
+    const auto camera = engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 96, 48, 0.1f, 100.0f);
+    const auto image = harness.render({shared(cloud)}, camera);
+    // f = 24 / tan(25°) = 51.5 px, so x = ±0.6 at distance 3 lands 10 px either side of the centre.
+    const auto* grey = image.pixel(48 - 10, 24);   // level 1
+    const auto* green = image.pixel(48 + 10, 24);  // level 2
+    EXPECT_NEAR(int(grey[0]), int(grey[1]), 2);
+    EXPECT_GT(int(grey[0]), 100);
+    EXPECT_GT(int(green[1]), int(green[0]) + 60);
+    EXPECT_GT(int(green[1]), int(green[2]) + 60);
+}

@@ -10,9 +10,19 @@ namespace splat_lod::eval {
 
 const std::vector<Method>& method_registry() {
     static const std::vector<Method> methods = {
-        {"baseline", "the baseline renderer, every Gaussian of the fine model", [](SplatPass&) {}},
+        {"baseline", "the baseline renderer, every Gaussian of the fine model (level 1)",
+         [](SplatPass& pass) { pass.settings.lod.mode = plugin_msgs::LodMode::baseline; }},
         {"baseline_mip", "the baseline renderer with the optional 2D mip filter",
-         [](SplatPass& pass) { pass.settings.mip_filter = true; }},
+         [](SplatPass& pass) {
+             pass.settings.lod.mode = plugin_msgs::LodMode::baseline;
+             pass.settings.mip_filter = true;
+         }},
+        // The LOD ablation modes (ALGORITHMS §3); on a scene without baked levels they equal baseline.
+        {"filter_small", "level 1 only, Gaussians too small for this view left out",
+         [](SplatPass& pass) { pass.settings.lod.mode = plugin_msgs::LodMode::filter_small; }},
+        {"insert_large", "every level, no filtering", [](SplatPass& pass) { pass.settings.lod.mode = plugin_msgs::LodMode::insert_large; }},
+        {"full", "every level, selected by pixel coverage (the multi-scale method)",
+         [](SplatPass& pass) { pass.settings.lod.mode = plugin_msgs::LodMode::full; }},
     };
     return methods;
 }

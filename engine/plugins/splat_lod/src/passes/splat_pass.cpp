@@ -40,6 +40,7 @@ void SplatPass::apply(const plugin_msgs::LodSettings& lod) {
     settings.lod.rel_min = lod.rel_min;
     settings.lod.rel_max = lod.rel_max;
     settings.mip_filter = lod.mip_filter;
+    settings.level_colouring = lod.level_colouring;
 }
 SplatPass::~SplatPass() = default;
 
@@ -90,7 +91,7 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, std::ui
     const LodRule& lod = settings.lod;
     u.lod_rule = glm::vec4(lod.size_threshold_px, lod.rel_min, lod.rel_max, 0.0f);
     u.lod_levels = glm::uvec4(static_cast<std::uint32_t>(lod.mode), static_cast<std::uint32_t>(lod.finest_level),
-                              scene_.coarsest_level(), 0u);
+                              scene_.coarsest_level(), settings.level_colouring ? 1u : 0u);
     uniforms_.upload(0, sizeof(u), &u);
     const std::uint32_t count = scene_.gaussian_count();
     count_.upload(0, sizeof(count), &count);

@@ -25,6 +25,7 @@ struct SplatPassSettings {
     float dilation = 0.3f;    // the EWA low-pass, in px²
     bool mip_filter = false;  // the optional 2D mip filter
     LodRule lod;              // selection by pixel coverage (coarsest_level is set from the scene)
+    bool level_colouring = false;  // debug view: tint each Gaussian by its LOD level
 };
 
 class SplatPass : public engine::RenderPass {
