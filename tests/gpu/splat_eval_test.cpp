@@ -1,4 +1,5 @@
-// splat_eval end to end on a tiny synthetic cloud: both sweeps, every output file.
+// splat_eval end to end on a tiny synthetic cloud: both sweeps, every output file; and the
+// comparison with a tiny two-level LOD chain written as INRIA PLY files and a lod-meta.json.
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -8,6 +9,9 @@
 #include "splat_lod/eval/eval_run.h"
 #include "splat_lod/eval/eval_scene.h"
 #include "splat_lod/eval/frame_measurer.h"
+#include "splat_lod/eval/lod_chain.h"
+#include "splat_lod/splat_component.h"
+#include "splat_lod/splat_io.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_test_scenes.h"
 #include "test_support.h"
@@ -28,12 +32,35 @@ std::shared_ptr<const splat_lod::SplatCloud> small_cloud() {
     for (int i = 0; i < 27; ++i) {
         engine::test::GaussianSpec s;
         s.position = glm::vec3(static_cast<float>(i % 3) - 1.0f, static_cast<float>(i / 3 % 3) - 1.0f,
-                               static_cast<float>(i / 9) - 1.0f) * 0.6f;
+                               static_cast<float>(i / 9) - 1.0f) *
+                     0.6f;
         s.log_scale = glm::vec3(-1.6f);
         s.color = glm::vec3(0.2f + 0.3f * static_cast<float>(i % 3), 0.3f, 0.9f - 0.3f * static_cast<float>(i / 9));
         specs.push_back(s);
     }
     return std::make_shared<const splat_lod::SplatCloud>(engine::test::make_cloud(specs));
+}
+
+// The same cube drawn by its 8 corners, larger: a coarse level of small_cloud().
+std::shared_ptr<const splat_lod::SplatCloud> coarse_cloud() {
+    std::vector<engine::test::GaussianSpec> specs;
+    for (int i = 0; i < 8; ++i) {
+        engine::test::GaussianSpec s;
+        s.position = glm::vec3(i % 2 ? 0.6f : -0.6f, i / 2 % 2 ? 0.6f : -0.6f, i / 4 ? 0.6f : -0.6f);
+        s.log_scale = glm::vec3(-1.0f);
+        s.color = glm::vec3(0.5f, 0.3f, 0.6f);
+        specs.push_back(s);
+    }
+    return std::make_shared<const splat_lod::SplatCloud>(engine::test::make_cloud(specs));
+}
+
+// Level 0 is fine/scene.ply, level 1 coarse/scene.ply; the file list is not in level order, as in
+// PlayCanvas's chains.
+void write_chain(const std::filesystem::path& folder) {
+    splat_lod::write_inria_ply(folder / "fine" / "scene.ply", *small_cloud());
+    splat_lod::write_inria_ply(folder / "coarse" / "scene.ply", *coarse_cloud());
+    std::ofstream(folder / "lod-meta.json") << R"({"lodLevels": 2, "filenames": ["coarse/scene.ply", "fine/scene.ply"],
+        "tree": {"children": [{"lods": {"0": {"file": 1, "offset": 0, "count": 27}, "1": {"file": 0, "offset": 0, "count": 8}}}]}})";
 }
 
 class SplatEvalTest : public engine::test::GpuTest {};
@@ -87,8 +114,8 @@ TEST_F(SplatEvalTest, WholeRunWritesMeasurementsReportPlotsAndContactSheet) {
     ASSERT_EQ(csv.size(), 15u);
     EXPECT_EQ(csv[0].rfind("scene,sweep,view,view_name,method,factor,width,height,psnr_db,ssim,wall_ms", 0), 0u);
     EXPECT_EQ(csv[1].rfind("tiny,scale,0,\"orbit 0\",baseline,1,64,48,", 0), 0u) << csv[1];
-    for (const char* file : {"report.md", "contact_sheet.png", "time_vs_error.png", "time_vs_distance.png",
-                             "gaussians_vs_distance.png"})
+    for (const char* file :
+         {"report.md", "contact_sheet.png", "time_vs_error.png", "time_vs_distance.png", "gaussians_vs_distance.png"})
         EXPECT_TRUE(std::filesystem::exists(folder / file)) << file;
     const engine::Image sheet = engine::read_png(folder / "contact_sheet.png");
     EXPECT_EQ(sheet.width, 96 + 4 * (16 + 2));
@@ -96,6 +123,80 @@ TEST_F(SplatEvalTest, WholeRunWritesMeasurementsReportPlotsAndContactSheet) {
     std::stringstream text;
     text << report.rdbuf();
     EXPECT_NE(text.str().find("| baseline_mip |"), std::string::npos);
+}
+
+TEST_F(SplatEvalTest, ChainLevelsAreMeasuredAgainstTheMainScenesReference) {
+    const auto folder = engine::test::output_dir("splat_eval") / "chain";
+    std::filesystem::remove_all(folder);
+    write_chain(folder);
+    engine::Engine engine;
+    engine.plugins().add_static(splat_lod::make_plugin());
+    const auto main_file = folder / "fine" / "scene.ply";
+    eval::EvalScene scene = eval::load_splat_file_scene(main_file);
+    const auto poses = eval::orbit_poses(scene.extent, {0, 1, 0}, 1);
+
+    eval::EvalOptions options;
+    options.scene_name = "chain";
+    options.width = 64;
+    options.height = 48;
+    options.frames = 1;
+    options.warmup = 0;
+    options.methods = eval::select_methods("baseline,full");
+    options.scales = {1, 4};
+    options.sheet_methods = {"full", "chain_L1"};
+    options.comparisons = eval::chain_comparisons(eval::read_lod_chain(folder / "lod-meta.json"), main_file,
+                                                  scene.scene->components<splat_lod::SplatComponent>().front()->cloud);
+    int progress_lines = 0;
+    options.progress = [&](const std::string&) { ++progress_lines; };
+    eval::FrameMeasurer measurer(engine, *scene.scene);
+    const eval::EvalResults results = eval::run_evaluation(measurer, poses, options);
+    EXPECT_EQ(progress_lines, 4 * 2);
+    ASSERT_EQ(results.rows.size(), 8u);
+
+    const auto find = [&](const std::string& method, int scale) -> const eval::Measurement& {
+        for (const auto& row : results.rows)
+            if (row.method == method && row.factor == scale) return row;
+        throw std::runtime_error("no row for " + method);
+    };
+    EXPECT_EQ(find("chain_L0", 1).statistics.considered, 27u);
+    EXPECT_EQ(find("chain_L1", 4).statistics.considered, 8u);
+    EXPECT_EQ(find("chain_L1", 4).width, 16);
+    EXPECT_GT(*find("chain_L0", 1).psnr, 60.0) << "level 0 is the main scene: it matches its own reference";
+    EXPECT_NEAR(*find("chain_L0", 4).psnr, *find("baseline", 4).psnr, 0.01);
+    EXPECT_LT(*find("chain_L1", 1).psnr, 40.0) << "the coarse level is a different model";
+    EXPECT_GT(*find("chain_L1", 1).psnr, 5.0);
+
+    // The level picture: scales 1, 4 and 16 fit 64×48; without baked levels everything is level 1 (grey).
+    ASSERT_EQ(results.level_tiles.size(), 3u);
+    const engine::Image& levels = results.level_tiles.front().image;
+    int lit = 0;
+    for (int y = 0; y < levels.height; ++y)
+        for (int x = 0; x < levels.width; ++x) {
+            const std::uint8_t* p = levels.pixel(x, y);
+            lit += p[0] > 0;
+            EXPECT_LE(std::abs(p[0] - p[1]) + std::abs(p[1] - p[2]), 2) << "not grey at " << x << "," << y;
+        }
+    EXPECT_GT(lit, 0);
+
+    eval::write_outputs(results, "test", folder / "out");
+    const auto csv = read_lines(folder / "out" / "measurements.csv");
+    ASSERT_EQ(csv.size(), 9u);
+    EXPECT_NE(csv[0].find(",drawn_l1,drawn_l2,drawn_l3,drawn_l4,"), std::string::npos);
+    const engine::Image sheet = engine::read_png(folder / "out" / "contact_sheet.png");
+    EXPECT_EQ(sheet.height, 16 + 3 * (12 + 2)) << "rows reference, full, chain_L1";
+    // levels.png: label column (96 px), then tiles of 16×12 below a 16 px header, legend last.
+    const engine::Image picture = engine::read_png(folder / "out" / "levels.png");
+    EXPECT_EQ(picture.width, 96 + 3 * (16 + 2));
+    int lit_in_tiles = 0;
+    for (int y = 16; y < 16 + 12; ++y)
+        for (int x = 96; x < picture.width; ++x) lit_in_tiles += picture.pixel(x, y)[0] > 0;
+    EXPECT_GT(lit_in_tiles, 0) << "the level tiles are missing from levels.png";
+    std::ifstream report(folder / "out" / "report.md");
+    std::stringstream text;
+    text << report.rdbuf();
+    EXPECT_NE(text.str().find("Matched Gaussian counts"), std::string::npos);
+    EXPECT_NE(text.str().find("| 1× | chain_L0 (nearest) | 27 |"), std::string::npos) << text.str();
+    EXPECT_NE(text.str().find("LOD verdict"), std::string::npos);
 }
 
 }  // namespace

@@ -3,9 +3,12 @@
 //              --methods baseline,baseline_mip --sweep scale,distance --scales 1,2,4,...
 //              --distances 1,2,4,... --out DIR [--width W --height H --frames 5 --warmup 2
 //              --up X,Y,Z --name NAME --max-reference-side PX
-//              --sheet-tile-width PX]
-// Writes DIR/measurements.csv, report.md, the gnuplot PNGs and contact_sheet.png; progress on stderr.
+//              --sheet-tile-width PX --sheet-methods a,b --chain lod-meta.json]
+// Writes DIR/measurements.csv, report.md, the gnuplot PNGs, contact_sheet.png and (when `full` is
+// measured) levels.png; progress on stderr. --chain adds each level of an existing LOD chain to
+// the scale sweep as method chain_L<i> (baseline renderer, same views and references).
 #include <cstdio>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
@@ -17,14 +20,16 @@
 #include "splat_lod/eval/eval_run.h"
 #include "splat_lod/eval/eval_scene.h"
 #include "splat_lod/eval/frame_measurer.h"
+#include "splat_lod/eval/lod_chain.h"
+#include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
 
 namespace {
 
 struct Options {
     std::string scene, scene_json, cameras = "orbit:2", methods = "baseline,baseline_mip", sweeps = "scale",
-                                    scales = "1,2,4,8,16,32,64,128", distances = "1,2,4,8,16,32,64,128", out, up = "0,1,0",
-                                    name;
+                                   scales = "1,2,4,8,16,32,64,128", distances = "1,2,4,8,16,32,64,128", out,
+                                   up = "0,1,0", name, sheet_methods, chain;
     splat_lod::eval::EvalOptions eval;
 };
 
@@ -54,12 +59,26 @@ int run(Options& o) {
     o.eval.distances = eval::parse_int_list(o.distances, "--distances");
     o.eval.scene_name = default_name(o);
     o.eval.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+    if (!o.sheet_methods.empty()) o.eval.sheet_methods = eval::parse_name_list(o.sheet_methods, "--sheet-methods");
+    // A chain level is placed like a splat file given with --scene; a scene JSON may move its
+    // splats or add meshes, which the chain's files would not match.
+    if (!o.chain.empty() && o.scene.empty()) engine::fail("--chain needs --scene (a splat file), not --scene-json");
+    // The chain is read, and its level names checked with the other options, before anything is
+    // loaded or rendered.
+    const std::optional<eval::LodChain> chain =
+        o.chain.empty() ? std::nullopt : std::optional<eval::LodChain>(eval::read_lod_chain(o.chain));
+    if (chain) o.eval.comparisons = eval::chain_comparisons(*chain, o.scene, nullptr);
     eval::validate_options(o.eval);
 
     auto context = engine::HeadlessGlContext::create();
     engine::Engine engine;
     engine.plugins().add_static(splat_lod::make_plugin());
-    eval::EvalScene scene = o.scene.empty() ? eval::load_json_scene(engine, o.scene_json) : eval::load_splat_file_scene(o.scene);
+    eval::EvalScene scene =
+        o.scene.empty() ? eval::load_json_scene(engine, o.scene_json) : eval::load_splat_file_scene(o.scene);
+    // Now the chain level held in the --scene file can share the loaded cloud.
+    if (chain)
+        o.eval.comparisons = eval::chain_comparisons(
+            *chain, o.scene, scene.scene->components<splat_lod::SplatComponent>().front()->cloud);
     const auto poses = eval::load_camera_set(o.cameras, scene.extent, engine::parse_vec3(o.up, "--up"));
 
     eval::FrameMeasurer measurer(engine, *scene.scene);
@@ -78,7 +97,8 @@ int main(int argc, char** argv) {
     app.add_option("--scene", o.scene, "splat file (.ply, .compressed.ply, .splat, .spz, SOG meta.json)");
     app.add_option("--scene-json", o.scene_json, "engine scene JSON with splat components");
     app.add_option("--cameras", o.cameras, "orbit:N, an INRIA cameras.json, or a camera-path JSON");
-    app.add_option("--methods", o.methods, "comma-separated methods (baseline, baseline_mip)");
+    app.add_option("--methods", o.methods,
+                   "comma-separated methods (baseline, baseline_mip, filter_small, insert_large, full)");
     app.add_option("--sweep", o.sweeps, "scale, distance or both");
     app.add_option("--scales", o.scales, "downsampling factors per side; each must divide width and height");
     app.add_option("--distances", o.distances, "dolly factors for the distance sweep");
@@ -93,6 +113,10 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 16384));
     app.add_option("--sheet-tile-width", o.eval.sheet_tile_width, "contact-sheet tile width (default: width / 4)")
         ->check(CLI::Range(1, 4096));
+    app.add_option("--sheet-methods", o.sheet_methods,
+                   "contact-sheet rows after the reference (default: every method of --methods; chain_L<i> allowed)");
+    app.add_option("--chain", o.chain,
+                   "an existing LOD chain's lod-meta.json: each level joins the scale sweep as chain_L<i>");
     CLI11_PARSE(app, argc, argv);
     try {
         return run(o);

@@ -108,6 +108,8 @@ ProjectedGaussian project_gaussian(const SplatCloud& cloud, std::size_t index, c
 // SH colour of Gaussian `index` seen along `direction` (in the cloud's frame, any length > 0):
 // real SH of degree `degree` with 3DGS's constants, + 0.5, clamped at 0.
 glm::dvec3 sh_colour(const SplatCloud& cloud, std::size_t index, int degree, const glm::dvec3& direction);
+// The same before the clamp at 0: what the colour is linear in (the bake differentiates it).
+glm::dvec3 sh_colour_unclamped(const SplatCloud& cloud, std::size_t index, int degree, const glm::dvec3& direction);
 
 // What the mesh pass left behind, per pixel (row-major, top row first): the view depth z = −z_view
 // of the nearest surface (+inf where there is none) and the display colour there (the background

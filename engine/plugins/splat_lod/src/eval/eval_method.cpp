@@ -20,14 +20,26 @@ const std::vector<Method>& method_registry() {
         // The LOD ablation modes (ALGORITHMS §3); on a scene without baked levels they equal baseline.
         {"filter_small", "level 1 only, Gaussians too small for this view left out",
          [](SplatPass& pass) { pass.settings.lod.mode = plugin_msgs::LodMode::filter_small; }},
-        {"insert_large", "every level, no filtering", [](SplatPass& pass) { pass.settings.lod.mode = plugin_msgs::LodMode::insert_large; }},
+        {"insert_large", "every level, no filtering",
+         [](SplatPass& pass) { pass.settings.lod.mode = plugin_msgs::LodMode::insert_large; }},
         {"full", "every level, selected by pixel coverage (the multi-scale method)",
          [](SplatPass& pass) { pass.settings.lod.mode = plugin_msgs::LodMode::full; }},
     };
     return methods;
 }
 
-const Method& reference_method() { return method_registry().front(); }
+const Method& reference_method() {
+    return method_registry().front();
+}
+
+const Method& level_colouring_method() {
+    static const Method method{"full", "every level, selected by pixel coverage, each Gaussian tinted by its level",
+                               [](SplatPass& pass) {
+                                   pass.settings.lod.mode = plugin_msgs::LodMode::full;
+                                   pass.settings.level_colouring = true;
+                               }};
+    return method;
+}
 
 std::vector<Method> select_methods(const std::string& list) {
     std::vector<Method> selected;
@@ -67,6 +79,20 @@ std::vector<int> parse_int_list(const std::string& text, const std::string& opti
     }
     if (values.empty()) engine::fail(option + ": no value given");
     return values;
+}
+
+std::vector<std::string> parse_name_list(const std::string& text, const std::string& option) {
+    std::vector<std::string> names;
+    std::stringstream stream(text);
+    std::string name;
+    while (std::getline(stream, name, ',')) {
+        if (name.empty()) engine::fail(option + ": an empty name in \"" + text + "\"");
+        if (std::find(names.begin(), names.end(), name) != names.end())
+            engine::fail(option + ": \"" + name + "\" is listed twice");
+        names.push_back(name);
+    }
+    if (names.empty()) engine::fail(option + ": no name given");
+    return names;
 }
 
 }  // namespace splat_lod::eval

@@ -1,5 +1,7 @@
 #include "splat_lod/eval/eval_run.h"
 
+#include <algorithm>
+
 #include "engine/core/error.h"
 #include "splat_lod/eval/frame_measurer.h"
 #include "splat_lod/eval/image_metrics.h"
@@ -16,19 +18,19 @@ struct Progress {
         ++done;
         if (options.progress)
             options.progress("[" + std::to_string(done) + "/" + std::to_string(total) + "] " + options.scene_name +
-                             " view " + std::to_string(view) + " " + method + " " + std::to_string(factor) + "\u00d7 (" +
-                             sweep_name(sweep) + ")");
+                             " view " + std::to_string(view) + " " + method + " " + std::to_string(factor) +
+                             "\u00d7 (" + sweep_name(sweep) + ")");
     }
 };
 
-Measurement make_row(const EvalOptions& o, Sweep sweep, int view, const CameraPose& pose, const Method& method,
+Measurement make_row(const EvalOptions& o, Sweep sweep, int view, const CameraPose& pose, const std::string& method,
                      int factor, const FrameMeasurement& m) {
     Measurement row;
     row.scene = o.scene_name;
     row.sweep = sweep;
     row.view = view;
     row.view_name = pose.name;
-    row.method = method.name;
+    row.method = method;
     row.factor = factor;
     row.width = m.image.width;
     row.height = m.image.height;
@@ -44,10 +46,31 @@ void score(Measurement& row, const FloatImage& reference, const engine::Image& i
     row.ssim = ssim(rendered, reference);
 }
 
-void scale_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, Progress& progress, EvalResults& results) {
+// One view's references of the scale sweep: scale k → the full-resolution baseline area-averaged by k.
+using References = std::map<int, FloatImage>;
+
+bool fits_scale(int k, int width, int height) {
+    return k >= 1 && k <= width && k <= height && width % k == 0 && height % k == 0;
+}
+
+bool measures(const EvalOptions& o, const std::string& method) {
+    return std::any_of(o.methods.begin(), o.methods.end(), [&](const Method& m) { return m.name == method; });
+}
+
+// Untimed single frames of the first view: where `full` draws which level.
+void level_picture(FrameMeasurer& measurer, const CameraPose& pose, EvalResults& results) {
+    const EvalOptions& o = results.options;
+    for (int k : kLevelPictureScales)
+        if (fits_scale(k, o.width, o.height))
+            results.level_tiles.push_back(
+                {"full", k, measurer.render(level_colouring_method(), make_view(pose, o.width / k, o.height / k))});
+}
+
+References scale_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, Progress& progress,
+                       EvalResults& results) {
     const EvalOptions& o = results.options;
     const FloatImage full = to_float(measurer.render(reference_method(), make_view(pose, o.width, o.height)));
-    std::map<int, FloatImage> references;
+    References references;
     for (int k : o.scales) {
         references[k] = area_average(full, k);
         if (view == 0) results.tiles.push_back({"reference", k, to_rgba8(references[k])});
@@ -55,27 +78,53 @@ void scale_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, Prog
     for (const Method& method : o.methods)
         for (int k : o.scales) {
             progress.step(view, method.name, k, Sweep::scale);
-            FrameMeasurement m = measurer.measure(method, make_view(pose, o.width / k, o.height / k), o.frames, o.warmup);
+            FrameMeasurement m =
+                measurer.measure(method, make_view(pose, o.width / k, o.height / k), o.frames, o.warmup);
             if (view == 0) results.tiles.push_back({method.name, k, m.image});
-            Measurement row = make_row(o, Sweep::scale, view, pose, method, k, m);
+            Measurement row = make_row(o, Sweep::scale, view, pose, method.name, k, m);
             score(row, references[k], m.image);
+            results.rows.push_back(std::move(row));
+        }
+    if (view == 0 && measures(o, "full")) level_picture(measurer, pose, results);
+    return references;
+}
+
+// A comparison scene at every view and scale, drawn by the same engine (the splat pass uploads
+// the scene it is given) and scored against the main scene's references.
+void comparison_sweep(FrameMeasurer& main, const ComparisonScene& comparison, const std::vector<CameraPose>& poses,
+                      const std::vector<References>& references, Progress& progress, EvalResults& results) {
+    const EvalOptions& o = results.options;
+    if (!comparison.load) engine::fail("comparison scene \"" + comparison.method + "\": nothing to load");
+    const EvalScene scene = comparison.load();
+    FrameMeasurer measurer(main.engine(), *scene.scene);
+    for (std::size_t v = 0; v < poses.size(); ++v)
+        for (int k : o.scales) {
+            const int view = static_cast<int>(v);
+            progress.step(view, comparison.method, k, Sweep::scale);
+            FrameMeasurement m = measurer.measure(reference_method(), make_view(poses[v], o.width / k, o.height / k),
+                                                  o.frames, o.warmup);
+            if (view == 0) results.tiles.push_back({comparison.method, k, m.image});
+            Measurement row = make_row(o, Sweep::scale, view, poses[v], comparison.method, k, m);
+            score(row, references[v].at(k), m.image);
             results.rows.push_back(std::move(row));
         }
 }
 
-void distance_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, Progress& progress, EvalResults& results) {
+void distance_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, Progress& progress,
+                    EvalResults& results) {
     const EvalOptions& o = results.options;
     for (int d : o.distances) {
         const CameraPose far = dolly(pose, static_cast<float>(d));
         std::optional<FloatImage> reference;
         if (d * o.width <= o.max_reference_side && d * o.height <= o.max_reference_side) {
-            reference = area_average(to_float(measurer.render(reference_method(), make_view(far, d * o.width, d * o.height))), d);
+            reference = area_average(
+                to_float(measurer.render(reference_method(), make_view(far, d * o.width, d * o.height))), d);
             results.max_reference_distance = std::max(results.max_reference_distance, d);
         }
         for (const Method& method : o.methods) {
             progress.step(view, method.name, d, Sweep::distance);
             FrameMeasurement m = measurer.measure(method, make_view(far, o.width, o.height), o.frames, o.warmup);
-            Measurement row = make_row(o, Sweep::distance, view, pose, method, d, m);
+            Measurement row = make_row(o, Sweep::distance, view, pose, method.name, d, m);
             if (reference) score(row, *reference, m.image);
             results.rows.push_back(std::move(row));
         }
@@ -84,7 +133,17 @@ void distance_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, P
 
 }  // namespace
 
-const char* sweep_name(Sweep sweep) { return sweep == Sweep::scale ? "scale" : "distance"; }
+const char* sweep_name(Sweep sweep) {
+    return sweep == Sweep::scale ? "scale" : "distance";
+}
+
+std::vector<std::string> measured_methods(const EvalOptions& o, Sweep sweep) {
+    std::vector<std::string> names;
+    for (const Method& method : o.methods) names.push_back(method.name);
+    if (sweep == Sweep::scale)
+        for (const ComparisonScene& comparison : o.comparisons) names.push_back(comparison.method);
+    return names;
+}
 
 void validate_options(const EvalOptions& o) {
     if (o.width < 1 || o.height < 1) engine::fail("--width/--height: the image size must be positive");
@@ -94,6 +153,22 @@ void validate_options(const EvalOptions& o) {
     for (int k : o.scales) check_scale(k, o.width, o.height, "--scales");
     for (int d : o.distances)
         if (d < 1) engine::fail("--distances: distance " + std::to_string(d) + " is not a positive integer");
+    const bool scale_sweep = std::find(o.sweeps.begin(), o.sweeps.end(), Sweep::scale) != o.sweeps.end();
+    if (!o.comparisons.empty() && !scale_sweep)
+        engine::fail("--chain: comparison scenes are measured in the scale sweep, which is not run");
+    std::vector<std::string> names;
+    for (const Method& method : o.methods) names.push_back(method.name);
+    for (const ComparisonScene& comparison : o.comparisons) {
+        if (std::find(names.begin(), names.end(), comparison.method) != names.end())
+            engine::fail("comparison scene \"" + comparison.method + "\": another method has that name");
+        names.push_back(comparison.method);
+    }
+    for (const std::string& row : o.sheet_methods)
+        if (row != "reference" && std::find(names.begin(), names.end(), row) == names.end()) {
+            std::string known = "reference";
+            for (const auto& name : names) known += ", " + name;
+            engine::fail("--sheet-methods: \"" + row + "\" is not measured (measured: " + known + ")");
+        }
 }
 
 EvalResults run_evaluation(FrameMeasurer& measurer, const std::vector<CameraPose>& poses, const EvalOptions& options) {
@@ -103,13 +178,21 @@ EvalResults run_evaluation(FrameMeasurer& measurer, const std::vector<CameraPose
     results.views = static_cast<int>(poses.size());
     Progress progress{options};
     for (Sweep sweep : options.sweeps)
-        progress.total += static_cast<int>(poses.size() * options.methods.size() *
+        progress.total += static_cast<int>(poses.size() * measured_methods(options, sweep).size() *
                                            (sweep == Sweep::scale ? options.scales.size() : options.distances.size()));
+    // The comparison scenes need every view's references after the main scene's sweeps; kept only then.
+    std::vector<References> references;
     for (Sweep sweep : options.sweeps)
         for (std::size_t v = 0; v < poses.size(); ++v) {
-            if (sweep == Sweep::scale) scale_sweep(measurer, poses[v], static_cast<int>(v), progress, results);
-            else distance_sweep(measurer, poses[v], static_cast<int>(v), progress, results);
+            if (sweep == Sweep::distance) {
+                distance_sweep(measurer, poses[v], static_cast<int>(v), progress, results);
+                continue;
+            }
+            References view_references = scale_sweep(measurer, poses[v], static_cast<int>(v), progress, results);
+            if (!options.comparisons.empty()) references.push_back(std::move(view_references));
         }
+    for (const ComparisonScene& comparison : options.comparisons)
+        comparison_sweep(measurer, comparison, poses, references, progress, results);
     return results;
 }
 

@@ -49,6 +49,10 @@ std::array<double, 16> sh_basis(const glm::dvec3& d, int degree) {
 }  // namespace
 
 glm::dvec3 sh_colour(const SplatCloud& cloud, std::size_t index, int degree, const glm::dvec3& direction) {
+    return glm::max(sh_colour_unclamped(cloud, index, degree, direction), glm::dvec3(0.0));
+}
+
+glm::dvec3 sh_colour_unclamped(const SplatCloud& cloud, std::size_t index, int degree, const glm::dvec3& direction) {
     degree = std::clamp(std::min(degree, cloud.sh_degree), 0, kMaxShDegree);
     glm::dvec3 result = kC0 * glm::dvec3(cloud.sh_dc[index]);
     const double length = glm::length(direction);
@@ -62,7 +66,7 @@ glm::dvec3 sh_colour(const SplatCloud& cloud, std::size_t index, int degree, con
                       glm::dvec3(coefficient[0], coefficient[1], coefficient[2]);
         }
     }
-    return glm::max(result + 0.5, glm::dvec3(0.0));
+    return result + 0.5;
 }
 
 }  // namespace splat_lod::reference

@@ -24,8 +24,12 @@ const std::vector<Method>& method_registry();
 std::vector<Method> select_methods(const std::string& list);
 // The reference renderer's setup (ALGORITHMS §6: the fine model with the baseline renderer).
 const Method& reference_method();
+// `full` with each Gaussian tinted by its LOD level (the pass's debug view), for the level picture.
+const Method& level_colouring_method();
 
 // "1,2,4" → {1, 2, 4}; throws naming `option` on anything but positive integers.
 std::vector<int> parse_int_list(const std::string& text, const std::string& option);
+// "a,b" → {"a", "b"}; throws naming `option` on an empty or repeated name.
+std::vector<std::string> parse_name_list(const std::string& text, const std::string& option);
 
 }  // namespace splat_lod::eval

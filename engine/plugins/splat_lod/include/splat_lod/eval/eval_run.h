@@ -5,6 +5,9 @@
 //   distance d: each method at W×H with the camera d times farther from its target (the scene
 //               covers 1/d of its screen size), against the baseline at (dW)×(dH) area-averaged
 //               by d×d where that fits in max_reference_side, with no error reported beyond.
+// Comparison scenes (another model of the same content, e.g. each level of an existing LOD chain)
+// join the scale sweep: each is rendered with the baseline at every scale and view and scored
+// against the main scene's references, so that their errors and the methods' are comparable.
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -17,6 +20,7 @@
 #include "engine/render/image.h"
 #include "splat_lod/eval/camera_set.h"
 #include "splat_lod/eval/eval_method.h"
+#include "splat_lod/eval/eval_scene.h"
 
 namespace splat_lod::eval {
 
@@ -24,6 +28,15 @@ class FrameMeasurer;
 
 enum class Sweep { scale, distance };
 const char* sweep_name(Sweep sweep);
+
+// A scene measured against the main scene's references (scale sweep only).
+struct ComparisonScene {
+    std::string method;       // the method name its measurements carry ("chain_L3")
+    std::string description;  // for the report
+    // Called once, when its turn comes; the scene is dropped after its measurements, so only one
+    // comparison scene is in memory at a time.
+    std::function<EvalScene()> load;
+};
 
 struct EvalOptions {
     std::string scene_name = "scene";
@@ -37,6 +50,10 @@ struct EvalOptions {
     std::vector<int> distances{1, 2, 4, 8, 16, 32, 64, 128};
     int max_reference_side = 2048;
     int sheet_tile_width = 0;  // contact-sheet tile width in pixels; 0: width / 4
+    // Contact-sheet rows after the reference; empty: every method of `methods` (comparison scenes
+    // appear only when named here).
+    std::vector<std::string> sheet_methods;
+    std::vector<ComparisonScene> comparisons;
     // Called before each measurement with "[i/n] scene view v method k× (sweep)".
     std::function<void(const std::string&)> progress;
 };
@@ -69,11 +86,20 @@ struct EvalResults {
     int views = 0;
     std::vector<Measurement> rows;
     std::vector<ContactTile> tiles;
-    int max_reference_distance = 0;  // largest distance with an error measurement
+    std::vector<ContactTile> level_tiles;  // the level picture, method "full"
+    int max_reference_distance = 0;        // largest distance with an error measurement
 };
 
-// Throws engine::Error before any rendering when a scale or distance is impossible for the size.
+// The scales of the level picture (levels.png): the first view with `full` and each Gaussian
+// tinted by its level, at those of these scales that fit the size. Rendered when `full` is measured.
+constexpr int kLevelPictureScales[] = {1, 4, 16, 64};
+
+// Throws engine::Error before any rendering when a scale or distance is impossible for the size,
+// a comparison scene lacks the scale sweep or repeats a method name, or a contact-sheet row names
+// nothing measured.
 void validate_options(const EvalOptions& options);
+// The method names measured in a sweep, in the order of `methods` then `comparisons`.
+std::vector<std::string> measured_methods(const EvalOptions& options, Sweep sweep);
 EvalResults run_evaluation(FrameMeasurer& measurer, const std::vector<CameraPose>& poses, const EvalOptions& options);
 
 }  // namespace splat_lod::eval

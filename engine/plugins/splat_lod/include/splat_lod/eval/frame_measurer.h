@@ -23,8 +23,8 @@ namespace splat_lod::eval {
 
 struct FrameMeasurement {
     engine::Image image;
-    double wall_ms = 0.0;                   // median: render() to glFinish()
-    std::map<std::string, double> gpu_ms;   // median per GPU timer span ("splat", "splat.sort", ...)
+    double wall_ms = 0.0;                  // median: render() to glFinish()
+    std::map<std::string, double> gpu_ms;  // median per GPU timer span ("splat", "splat.sort", ...)
     plugin_msgs::SplatStatistics statistics;
 };
 
@@ -38,6 +38,9 @@ public:
     FrameMeasurement measure(const Method& method, const engine::CameraView& camera, int frames, int warmup);
     // One complete frame (no timing), for references.
     engine::Image render(const Method& method, const engine::CameraView& camera);
+
+    // Another scene is measured with another measurer on the same engine.
+    engine::Engine& engine() const { return engine_; }
 
 private:
     double draw(const engine::CameraView& camera, engine::RenderTarget& target);
