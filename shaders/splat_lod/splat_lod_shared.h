@@ -99,6 +99,7 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 #define SPLAT_BINDING_TILE_RANGES 7    // uvec2[tile_count]: [begin, end) into the sorted keys
 #define SPLAT_BINDING_STATS 8          // FrameCounters
 #define SPLAT_BINDING_ARGS 9           // uvec4: tile-range dispatch size (xyz) and keys in use (w)
+#define SPLAT_BINDING_CLUSTERS 10      // GpuCluster[ceil(N / SPLAT_PROJECT_WORKGROUP_SIZE)], static per scene
 #define SPLAT_UNIFORM_FRAME 0          // FrameUniforms (uniform block binding)
 #define SPLAT_IMAGE_COLOR 0            // the frame's display-space colour (rgba8), read and written
 #define SPLAT_TEXTURE_VIEW_DEPTH 1     // the mesh pass's view depth (r32f), +inf where no mesh
@@ -115,7 +116,20 @@ SPLAT_LOD_STRUCT(GpuGaussian) {
 SPLAT_LOD_STRUCT(GpuInstance) {
     mat4 model;             // local → world
     mat4 rotation_inverse;  // world → local directions (for SH)
-    uvec4 info;             // x first Gaussian, y count, z SH degree used, w unused
+    uvec4 info;             // x first Gaussian, y count, z SH degree used, w floatBitsToUint(‖M‖₂), M = mat3(model)
+};
+
+// What the project pass knows about the Gaussians one of its workgroups handles (cluster c holds
+// Gaussians [c·SPLAT_PROJECT_WORKGROUP_SIZE, (c + 1)·SPLAT_PROJECT_WORKGROUP_SIZE)). Baked files
+// are sorted by level and along a Morton curve, so a cluster is one level of one small region: when
+// even its largest member would be too small to draw at the cluster's nearest depth, the whole
+// workgroup skips its Gaussians (ALGORITHMS §3 "not too small", bounded from above).
+SPLAT_LOD_STRUCT(GpuCluster) {
+    vec4 sphere;  // local-space centre xyz and radius w of the members' means
+    vec4 bounds;  // x: max over members of sqrt(2·ln(255·o))·min(σ_max, √2·σ_mid) (local units; 0 if invisible)
+                  // y: max over members of that extent / coverage_min (−1 when any member has no
+                  //    coverage_min > 0: never skipped)
+                  // z: highest member level; w: instance index as float bits, or −1 (mixed instances)
 };
 
 // A projected Gaussian, stored at its Gaussian index (entries of culled ones are not read).
@@ -131,7 +145,7 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     vec4 camera_position;   // world, w unused
     vec4 focal_principal;   // fx, fy, cx, cy (pixels)
     vec4 image;             // width, height, 1.3·tan(fov_x/2), 1.3·tan(fov_y/2)
-    vec4 params;            // znear, dilation, mip filter (0/1), unused
+    vec4 params;            // znear, dilation, mip filter (0/1), cluster skipping (0/1)
     uvec4 counts;           // Gaussian count, sh_stride (floats), key capacity, instance count
     uvec4 tiles;            // tiles_x, tiles_y, tile_count, unused
     vec4 lod_rule;          // S_T (px), S_rel_min, S_rel_max, unused (ALGORITHMS §3)
@@ -145,6 +159,7 @@ SPLAT_LOD_STRUCT(FrameCounters) {
     uint keys_needed;   // tile-splat pairs this frame asked for
     uint overflowed;    // 1 when keys_needed > key capacity (the frame dropped pairs)
     uvec4 per_level;    // visible Gaussians per LOD level 1..4
+    uvec4 skipping;     // x: Gaussians in project workgroups skipped as too small (GpuCluster); yzw unused
 };
 
 #ifdef __cplusplus

@@ -7,6 +7,7 @@
 
 #include "engine/render/camera.h"
 #include "gpu_fixture.h"
+#include "gpu/gpu_scene.h"
 #include "passes/splat_pass.h"
 #include "splat_lod/bake/bake.h"
 #include "splat_lod/bake/bake_cameras.h"
@@ -74,6 +75,37 @@ TEST_F(SplatBakeRenderTest, BakedGardenLooksRightWhenSmallAndStaysExactWhenLarge
     const auto& statistics = splat_lod::find_splat_pass(harness.engine().renderer())->latest_statistics();
     ASSERT_TRUE(statistics.has_value());
     EXPECT_GT(statistics->per_level[1] + statistics->per_level[2] + statistics->per_level[3], 0u);
+}
+
+TEST_F(SplatBakeRenderTest, ClusterSkippingChangesNothingButTheWork) {
+    // Skipping whole workgroups of too-small Gaussians must be invisible: the same bytes and the
+    // same per-level counts with it on and off, near and far, in every mode.
+    splat_lod::synth::FineDetailOptions synth;
+    synth.detail = 0.05f;
+    const splat_lod::SplatCloud fine = splat_lod::synth::make_fine_detail_scene(synth);
+    const auto extent = eval::robust_extent(fine.positions);
+    const glm::vec3 up(0, 1, 0);
+    const auto cameras = splat_lod::bake::bake_cameras(splat_lod::bake::bake_camera_poses("rings:2x6", extent, up), 256, 192);
+    splat_lod::bake::BakeOptions options;
+    options.refine_iterations = 0;
+    const auto cloud = std::make_shared<const splat_lod::SplatCloud>(splat_lod::bake::bake_lod(fine, cameras, options));
+    auto* pass = splat_lod::find_splat_pass(harness.engine().renderer());
+    const auto pose = eval::orbit_poses(extent, up, 1).front();
+    bool skipped_somewhere = false;
+    for (const float distance : {1.0f, 8.0f, 64.0f})
+        for (const auto mode : {plugin_msgs::LodMode::full, plugin_msgs::LodMode::filter_small}) {
+            SCOPED_TRACE("distance " + std::to_string(distance) + ", " + std::string(plugin_msgs::to_string(mode)));
+            const auto view = eval::make_view(eval::dolly(pose, distance), 128, 96);
+            pass->settings.cluster_skipping = false;
+            const auto without = render_mode(harness, cloud, view, mode);
+            const auto counts_without = pass->latest_statistics()->per_level;
+            pass->settings.cluster_skipping = true;
+            const auto with = render_mode(harness, cloud, view, mode);
+            EXPECT_EQ(with.rgba, without.rgba);
+            EXPECT_EQ(pass->latest_statistics()->per_level, counts_without);
+            if (pass->latest_statistics()->skipped > 0) skipped_somewhere = true;
+        }
+    EXPECT_TRUE(skipped_somewhere) << "far away, whole clusters of small Gaussians are skipped";
 }
 
 }  // namespace

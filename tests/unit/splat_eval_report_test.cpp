@@ -98,9 +98,9 @@ TEST(SplatEvalReport, ScaleTablesShowGaussiansDrawnPerLevel) {
 
     eval::write_csv(lod_results(), folder / "measurements.csv");
     const std::string csv = read_text(folder / "measurements.csv");
-    EXPECT_NE(csv.find(",considered,visible,drawn_l1,drawn_l2,drawn_l3,drawn_l4,tile_splat_pairs,"), std::string::npos)
+    EXPECT_NE(csv.find(",considered,skipped,visible,drawn_l1,drawn_l2,drawn_l3,drawn_l4,tile_splat_pairs,"), std::string::npos)
         << csv;
-    EXPECT_NE(csv.find(",200000,1240467,900,2000,3000,1234567,0,0\n"), std::string::npos) << csv;
+    EXPECT_NE(csv.find(",200000,0,1240467,900,2000,3000,1234567,0,0\n"), std::string::npos) << csv;
 }
 
 TEST(SplatEvalReport, CountsAreShortAndReadable) {

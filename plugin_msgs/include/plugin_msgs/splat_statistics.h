@@ -16,6 +16,7 @@ struct SplatStatistics {
     std::uint64_t considered = 0;          // Gaussians of every splat component
     std::uint64_t visible = 0;             // after culling (and LOD selection)
     std::array<std::uint64_t, 4> per_level{0, 0, 0, 0};  // visible per LOD level 1..4
+    std::uint64_t skipped = 0;             // not projected: in clusters too small to select (LOD modes)
     std::uint64_t tile_splat_pairs = 0;    // keys the frame needed
     std::uint64_t key_capacity = 0;
     bool overflowed = false;               // the frame needed more keys than the capacity (grown after)
@@ -25,6 +26,6 @@ struct SplatStatistics {
 };
 
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(SplatStatistics, frame_index, considered, visible, per_level,
-                                                tile_splat_pairs, key_capacity, overflowed, resident_bytes)
+                                                skipped, tile_splat_pairs, key_capacity, overflowed, resident_bytes)
 
 }  // namespace plugin_msgs

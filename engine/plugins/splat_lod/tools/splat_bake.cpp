@@ -23,7 +23,7 @@
 namespace {
 
 struct Options {
-    std::string input, output, cameras = "auto", up = "0,1,0", cells = "adaptive";
+    std::string input, output, cameras = "auto", up = "0,1,0", cells = "auto", pooling = "mean";
     int width = 512;
     int height = 384;
     bool keep_ranges = false;
@@ -111,8 +111,15 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0, 100000));
     app.add_option("--refine-cameras", o.bake.refine_cameras, "at most this many cameras for the refinement")
         ->check(CLI::Range(1, 10000));
-    app.add_option("--cells", o.cells, "adaptive (grid or distance cells, the larger) or grid (ALGORITHMS §4 step 3)")
-        ->check(CLI::IsMember({"adaptive", "grid"}));
+    auto* enlargement = app.add_option("--max-enlargement", o.bake.max_enlargement,
+                                       "clamp of the pooled Gaussians' enlargement S_T / S_avg (fixes the recipe)")
+                            ->check(CLI::Range(1.0, 1000.0));
+    app.add_option("--pooling", o.pooling, "mean (ALGORITHMS §4 steps 4-5) or moments (moment-matched cells)")
+        ->check(CLI::IsMember({"mean", "moments"}));
+    auto* cells = app.add_option("--cells", o.cells,
+                                 "auto (bake both recipes, keep the better), adaptive (the larger of grid and "
+                                 "distance cells, enlargement <= 8) or grid (ALGORITHMS §4 step 3, enlargement <= 32)")
+                      ->check(CLI::IsMember({"auto", "adaptive", "grid"}));
     app.add_flag("--keep-ranges", o.keep_ranges, "do not measure the coverage ranges again after the refinement");
     app.add_option("--debug-images", o.bake.debug_image_dir,
                    "folder (existing) for the refinement's target/before/after PNGs of its first camera");
@@ -120,7 +127,11 @@ int main(int argc, char** argv) {
     app.add_option("--seed", o.bake.seed, "seed of the refinement's camera order");
     CLI11_PARSE(app, argc, argv);
     o.bake.ranges_after_refine = !o.keep_ranges;
+    o.bake.pooling = o.pooling == "moments" ? splat_lod::bake::PoolingRule::moments : splat_lod::bake::PoolingRule::mean;
     o.bake.cells = o.cells == "grid" ? splat_lod::bake::CellRule::grid : splat_lod::bake::CellRule::adaptive;
+    o.bake.choose_recipe = o.cells == "auto" && enlargement->count() == 0;
+    if (cells->count() > 0 && o.cells != "auto" && enlargement->count() == 0)
+        o.bake.max_enlargement = o.cells == "grid" ? 32.0 : 8.0;
     try {
         return run(o);
     } catch (const std::exception& e) {

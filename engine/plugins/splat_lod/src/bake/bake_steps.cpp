@@ -6,6 +6,8 @@
 #include <limits>
 #include <numeric>
 
+#include <glm/gtc/quaternion.hpp>
+
 #include "engine/core/error.h"
 #include "reference/instance_frame.h"
 #include "reference/parallel_for.h"
@@ -188,6 +190,76 @@ double sigmoid(double logit) {
 
 }  // namespace
 
+namespace {
+
+// Eigen-decomposition of a symmetric 3×3 matrix by cyclic Jacobi rotations: the columns of
+// `vectors` are orthonormal eigenvectors, `values` the eigenvalues.
+void symmetric_eigen(glm::dmat3 a, glm::dvec3& values, glm::dmat3& vectors) {
+    vectors = glm::dmat3(1.0);
+    for (int sweep = 0; sweep < 32; ++sweep) {
+        const double off = a[1][0] * a[1][0] + a[2][0] * a[2][0] + a[2][1] * a[2][1];
+        const double diagonal = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
+        if (!(off > 1e-30 * diagonal)) break;
+        for (int p = 0; p < 2; ++p)
+            for (int q = p + 1; q < 3; ++q) {
+                if (a[q][p] == 0.0) continue;
+                const double theta = (a[q][q] - a[p][p]) / (2.0 * a[q][p]);
+                const double t = (theta >= 0.0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
+                const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
+                glm::dmat3 r(1.0);
+                r[p][p] = c;
+                r[q][q] = c;
+                r[q][p] = s;
+                r[p][q] = -s;
+                a = glm::transpose(r) * a * r;
+                vectors = vectors * r;
+            }
+    }
+    values = {a[0][0], a[1][1], a[2][2]};
+}
+
+glm::dmat3 rotation_of(const Rotation& q) {
+    const double w = q.w, x = q.x, y = q.y, z = q.z;
+    return glm::dmat3(1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y),
+                      2.0 * (x * y - w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z + w * x),
+                      2.0 * (x * z + w * y), 2.0 * (y * z - w * x), 1.0 - 2.0 * (x * x + y * y));
+}
+
+}  // namespace
+
+void pool_moments(const SplatCloud& source, std::span<const std::uint32_t> members, SplatCloud& target, std::size_t out) {
+    pool(source, members, target, out);
+    double weight_sum = 0.0;
+    glm::dvec3 mean(0.0);
+    for (const std::uint32_t m : members) {
+        const double w = 1.0 / (1.0 + std::exp(-static_cast<double>(source.opacity_logits[m])));
+        weight_sum += w;
+        mean += w * glm::dvec3(source.positions[m]);
+    }
+    if (!(weight_sum > 0.0)) return;
+    mean /= weight_sum;
+    glm::dmat3 covariance(0.0);
+    for (const std::uint32_t m : members) {
+        const double w = 1.0 / (1.0 + std::exp(-static_cast<double>(source.opacity_logits[m])));
+        const glm::dvec3 s = glm::exp(glm::dvec3(source.log_scales[m]));
+        const glm::dmat3 rs = rotation_of(source.rotations[m]) * glm::dmat3(s.x, 0, 0, 0, s.y, 0, 0, 0, s.z);
+        const glm::dvec3 d = glm::dvec3(source.positions[m]) - mean;
+        covariance += w * (rs * glm::transpose(rs) + glm::outerProduct(d, d));
+    }
+    covariance /= weight_sum;
+    glm::dvec3 values;
+    glm::dmat3 vectors;
+    symmetric_eigen(covariance, values, vectors);
+    if (glm::determinant(vectors) < 0.0) vectors[2] = -vectors[2];
+    const glm::dquat q = glm::normalize(glm::quat_cast(vectors));
+    if (!std::isfinite(q.w + q.x + q.y + q.z)) return;  // keep pool()'s geometry
+    target.positions[out] = glm::vec3(mean);
+    target.rotations[out] = {static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y),
+                             static_cast<float>(q.z)};
+    for (int axis = 0; axis < 3; ++axis)
+        target.log_scales[out][axis] = static_cast<float>(0.5 * std::log(std::max(values[axis], 1e-30)));
+}
+
 void pool(const SplatCloud& source, std::span<const std::uint32_t> members, SplatCloud& target, std::size_t out) {
     if (members.empty()) engine::fail("bake: pooling an empty cell");
     const double n = static_cast<double>(members.size());
@@ -292,10 +364,20 @@ std::vector<std::uint32_t> output_order(const SplatCloud& cloud, const Normalise
         }
         morton[i] = code;
     }
+    // Size class: log2 of the extent that bounds a Gaussian's coverage (see build_clusters in
+    // gpu/gpu_scene.cpp); unseen Gaussians (no range) in a class of their own, last.
+    std::vector<int> size_class(cloud.size());
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        glm::vec3 s = cloud.log_scales[i];
+        std::sort(&s.x, &s.x + 3);
+        const double log_extent = std::min(static_cast<double>(s.z), 0.5 * std::log(2.0) + s.y);
+        size_class[i] = cloud.coverage_min[i] > 0.0f ? static_cast<int>(std::floor(log_extent / std::log(2.0))) : 1 << 20;
+    }
     std::vector<std::uint32_t> order(cloud.size());
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
         if (cloud.lod_level[a] != cloud.lod_level[b]) return cloud.lod_level[a] > cloud.lod_level[b];
+        if (size_class[a] != size_class[b]) return size_class[a] < size_class[b];
         return morton[a] < morton[b];
     });
     return order;

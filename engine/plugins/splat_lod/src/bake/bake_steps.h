@@ -78,6 +78,12 @@ std::uint64_t cell_key(const glm::dvec3& p, int level, int grid_cells, const Nor
 // logit clamped to [1e−4, 1 − 1e−4]), mean SH coefficients and extra attributes.
 void pool(const SplatCloud& source, std::span<const std::uint32_t> members, SplatCloud& target, std::size_t out);
 
+// Like pool(), but position, rotation and scales are those of the moment-matched Gaussian of the
+// members weighted by opacity, Σ = Σ wᵢ(Σᵢ + (μᵢ − μ)(μᵢ − μ)ᵀ) / Σ wᵢ: it covers the region its
+// members fill rather than their average size (PoolingRule::moments).
+void pool_moments(const SplatCloud& source, std::span<const std::uint32_t> members, SplatCloud& target,
+                  std::size_t out);
+
 // Step 5: S_avg = mean over members of each member's median coverage at `scale` over the
 // cameras that see it; members seen by no camera are left out; 0 when none is seen.
 double mean_median_coverage(const CoverageTable& table, std::span<const std::uint32_t> members, int scale);
@@ -88,8 +94,11 @@ double enlargement(double size_threshold, double mean_coverage, double max_enlar
 void set_coverage_ranges(SplatCloud& cloud, const CoverageTable& table, double low_percentile,
                          double high_percentile);
 
-// Output order: coarsest level first; within a level, along a Morton curve of the normalised
-// position (ties by index), so that a level's prefix and a spatial chunk are contiguous.
+// Output order: coarsest level first; within a level by size class (a factor of 2 in the extent
+// that bounds coverage; Gaussians no camera saw last), then along a Morton curve of the normalised
+// position (ties by index). A level is a contiguous prefix for streaming, and each run of 256 (a
+// project workgroup) holds Gaussians of one size near each other, which the renderer can skip
+// together when all are too small for the view (GpuCluster).
 std::vector<std::uint32_t> output_order(const SplatCloud& cloud, const Normaliser& normaliser);
 
 // Step 7 (refine.cpp): the distillation of each coarse level against the fine model. Holds the

@@ -35,7 +35,7 @@ std::string csv_row(const Measurement& row, const std::set<std::string>& spans) 
         const auto it = row.gpu_ms.find(name);
         out << ',' << (it == row.gpu_ms.end() ? std::string() : format_fixed(it->second, 3));
     }
-    out << ',' << s.considered << ',' << s.visible;
+    out << ',' << s.considered << ',' << s.skipped << ',' << s.visible;
     for (auto level : s.per_level) out << ',' << level;
     out << ',' << s.tile_splat_pairs << ',' << s.resident_bytes << '\n';
     return out.str();
@@ -235,7 +235,7 @@ void write_csv(const EvalResults& results, const std::filesystem::path& path) {
     const auto spans = span_names(results);
     std::string text = "scene,sweep,view,view_name,method,factor,width,height,psnr_db,ssim,wall_ms";
     for (const auto& name : spans) text += ",gpu_" + name + "_ms";
-    text += ",considered,visible,drawn_l1,drawn_l2,drawn_l3,drawn_l4,tile_splat_pairs,resident_bytes\n";
+    text += ",considered,skipped,visible,drawn_l1,drawn_l2,drawn_l3,drawn_l4,tile_splat_pairs,resident_bytes\n";
     for (const auto& row : results.rows) text += csv_row(row, spans);
     engine::write_text_file_atomic(path, text);
 }

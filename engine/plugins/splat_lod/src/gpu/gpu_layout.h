@@ -12,12 +12,13 @@ static_assert(sizeof(GpuGaussian) == 64);
 static_assert(offsetof(GpuGaussian, lod) == 48);
 static_assert(sizeof(GpuInstance) == 144);
 static_assert(offsetof(GpuInstance, info) == 128);
+static_assert(sizeof(GpuCluster) == 32);
 static_assert(sizeof(ProjectedSplat) == 64);
 static_assert(offsetof(ProjectedSplat, tile_rect) == 48);
 static_assert(sizeof(FrameUniforms) == 192);
 static_assert(offsetof(FrameUniforms, lod_levels) == 176);
 static_assert(offsetof(FrameUniforms, tiles) == 144);
-static_assert(sizeof(FrameCounters) == 32);
+static_assert(sizeof(FrameCounters) == 48);
 static_assert(offsetof(FrameCounters, per_level) == 16);
 
 static_assert(static_cast<int>(plugin_msgs::LodMode::baseline) == SPLAT_LOD_MODE_BASELINE);

@@ -90,6 +90,91 @@ void pack_sh(const SplatCloud& cloud, int degree, std::uint32_t stride, std::vec
     }
 }
 
+std::vector<GpuCluster> build_clusters(const std::vector<const SplatCloud*>& clouds) {
+    constexpr std::size_t size = SPLAT_PROJECT_WORKGROUP_SIZE;
+    std::size_t total = 0;
+    for (const SplatCloud* cloud : clouds) total += cloud->size();
+    std::vector<GpuCluster> clusters((total + size - 1) / size);
+    std::size_t global = 0;
+    for (std::uint32_t instance = 0; instance < clouds.size(); ++instance) {
+        const SplatCloud& cloud = *clouds[instance];
+        for (std::size_t i = 0; i < cloud.size(); ++i, ++global) {
+            GpuCluster& c = clusters[global / size];
+            const bool first = global % size == 0;
+            if (first) {
+                c.sphere = glm::vec4(0.0f);
+                c.bounds = glm::vec4(0.0f, 0.0f, 0.0f, std::bit_cast<float>(instance));
+            } else if (std::bit_cast<std::uint32_t>(c.bounds.w) != instance) {
+                c.bounds.w = -1.0f;  // spans two instances: never skipped
+            }
+            c.bounds.z = std::max(c.bounds.z, cloud.lod_level.empty() ? 1.0f : static_cast<float>(cloud.lod_level[i]));
+            if (!drawable(cloud, i, cloud.sh_rest_stride())) continue;  // never drawn: no bound needed
+            const double opacity = sigmoid(cloud.opacity_logits[i]);
+            // Coverage takes the shorter chord: S² ≤ 2·L·λ_min(Σ2D) ≤ 2·L·‖J‖₂²·σ_mid² (Courant–Fischer:
+            // the projected 2D covariance's smaller eigenvalue cannot exceed the 3D middle one), and
+            // S² ≤ L·‖J‖₂²·σ_max² always: the extent is the smaller of √2·σ_mid and σ_max, times √L.
+            glm::vec3 s = cloud.log_scales[i];
+            std::sort(&s.x, &s.x + 3);
+            const double sigma = std::min(std::exp(static_cast<double>(s.z)), std::sqrt(2.0) * std::exp(static_cast<double>(s.y)));
+            const double extent = opacity > 1.0 / 255.0 ? std::sqrt(2.0 * std::log(255.0 * opacity)) * sigma : 0.0;
+            c.bounds.x = std::max(c.bounds.x, static_cast<float>(extent));
+            // The ratio, not the smallest coverage_min: one tiny member would otherwise pin the
+            // whole cluster, while e / S_min is about the same for neighbours seen from the same
+            // distances.
+            const float cmin = cloud.coverage_min.empty() ? -1.0f : cloud.coverage_min[i];
+            if (!(cmin > 0.0f) || c.bounds.y < 0.0f) c.bounds.y = -1.0f;
+            else c.bounds.y = std::max(c.bounds.y, static_cast<float>(extent / cmin) * (1.0f + 1e-6f));
+        }
+    }
+    // Spheres in a second pass over each cluster's members: the centre of their bounding box and
+    // the largest distance from it (rounded up so float error never leaves a mean outside).
+    global = 0;
+    std::vector<glm::vec3> lo(clusters.size(), glm::vec3(std::numeric_limits<float>::max()));
+    std::vector<glm::vec3> hi(clusters.size(), glm::vec3(std::numeric_limits<float>::lowest()));
+    for (const SplatCloud* cloud : clouds)
+        for (std::size_t i = 0; i < cloud->size(); ++i, ++global)
+            if (drawable(*cloud, i, cloud->sh_rest_stride())) {
+                lo[global / size] = glm::min(lo[global / size], cloud->positions[i]);
+                hi[global / size] = glm::max(hi[global / size], cloud->positions[i]);
+            }
+    global = 0;
+    std::vector<double> radius(clusters.size(), 0.0);
+    for (std::size_t c = 0; c < clusters.size(); ++c)
+        clusters[c].sphere = glm::vec4(lo[c].x <= hi[c].x ? 0.5f * (lo[c] + hi[c]) : glm::vec3(0.0f), 0.0f);
+    for (const SplatCloud* cloud : clouds)
+        for (std::size_t i = 0; i < cloud->size(); ++i, ++global)
+            if (drawable(*cloud, i, cloud->sh_rest_stride())) {
+                const std::size_t c = global / size;
+                radius[c] = std::max(radius[c], glm::length(glm::dvec3(cloud->positions[i]) - glm::dvec3(clusters[c].sphere)));
+            }
+    for (std::size_t c = 0; c < clusters.size(); ++c) {
+        clusters[c].sphere.w = static_cast<float>(radius[c] * (1.0 + 1e-5) + 1e-7);
+        // A non-finite bound (a Gaussian at 1e38, say) disables the cluster rather than culling wrongly.
+        const glm::vec4 v = clusters[c].sphere;
+        if (!std::isfinite(v.x + v.y + v.z + v.w) || !std::isfinite(clusters[c].bounds.x)) clusters[c].bounds.y = -1.0f;
+    }
+    return clusters;
+}
+
+float spectral_norm(const glm::mat3& m) {
+    // Power iteration on MᵀM (symmetric, positive semi-definite); a few steps are exact enough for a
+    // bound that is then rounded up.
+    const glm::dmat3 a = glm::transpose(glm::dmat3(m)) * glm::dmat3(m);
+    glm::dvec3 v(0.577, 0.578, 0.579);
+    double lambda = 0.0;
+    for (int k = 0; k < 64; ++k) {
+        const glm::dvec3 w = a * v;
+        const double n = glm::length(w);
+        if (!(n > 0.0) || !std::isfinite(n)) break;
+        lambda = n;
+        v = w / n;
+    }
+    // Never below the largest column (a lower bound of ‖M‖₂), never above the Frobenius norm.
+    const double frobenius = std::sqrt(a[0][0] + a[1][1] + a[2][2]);
+    const double column = std::sqrt(std::max({a[0][0], a[1][1], a[2][2]}));
+    return static_cast<float>(std::clamp(std::sqrt(lambda) * (1.0 + 1e-4), column, frobenius));
+}
+
 bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
     std::vector<Resident> wanted;
     for (const auto* c : components) wanted.push_back({c->cloud.get(), drawn_degree(*c)});
@@ -103,7 +188,8 @@ bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
         inst.model = c->node()->world_matrix();
         inst.rotation_inverse = inverse_rotation(inst.model);
         const auto count = static_cast<std::uint32_t>(c->cloud->size());
-        inst.info = glm::uvec4(first, count, static_cast<std::uint32_t>(drawn_degree(*c)), 0u);
+        inst.info = glm::uvec4(first, count, static_cast<std::uint32_t>(drawn_degree(*c)),
+                               std::bit_cast<std::uint32_t>(spectral_norm(glm::mat3(inst.model))));
         first += count;
         instances.push_back(inst);
     }
@@ -140,6 +226,11 @@ void GpuScene::upload(const std::vector<const SplatComponent*>& components, std:
     gaussians_.storage(gaussians.size() * sizeof(GpuGaussian), gaussians.data(), 0);
     sh_ = engine::gl::Buffer("splat sh");
     sh_.storage(sh.size() * sizeof(float), sh.data(), 0);
+    std::vector<const SplatCloud*> clouds;
+    for (const auto* c : components) clouds.push_back(c->cloud.get());
+    const auto clusters = build_clusters(clouds);
+    clusters_ = engine::gl::Buffer("splat clusters");
+    clusters_.storage(std::max<std::size_t>(clusters.size(), 1) * sizeof(GpuCluster), clusters.empty() ? nullptr : clusters.data(), 0);
     resident_ = std::move(wanted);
     keep_alive_.clear();
     for (const auto* c : components) keep_alive_.push_back(c->cloud);

@@ -24,6 +24,14 @@ std::size_t pack_gaussians(const SplatCloud& cloud, std::uint32_t instance, std:
 // Appends the SH coefficients up to `degree` (DC first), `stride` floats per Gaussian.
 void pack_sh(const SplatCloud& cloud, int degree, std::uint32_t stride, std::vector<float>& out);
 
+// The clusters of the project pass's workgroups over the packed Gaussians of `clouds` (concatenated
+// in order, as pack_gaussians packs them): bounding sphere, largest visible extent, smallest
+// coverage_min, highest level and instance (GpuCluster in splat_lod_shared.h).
+std::vector<GpuCluster> build_clusters(const std::vector<const SplatCloud*>& clouds);
+
+// ‖M‖₂, the largest singular value of a 3×3 matrix (how much the model matrix can stretch a length).
+float spectral_norm(const glm::mat3& m);
+
 class GpuScene {
 public:
     // Uploads when the components' clouds or SH caps differ from the resident ones; refreshes the
@@ -35,11 +43,12 @@ public:
     std::uint32_t sh_stride() const { return sh_stride_; }
     std::uint32_t coarsest_level() const { return coarsest_level_; }  // highest LOD level present
     std::size_t dropped() const { return dropped_; }  // not drawable (NaN/Inf, zero rotation)
-    std::size_t resident_bytes() const { return gaussians_.size() + sh_.size() + instances_.size(); }
+    std::size_t resident_bytes() const { return gaussians_.size() + sh_.size() + instances_.size() + clusters_.size(); }
 
     const engine::gl::Buffer& gaussians() const { return gaussians_; }
     const engine::gl::Buffer& sh() const { return sh_; }
     const engine::gl::Buffer& instances() const { return instances_; }
+    const engine::gl::Buffer& clusters() const { return clusters_; }
 
 private:
     struct Resident {
@@ -58,6 +67,7 @@ private:
     engine::gl::Buffer gaussians_{engine::gl::NoCreate};
     engine::gl::Buffer sh_{engine::gl::NoCreate};
     engine::gl::Buffer instances_{engine::gl::NoCreate};
+    engine::gl::Buffer clusters_{engine::gl::NoCreate};
 };
 
 }  // namespace gpu

@@ -85,7 +85,8 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, std::ui
     u.camera_position = glm::vec4(camera.position, 1.0f);
     u.focal_principal = glm::vec4(f, f, c.x, c.y);
     u.image = glm::vec4(camera.width, camera.height, 1.3f * tan_x, 1.3f * tan_y);
-    u.params = glm::vec4(settings.znear, settings.dilation, settings.mip_filter ? 1.0f : 0.0f, 0.0f);
+    u.params = glm::vec4(settings.znear, settings.dilation, settings.mip_filter ? 1.0f : 0.0f,
+                         settings.cluster_skipping ? 1.0f : 0.0f);
     u.counts = glm::uvec4(scene_.gaussian_count(), scene_.sh_stride(), key_capacity_, scene_.instance_count());
     u.tiles = glm::uvec4(tiles_x, tiles_y, tiles_x * tiles_y, 0u);
     const LodRule& lod = settings.lod;
@@ -103,6 +104,7 @@ void SplatPass::bind_all(const engine::FrameContext& frame) {
     const std::pair<GLuint, GLuint> storage[] = {
         {SPLAT_BINDING_GAUSSIANS, scene_.gaussians().id()}, {SPLAT_BINDING_SH, scene_.sh().id()},
         {SPLAT_BINDING_INSTANCES, scene_.instances().id()}, {SPLAT_BINDING_PROJECTED, projected_.id()},
+        {SPLAT_BINDING_CLUSTERS, scene_.clusters().id()},
         {SPLAT_BINDING_TILE_COUNTS, tile_counts_.id()},     {SPLAT_BINDING_KEYS, keys_.id()},
         {SPLAT_BINDING_VALUES, values_.id()},               {SPLAT_BINDING_TILE_RANGES, tile_ranges_.id()},
         {SPLAT_BINDING_STATS, counters_.id()},              {SPLAT_BINDING_ARGS, args_.id()}};
@@ -201,6 +203,7 @@ void SplatPass::collect_statistics(engine::MessageBus& bus, bool wait) {
         s.considered = c.considered;
         s.visible = c.visible;
         for (int l = 0; l < 4; ++l) s.per_level[static_cast<std::size_t>(l)] = c.per_level[l];
+        s.skipped = c.skipping.x;
         s.tile_splat_pairs = c.keys_needed;
         s.key_capacity = key_capacity_;
         s.overflowed = c.overflowed != 0;

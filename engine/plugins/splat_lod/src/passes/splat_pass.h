@@ -26,6 +26,9 @@ struct SplatPassSettings {
     bool mip_filter = false;  // the optional 2D mip filter
     LodRule lod;              // selection by pixel coverage (coarsest_level is set from the scene)
     bool level_colouring = false;  // debug view: tint each Gaussian by its LOD level
+    // Skip whole project workgroups whose Gaussians are all too small to be selected (exact: the
+    // image and counts are the same either way; off only to measure what it saves).
+    bool cluster_skipping = true;
 };
 
 class SplatPass : public engine::RenderPass {
