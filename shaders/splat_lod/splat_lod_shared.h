@@ -79,6 +79,7 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 // ---- The frame pipeline: cull/project, bin, tile ranges, raster (splat_lod/splat_*.comp.glsl) ----
 #define SPLAT_TILE_SIZE 16                 // pixels per tile side (the raster workgroup is one tile)
 #define SPLAT_PROJECT_WORKGROUP_SIZE 256
+#define SPLAT_CLUSTER_WORKGROUP_SIZE 64
 #define SPLAT_BIN_WORKGROUP_SIZE 256
 #define SPLAT_RANGES_WORKGROUP_SIZE 256
 #define SPLAT_MAX_SH_DEGREE 3
@@ -100,6 +101,9 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 #define SPLAT_BINDING_STATS 8          // FrameCounters
 #define SPLAT_BINDING_ARGS 9           // uvec4: tile-range dispatch size (xyz) and keys in use (w)
 #define SPLAT_BINDING_CLUSTERS 10      // GpuCluster[ceil(N / SPLAT_PROJECT_WORKGROUP_SIZE)], static per scene
+#define SPLAT_BINDING_CLUSTER_LIST 11  // { uvec4 dispatch; uint ids[]; }: the clusters step 1b projects;
+                                       // dispatch = its indirect arguments (x = clusters kept; the
+                                       // CPU resets it to (0, 1, 1) each frame)
 #define SPLAT_UNIFORM_FRAME 0          // FrameUniforms (uniform block binding)
 #define SPLAT_IMAGE_COLOR 0            // the frame's display-space colour (rgba8), read and written
 #define SPLAT_TEXTURE_VIEW_DEPTH 1     // the mesh pass's view depth (r32f), +inf where no mesh

@@ -1,4 +1,5 @@
-// Step 1, cull + project + colour (ALGORITHMS §1): one invocation per Gaussian. Survivors get
+// Step 1b, cull + project + colour (ALGORITHMS §1): one invocation per Gaussian of the clusters
+// step 1a kept. Survivors get
 // their projected form at their own index and the number of 16×16 tiles their extent touches;
 // culled ones get 0 tiles. A scan of the counts then gives every splat its key range.
 #include "common_splat_bindings.glsl"
@@ -10,9 +11,7 @@ layout(std430, binding = SPLAT_BINDING_INSTANCES) readonly buffer Instances { Gp
 layout(std430, binding = SPLAT_BINDING_PROJECTED) writeonly buffer Projected { ProjectedSplat projected[]; };
 layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) writeonly buffer TileCounts { uint tile_counts[]; };
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
-layout(std430, binding = SPLAT_BINDING_CLUSTERS) readonly buffer Clusters { GpuCluster clusters[]; };
-
-shared bool cluster_skipped;
+layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
 
 #include "common_splat_sh.glsl"
 #include "common_splat_lod.glsl"
@@ -78,39 +77,11 @@ uint project(uint index) {
     return (rect.z - rect.x) * (rect.w - rect.y);
 }
 
-// True when no Gaussian of the cluster can pass "not too small" (ALGORITHMS §3) this frame. For a
-// member with extent e = sqrt(2·ln(255·o))·min(σ_max, √2·σ_mid), coverage S ≤ 2·e·‖M‖₂·‖J‖₂ (the
-// shorter chord of the α = 1/255 ellipse; see build_clusters in gpu_scene.cpp), and ‖J‖₂ ≤ ‖J‖_F ≤ sqrt(fx²(1 + lx²) + fy²(1 + ly²)) / z
-// with lx, ly the Jacobian's clamp of x/z, y/z; z is at least the sphere's nearest depth. If for
-// every member that bound is below S_T and its ratio to S_min below S_rel_min, none is drawn.
-// Members of the coarsest level, members without S_min, and clusters reaching the near plane are
-// never skipped.
-bool skip_cluster(uint cluster) {
-    uint mode = frame.lod_levels.x;
-    if (frame.params.w < 0.5 || (mode != SPLAT_LOD_MODE_FILTER_SMALL && mode != SPLAT_LOD_MODE_FULL)) return false;
-    GpuCluster c = clusters[cluster];
-    if (!(c.bounds.y > 0.0) || c.bounds.w < 0.0 || uint(c.bounds.z) >= frame.lod_levels.z) return false;
-    GpuInstance inst = instances[floatBitsToUint(c.bounds.w)];
-    float stretch = uintBitsToFloat(inst.info.w);
-    vec3 centre = VIEW_TO_CAMERA * (frame.view * (inst.model * vec4(c.sphere.xyz, 1.0))).xyz;
-    float z_min = centre.z - c.sphere.w * stretch;
-    if (!(z_min > frame.params.x)) return false;
-    float fx = frame.focal_principal.x, fy = frame.focal_principal.y, lx = frame.image.z, ly = frame.image.w;
-    float jacobian = sqrt(fx * fx * (1.0 + lx * lx) + fy * fy * (1.0 + ly * ly)) / z_min;
-    float scale = 2.0 * stretch * jacobian * 1.001;  // margin for float rounding
-    return c.bounds.x * scale < frame.lod_rule.x && c.bounds.y * scale < frame.lod_rule.y;
-}
-
+// One workgroup per cluster that step 1a kept (GpuCluster): the Gaussians of skipped clusters
+// keep the tile count 0 they were cleared to.
 void main() {
-    uint index = gl_GlobalInvocationID.x;
-    uint count = frame.counts.x;
-    if (gl_LocalInvocationIndex == 0u) {
-        cluster_skipped = skip_cluster(gl_WorkGroupID.x);
-        uint first = gl_WorkGroupID.x * gl_WorkGroupSize.x;
-        if (cluster_skipped) atomicAdd(stats.skipping.x, min(gl_WorkGroupSize.x, count - first));
-    }
-    barrier();
-    if (index == 0u) tile_counts[count] = 0u;  // the scan's extra slot, which receives the total
-    if (index >= count) return;
-    tile_counts[index] = cluster_skipped ? 0u : project(index);
+    uint cluster = cluster_list.ids[gl_WorkGroupID.x];
+    uint index = cluster * SPLAT_PROJECT_WORKGROUP_SIZE + gl_LocalInvocationIndex;
+    if (index >= frame.counts.x) return;
+    tile_counts[index] = project(index);
 }

@@ -177,6 +177,8 @@ double BakeSummary::added_fraction() const {
 
 namespace {
 
+constexpr double kRecipeMargin = 0.5;  // dB of mean level PSNR the grid recipe must win by
+
 std::string recipe_name(const BakeOptions& options) {
     char text[96];
     std::snprintf(text, sizeof text, "%s cells, enlargement <= %g",
@@ -217,8 +219,10 @@ SplatCloud bake_lod(const SplatCloud& fine, const std::vector<reference::Referen
         for (const auto& level : summary.levels) score += level.final_psnr / static_cast<double>(summary.levels.size());
         for (const auto& stage : summary.stages) seconds += stage.seconds;
         scores.emplace_back(name, score);
-        // Ties (e.g. nothing added by either) keep the first, the smaller adaptive recipe.
-        if (score > best_score + 1e-9) {
+        // The adaptive recipe (first) adds fewer Gaussians; the grid one must be clearly better to
+        // be kept (on the garden, 0.2 dB better on the bake cameras was 2.4 dB worse on held-out
+        // views at 16×).
+        if (score > best_score + (best_score > -std::numeric_limits<double>::infinity() ? kRecipeMargin : 0.0)) {
             best_score = score;
             best = std::move(result);
             best_summary = std::move(summary);
@@ -288,7 +292,8 @@ SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::Refere
         refiner.emplace(fine, cameras, options);
         if (!refiner->usable())
             summary.warnings.push_back("no camera has image sides divisible by 64: the refinement was skipped");
-        // Finest coarse level first (measured: coarse-first ends 0.6–1.4 dB lower per level).
+        // Finest coarse level first, as ALGORITHMS §4 step 7 orders them: each level is refined with
+        // the finer ones already settled.
         for (auto& level_summary : summary.levels) {
             if (level_summary.added == 0 || !refiner->usable()) continue;
             clock.start("refine level " + std::to_string(level_summary.level));

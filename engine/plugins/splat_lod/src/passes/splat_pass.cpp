@@ -61,6 +61,8 @@ void SplatPass::ensure_frame_buffers(std::uint32_t gaussians, std::uint32_t tile
         }
     }
     projected_.ensure_size(std::size_t(gaussians) * sizeof(ProjectedSplat), "splat projected");
+    cluster_list_.ensure_size(sizeof(glm::uvec4) + std::size_t(groups(gaussians, SPLAT_PROJECT_WORKGROUP_SIZE)) * sizeof(std::uint32_t),
+                              "splat cluster list");
     tile_counts_.ensure_size((std::size_t(gaussians) + 1) * sizeof(std::uint32_t), "splat tile counts");
     tile_ranges_.ensure_size(std::size_t(tile_count) * sizeof(glm::uvec2), "splat tile ranges");
     const std::uint32_t wanted = std::max({key_capacity_, minimum_key_capacity, gaussians * initial_keys_per_gaussian,
@@ -104,7 +106,7 @@ void SplatPass::bind_all(const engine::FrameContext& frame) {
     const std::pair<GLuint, GLuint> storage[] = {
         {SPLAT_BINDING_GAUSSIANS, scene_.gaussians().id()}, {SPLAT_BINDING_SH, scene_.sh().id()},
         {SPLAT_BINDING_INSTANCES, scene_.instances().id()}, {SPLAT_BINDING_PROJECTED, projected_.id()},
-        {SPLAT_BINDING_CLUSTERS, scene_.clusters().id()},
+        {SPLAT_BINDING_CLUSTERS, scene_.clusters().id()},   {SPLAT_BINDING_CLUSTER_LIST, cluster_list_.id()},
         {SPLAT_BINDING_TILE_COUNTS, tile_counts_.id()},     {SPLAT_BINDING_KEYS, keys_.id()},
         {SPLAT_BINDING_VALUES, values_.id()},               {SPLAT_BINDING_TILE_RANGES, tile_ranges_.id()},
         {SPLAT_BINDING_STATS, counters_.id()},              {SPLAT_BINDING_ARGS, args_.id()}};
@@ -131,13 +133,21 @@ void SplatPass::execute(engine::FrameContext& frame) {
     upload_frame_uniforms(frame, tiles_x, tiles_y);
     glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     glClearNamedBufferData(tile_ranges_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    // Gaussians of skipped clusters are never visited: their tile counts stay 0.
+    glClearNamedBufferData(tile_counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    const glm::uvec4 no_clusters(0u, 1u, 1u, 0u);
+    cluster_list_.upload(0, sizeof(no_clusters), &no_clusters);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 
-    {  // 1. cull + project + SH colour; tiles touched per Gaussian
+    {  // 1. a: skip clusters too small for the view; b: cull + project + SH colour, tiles touched
         GpuTimerScope t(frame.timers, "splat.project");
         bind_all(frame);
+        glUseProgram(program(frame, "splat_clusters.comp.glsl").id());
+        glDispatchCompute(groups(groups(n, SPLAT_PROJECT_WORKGROUP_SIZE), SPLAT_CLUSTER_WORKGROUP_SIZE), 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
         glUseProgram(program(frame, "splat_project.comp.glsl").id());
-        glDispatchCompute(groups(n, SPLAT_PROJECT_WORKGROUP_SIZE), 1, 1);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, cluster_list_.id());
+        glDispatchComputeIndirect(0);
         barrier();
     }
     {  // 2. exclusive scan of tile counts: each splat's key range; the total lands at [n]
@@ -186,7 +196,7 @@ void SplatPass::record_statistics(engine::FrameContext& frame) {
     r.fence.insert();
     r.frame = frame.frame_index;
     r.resident_bytes = scene_.resident_bytes() + projected_.size() + tile_counts_.size() + keys_.size() +
-                       values_.size() + tile_ranges_.size();
+                       values_.size() + tile_ranges_.size() + cluster_list_.size();
     ++frames_;
 }
 

@@ -70,7 +70,7 @@ private:
     engine::gl::Buffer uniforms_{engine::gl::NoCreate}, projected_{engine::gl::NoCreate},
         tile_counts_{engine::gl::NoCreate}, keys_{engine::gl::NoCreate}, values_{engine::gl::NoCreate},
         tile_ranges_{engine::gl::NoCreate}, counters_{engine::gl::NoCreate}, args_{engine::gl::NoCreate},
-        count_{engine::gl::NoCreate};
+        count_{engine::gl::NoCreate}, cluster_list_{engine::gl::NoCreate};
     std::array<Readback, 4> readbacks_;
     std::uint64_t frames_ = 0;
     std::optional<plugin_msgs::SplatStatistics> latest_;

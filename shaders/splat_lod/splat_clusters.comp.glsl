@@ -1,0 +1,51 @@
+// Step 1a, cluster skipping: one invocation per project workgroup's cluster (GpuCluster). Clusters
+// whose Gaussians are all too small for this view are counted and left out; the others are
+// appended to the list that step 1b dispatches over (indirectly), so skipped Gaussians cost nothing
+// beyond their share of this pass. The list's order depends on scheduling, the result does not:
+// every Gaussian writes only its own slots.
+#include "common_splat_bindings.glsl"
+
+layout(local_size_x = SPLAT_CLUSTER_WORKGROUP_SIZE) in;
+layout(std430, binding = SPLAT_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
+layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) writeonly buffer TileCounts { uint tile_counts[]; };
+layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
+layout(std430, binding = SPLAT_BINDING_CLUSTERS) readonly buffer Clusters { GpuCluster clusters[]; };
+layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
+
+const mat3 VIEW_TO_CAMERA = mat3(1, 0, 0, 0, -1, 0, 0, 0, -1);
+
+// True when no Gaussian of the cluster can pass "not too small" (ALGORITHMS §3) this frame. For a
+// member with extent e = sqrt(2·ln(255·o))·min(σ_max, √2·σ_mid), coverage S ≤ 2·e·‖M‖₂·‖J‖₂ (the
+// shorter chord of the α = 1/255 ellipse; see build_clusters in gpu_scene.cpp), and ‖J‖₂ ≤ ‖J‖_F ≤ sqrt(fx²(1 + lx²) + fy²(1 + ly²)) / z
+// with lx, ly the Jacobian's clamp of x/z, y/z; z is at least the sphere's nearest depth. If for
+// every member that bound is below S_T and its ratio to S_min below S_rel_min, none is drawn.
+// Members of the coarsest level, members without S_min, and clusters reaching the near plane are
+// never skipped.
+bool skip_cluster(uint cluster) {
+    uint mode = frame.lod_levels.x;
+    if (frame.params.w < 0.5 || (mode != SPLAT_LOD_MODE_FILTER_SMALL && mode != SPLAT_LOD_MODE_FULL)) return false;
+    GpuCluster c = clusters[cluster];
+    if (!(c.bounds.y > 0.0) || c.bounds.w < 0.0 || uint(c.bounds.z) >= frame.lod_levels.z) return false;
+    GpuInstance inst = instances[floatBitsToUint(c.bounds.w)];
+    float stretch = uintBitsToFloat(inst.info.w);
+    vec3 centre = VIEW_TO_CAMERA * (frame.view * (inst.model * vec4(c.sphere.xyz, 1.0))).xyz;
+    float z_min = centre.z - c.sphere.w * stretch;
+    if (!(z_min > frame.params.x)) return false;
+    float fx = frame.focal_principal.x, fy = frame.focal_principal.y, lx = frame.image.z, ly = frame.image.w;
+    float jacobian = sqrt(fx * fx * (1.0 + lx * lx) + fy * fy * (1.0 + ly * ly)) / z_min;
+    float scale = 2.0 * stretch * jacobian * 1.001;  // margin for float rounding
+    return c.bounds.x * scale < frame.lod_rule.x && c.bounds.y * scale < frame.lod_rule.y;
+}
+
+void main() {
+    uint cluster = gl_GlobalInvocationID.x;
+    uint count = frame.counts.x;
+    if (cluster == 0u) tile_counts[count] = 0u;  // the scan's extra slot, which receives the total
+    uint first = cluster * SPLAT_PROJECT_WORKGROUP_SIZE;
+    if (first >= count) return;
+    if (skip_cluster(cluster)) {
+        atomicAdd(stats.skipping.x, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
+        return;
+    }
+    cluster_list.ids[atomicAdd(cluster_list.dispatch.x, 1u)] = cluster;
+}
