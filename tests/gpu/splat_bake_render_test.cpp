@@ -36,18 +36,30 @@ engine::Image render_mode(engine::test::SplatRenderHarness& harness, const std::
     return harness.render({cloud}, camera);
 }
 
-TEST_F(SplatBakeRenderTest, BakedGardenLooksRightWhenSmallAndStaysExactWhenLarge) {
-    splat_lod::synth::FineDetailOptions synth;
-    synth.detail = 0.05f;  // ~10k Gaussians: a garden in miniature, still full of sub-pixel leaves
-    const splat_lod::SplatCloud fine = splat_lod::synth::make_fine_detail_scene(synth);
-    const auto extent = eval::robust_extent(fine.positions);
-    const glm::vec3 up(0, 1, 0);
-    const auto cameras = splat_lod::bake::bake_cameras(splat_lod::bake::bake_camera_poses("rings:2x6", extent, up), 256, 192);
-    splat_lod::bake::BakeOptions options;
-    options.refine_iterations = 60;
-    options.refine_cameras = 6;
+// A garden in miniature (~10k Gaussians, still full of sub-pixel leaves) baked from 12 cameras.
+struct BakedGarden {
+    splat_lod::SplatCloud baked;
     splat_lod::bake::BakeSummary summary;
-    const auto baked = splat_lod::bake::bake_lod(fine, cameras, options, &summary);
+    eval::SceneExtent extent;
+};
+
+BakedGarden bake_garden(int refine_iterations) {
+    splat_lod::synth::FineDetailOptions synth;
+    synth.detail = 0.05f;
+    const splat_lod::SplatCloud fine = splat_lod::synth::make_fine_detail_scene(synth);
+    BakedGarden garden;
+    garden.extent = eval::robust_extent(fine.positions);
+    const auto poses = splat_lod::bake::bake_camera_poses("rings:2x6", garden.extent, glm::vec3(0, 1, 0));
+    splat_lod::bake::BakeOptions options;
+    options.refine_iterations = refine_iterations;
+    options.refine_cameras = 6;
+    garden.baked = splat_lod::bake::bake_lod(fine, splat_lod::bake::bake_cameras(poses, 256, 192), options, &garden.summary);
+    return garden;
+}
+
+TEST_F(SplatBakeRenderTest, BakedGardenLooksRightWhenSmallAndStaysExactWhenLarge) {
+    const auto [baked, summary, extent] = bake_garden(60);
+    const glm::vec3 up(0, 1, 0);
     ASSERT_GT(summary.output_gaussians, summary.input_gaussians);
 
     // Through the file format, as a user would load it.
@@ -80,15 +92,10 @@ TEST_F(SplatBakeRenderTest, BakedGardenLooksRightWhenSmallAndStaysExactWhenLarge
 TEST_F(SplatBakeRenderTest, ClusterSkippingChangesNothingButTheWork) {
     // Skipping whole workgroups of too-small Gaussians must be invisible: the same bytes and the
     // same per-level counts with it on and off, near and far, in every mode.
-    splat_lod::synth::FineDetailOptions synth;
-    synth.detail = 0.05f;
-    const splat_lod::SplatCloud fine = splat_lod::synth::make_fine_detail_scene(synth);
-    const auto extent = eval::robust_extent(fine.positions);
+    const auto garden = bake_garden(0);
+    const auto& extent = garden.extent;
     const glm::vec3 up(0, 1, 0);
-    const auto cameras = splat_lod::bake::bake_cameras(splat_lod::bake::bake_camera_poses("rings:2x6", extent, up), 256, 192);
-    splat_lod::bake::BakeOptions options;
-    options.refine_iterations = 0;
-    const auto cloud = std::make_shared<const splat_lod::SplatCloud>(splat_lod::bake::bake_lod(fine, cameras, options));
+    const auto cloud = std::make_shared<const splat_lod::SplatCloud>(garden.baked);
     auto* pass = splat_lod::find_splat_pass(harness.engine().renderer());
     const auto pose = eval::orbit_poses(extent, up, 1).front();
     bool skipped_somewhere = false;
