@@ -41,14 +41,21 @@ std::string csv_row(const Measurement& row, const std::set<std::string>& spans) 
     return out.str();
 }
 
-std::string scale_table(const EvalResults& results) {
-    const auto& o = results.options;
+// "| method | 1× | 4× | …" and its separator row.
+std::string scale_header(const EvalOptions& o) {
     std::ostringstream out;
     out << "| method |";
     for (int k : o.scales) out << ' ' << k << "\u00d7 |";
     out << "\n|---|";
     for (std::size_t i = 0; i < o.scales.size(); ++i) out << "---|";
     out << '\n';
+    return out.str();
+}
+
+std::string scale_table(const EvalResults& results) {
+    const auto& o = results.options;
+    std::ostringstream out;
+    out << scale_header(o);
     for (const auto& method : measured_methods(o, Sweep::scale)) {
         out << "| " << method << " |";
         for (int k : o.scales) {
@@ -66,11 +73,7 @@ std::string scale_table(const EvalResults& results) {
 std::string level_table(const EvalResults& results) {
     const auto& o = results.options;
     std::ostringstream out;
-    out << "| method |";
-    for (int k : o.scales) out << ' ' << k << "\u00d7 |";
-    out << "\n|---|";
-    for (std::size_t i = 0; i < o.scales.size(); ++i) out << "---|";
-    out << '\n';
+    out << scale_header(o);
     for (const auto& method : measured_methods(o, Sweep::scale)) {
         out << "| " << method << " |";
         for (int k : o.scales)
