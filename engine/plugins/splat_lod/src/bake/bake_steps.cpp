@@ -18,25 +18,10 @@ namespace {
 
 constexpr std::size_t kChunk = 4096;  // Gaussians per parallel task
 
-reference::ReferenceSettings coverage_settings(double znear) {
-    // Coverage is defined on the undilated covariance (ALGORITHMS §2): no dilation, no mip filter.
-    reference::ReferenceSettings settings;
-    settings.znear = znear;
-    settings.dilation = 0.0;
-    settings.sh_degree_cap = 0;  // colour is not needed
-    return settings;
-}
-
 // The scale-1 coverage of a projected Gaussian, or −1 when the camera does not see it.
 double seen_coverage(const reference::ProjectedGaussian& g, const reference::ReferenceCamera& camera) {
-    using reference::CullReason;
-    // `outside` only says the α ≥ 1/255 box covers no pixel centre: a Gaussian much smaller than a
-    // pixel with its centre in the image is seen (and is exactly the kind the bake pools).
-    // `degenerate` (a zero-area projection) with its centre in the image is seen with coverage 0.
-    if (g.cull != CullReason::none && g.cull != CullReason::outside && g.cull != CullReason::degenerate) return -1.0;
     if (!(g.mean.x >= 0.0 && g.mean.x < camera.width && g.mean.y >= 0.0 && g.mean.y < camera.height)) return -1.0;
-    if (g.cull == CullReason::degenerate) return 0.0;
-    return pixel_coverage(g.cov2d.x, g.cov2d.y, g.cov2d.z, g.opacity);
+    return projected_coverage(g);
 }
 
 void fill_rows(std::vector<float>& values, std::size_t row_offset, const SplatCloud& cloud, std::size_t begin,
@@ -61,6 +46,24 @@ void fill_rows(std::vector<float>& values, std::size_t row_offset, const SplatCl
 }
 
 }  // namespace
+
+reference::ReferenceSettings coverage_settings(double znear) {
+    reference::ReferenceSettings settings;
+    settings.znear = znear;
+    settings.dilation = 0.0;
+    settings.sh_degree_cap = 0;  // colour is not needed
+    return settings;
+}
+
+double projected_coverage(const reference::ProjectedGaussian& g) {
+    using reference::CullReason;
+    // `outside` only says the α ≥ 1/255 box covers no pixel centre: a Gaussian much smaller than a
+    // pixel is still there (and is exactly the kind the bake pools). `degenerate` (a zero-area
+    // projection) has coverage 0.
+    if (g.cull == CullReason::degenerate) return 0.0;
+    if (g.cull != CullReason::none && g.cull != CullReason::outside) return -1.0;
+    return pixel_coverage(g.cov2d.x, g.cov2d.y, g.cov2d.z, g.opacity);
+}
 
 void CoverageTable::append(const SplatCloud& cloud, std::size_t begin, const std::vector<reference::ReferenceCamera>& cameras,
                            double znear, int threads) {

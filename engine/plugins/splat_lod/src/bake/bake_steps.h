@@ -37,6 +37,13 @@ private:
     std::vector<float> values_;
 };
 
+// Coverage is defined on the undilated covariance (ALGORITHMS §2): projection settings with no
+// dilation, no mip filter and no colour.
+reference::ReferenceSettings coverage_settings(double znear);
+// The coverage of a Gaussian projected with coverage_settings(): −1 when culled before its 2D
+// covariance exists (behind, invisible, non-finite), 0 for a degenerate projection.
+double projected_coverage(const reference::ProjectedGaussian& g);
+
 // Scale-1 coverage of one Gaussian in one camera, or −1 when the camera does not see it.
 double coverage_in_camera(const SplatCloud& cloud, std::size_t index, const reference::ReferenceCamera& camera,
                           double znear);

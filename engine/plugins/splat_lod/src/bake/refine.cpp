@@ -91,10 +91,7 @@ reference::ReferenceSettings raster_settings(const BakeOptions& options) {
 // undilated covariance, ALGORITHMS §2–3). Culling beyond the near plane is the projection's job.
 std::vector<std::uint32_t> select_full(const SplatCloud& cloud, const reference::ReferenceCamera& camera,
                                        const BakeOptions& options, int coarsest) {
-    reference::ReferenceSettings settings;
-    settings.znear = options.znear;
-    settings.dilation = 0.0;
-    settings.sh_degree_cap = 0;
+    const auto settings = coverage_settings(options.znear);
     const auto frame = reference::detail::make_instance_frame(cloud, glm::dmat4(1.0), camera, settings, 0);
     LodRule rule;
     rule.mode = plugin_msgs::LodMode::full;
@@ -106,11 +103,8 @@ std::vector<std::uint32_t> select_full(const SplatCloud& cloud, const reference:
     const std::size_t tasks = (cloud.size() + kChunk - 1) / kChunk;
     reference::detail::parallel_for(tasks, reference::detail::resolve_thread_count(options.threads), [&](std::size_t t) {
         for (std::size_t i = t * kChunk; i < std::min(cloud.size(), (t + 1) * kChunk); ++i) {
-            const auto g = reference::detail::project_in_frame(cloud, i, frame, camera, settings);
-            using reference::CullReason;
-            if (g.cull != CullReason::none && g.cull != CullReason::outside && g.cull != CullReason::degenerate) continue;
-            const double coverage =
-                g.cull == CullReason::degenerate ? 0.0 : pixel_coverage(g.cov2d.x, g.cov2d.y, g.cov2d.z, g.opacity);
+            const double coverage = projected_coverage(reference::detail::project_in_frame(cloud, i, frame, camera, settings));
+            if (coverage < 0.0) continue;
             keep[i] = lod_selected(rule, cloud.lod_level[i], coverage, cloud.coverage_min[i], cloud.coverage_max[i]);
         }
     });
