@@ -165,6 +165,7 @@ Viewer::Viewer(const Options& options) : options_(options), show_ui_(!options.no
     camera_.emplace(initial_view(*scene_, options.width, options.height));
     overlay_ = std::make_unique<engine::UiOverlay>(*window_, engine_.bus());
     overlay_->set_scene(scene_.get());
+    for (const std::string& name : engine_.plugins().names()) engine_.plugins().find(name)->add_ui_panels(*overlay_, engine_.bus());
 }
 
 void Viewer::update_camera(float seconds) {

@@ -33,7 +33,8 @@ bool skip_cluster(uint cluster) {
     if (!(z_min > frame.params.x)) return false;
     float fx = frame.focal_principal.x, fy = frame.focal_principal.y, lx = frame.image.z, ly = frame.image.w;
     float jacobian = sqrt(fx * fx * (1.0 + lx * lx) + fy * fy * (1.0 + ly * ly)) / z_min;
-    float scale = 2.0 * stretch * jacobian * 1.001;  // margin for float rounding
+    // × the coverage scale: selection uses the coverage at the output resolution (splat_project).
+    float scale = 2.0 * stretch * jacobian * frame.lod_rule.w * 1.001;  // margin for float rounding
     return c.bounds.x * scale < frame.lod_rule.x && c.bounds.y * scale < frame.lod_rule.y;
 }
 

@@ -107,6 +107,16 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 #define SPLAT_UNIFORM_FRAME 0          // FrameUniforms (uniform block binding)
 #define SPLAT_IMAGE_COLOR 0            // the frame's display-space colour (rgba8), read and written
 #define SPLAT_TEXTURE_VIEW_DEPTH 1     // the mesh pass's view depth (r32f), +inf where no mesh
+// Below render scale 1 (ALGORITHMS §5) the raster writes these low-resolution images (rgba32f:
+// premultiplied colour C and alpha A, and their ∂/∂x, ∂/∂y, ∂²/∂x∂y per low-res pixel; r32f: the
+// view depth where the transmittance first falls below ½, else the depth the texel was cut at),
+// which the upscale pass reads.
+#define SPLAT_IMAGE_LOW_VALUE 1
+#define SPLAT_IMAGE_LOW_DX 2
+#define SPLAT_IMAGE_LOW_DY 3
+#define SPLAT_IMAGE_LOW_DXY 4
+#define SPLAT_IMAGE_LOW_FRONT 5
+#define SPLAT_UPSCALE_WORKGROUP_SIZE 8     // the upscale pass: 8×8 output pixels per workgroup
 
 // Gaussians with their 3D covariance precomputed (local space of the cloud).
 SPLAT_LOD_STRUCT(GpuGaussian) {
@@ -151,9 +161,10 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     vec4 image;             // width, height, 1.3·tan(fov_x/2), 1.3·tan(fov_y/2)
     vec4 params;            // znear, dilation, mip filter (0/1), cluster skipping (0/1)
     uvec4 counts;           // Gaussian count, sh_stride (floats), key capacity, instance count
-    uvec4 tiles;            // tiles_x, tiles_y, tile_count, unused
-    vec4 lod_rule;          // S_T (px), S_rel_min, S_rel_max, unused (ALGORITHMS §3)
+    uvec4 tiles;            // tiles_x, tiles_y, tile_count, tile side (px)
+    vec4 lod_rule;          // S_T (px), S_rel_min, S_rel_max, coverage scale: output px per raster px (1/s)
     uvec4 lod_levels;       // mode (SPLAT_LOD_MODE_*), finest level, coarsest level, level colouring (0/1)
+    vec4 upscale;           // output width, height (px), render scale s, 1/s; image.xy is the raster size
 };
 
 // Written by the GPU each frame and read back asynchronously by the CPU.

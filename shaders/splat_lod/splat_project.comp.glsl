@@ -44,7 +44,10 @@ uint project(uint index) {
     mat3x2 j = mat3x2(fx / z, 0.0, 0.0, fy / z, -fx * tx / (z * z), -fy * ty / (z * z));
     mat2 cov = mat2(j * sigma * transpose(j));
     float det_undilated = cov[0][0] * cov[1][1] - cov[0][1] * cov[0][1];
-    if (!lod_selected(uint(g.lod.z), pixel_coverage(cov, det_undilated, opacity), g.lod.x, g.lod.y)) return 0u;
+    // Selected by the coverage at the output resolution (what the viewer sees), also when the
+    // splats are rasterised smaller for upscaling (ALGORITHMS §5).
+    float coverage = pixel_coverage(cov, det_undilated, opacity) * frame.lod_rule.w;
+    if (!lod_selected(uint(g.lod.z), coverage, g.lod.x, g.lod.y)) return 0u;
     float dilation = frame.params.y;
     cov[0][0] += dilation;
     cov[1][1] += dilation;
@@ -62,7 +65,7 @@ uint project(uint index) {
     if (any(isnan(lo)) || any(isnan(hi)) || hi.x < 0.0 || hi.y < 0.0 || lo.x > size.x - 1.0 || lo.y > size.y - 1.0 || any(greaterThan(lo, hi)))
         return 0u;
     uvec2 pmin = uvec2(max(lo, vec2(0.0))), pmax = uvec2(min(hi, size - 1.0));
-    uvec4 rect = uvec4(pmin / SPLAT_TILE_SIZE, pmax / SPLAT_TILE_SIZE + 1u);
+    uvec4 rect = uvec4(pmin / frame.tiles.w, pmax / frame.tiles.w + 1u);
 
     uint sh_base = index * frame.counts.y;
     vec3 direction = normalize(mat3(inst.rotation_inverse) * (world - frame.camera_position.xyz));

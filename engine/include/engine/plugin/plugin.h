@@ -15,6 +15,7 @@ class ComponentRegistry;
 class Renderer;
 class MessageBus;
 class AssetCache;
+class UiOverlay;
 
 // The engine services a plugin may extend or use.
 struct PluginContext {
@@ -31,6 +32,13 @@ public:
     virtual std::string version() const = 0;
     virtual void startup(PluginContext& context) = 0;
     virtual void shutdown(PluginContext& context) = 0;
+    // Windowed applications call this once their overlay exists, for the plugin to add its panels.
+    // The panels' code must outlive the overlay: a plugin loaded from a shared library (unloaded
+    // at shutdown) should add none.
+    virtual void add_ui_panels(UiOverlay& overlay, MessageBus& bus) {
+        (void)overlay;
+        (void)bus;
+    }
 };
 
 }  // namespace engine

@@ -21,7 +21,7 @@
 // Raised whenever Plugin, PluginContext or an engine type that plugins use changes in a way that
 // breaks compiled plugins. Overridable only so that tests can build a deliberately stale plugin.
 #ifndef ENGINE_PLUGIN_ABI_VERSION
-#define ENGINE_PLUGIN_ABI_VERSION 1
+#define ENGINE_PLUGIN_ABI_VERSION 2  // 2: Plugin::add_ui_panels
 #endif
 
 // The engine release, shown in mismatch messages; CMake should pass PROJECT_VERSION.

@@ -1,6 +1,7 @@
 // splat_render: renders a splat file as stored (no axis flips) with a look-at camera, headless.
 //   splat_render --in FILE --width W --height H --fov-y DEG --eye X,Y,Z --target X,Y,Z --up X,Y,Z
 //                --out OUT.png [--background R,G,B] [--sh-degree N] [--frames N] [--mip-filter]
+//                [--render-scale S --upscaler spline|bicubic|bilinear|lanczos3]
 // Prints the Gaussians drawn and the per-pass GPU times (median over the frames after the first 2).
 #include <algorithm>
 #include <cstdio>
@@ -27,6 +28,9 @@ struct Options {
     int width = 1280, height = 720, sh_degree = 3, frames = 1;
     float fov_y_deg = 50.0f;
     bool mip_filter = false;
+    float render_scale = 1.0f;
+    std::string upscaler = "spline";
+    unsigned low_res_tile = 8;
 };
 
 double median(std::vector<double> v) {
@@ -54,6 +58,9 @@ int run(const Options& o) {
                                                     o.width, o.height, 0.01f, 1e6f);
     auto* pass = splat_lod::find_splat_pass(engine.renderer());
     pass->settings.mip_filter = o.mip_filter;
+    pass->settings.render_scale = o.render_scale;
+    pass->settings.low_res_tile_size = o.low_res_tile;
+    pass->settings.upscaler = plugin_msgs::detail::enum_from_json<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, o.upscaler);
     engine::RenderTarget target_image(o.width, o.height);
 
     // Warm-up: the first frame compiles shaders and sizes the key buffer; the second is a plain one.
@@ -97,6 +104,11 @@ int main(int argc, char** argv) {
     app.add_option("--sh-degree", o.sh_degree, "SH degree cap")->check(CLI::Range(0, 3));
     app.add_option("--frames", o.frames, "frames to time (after 2 warm-up frames)")->check(CLI::Range(1, 10000));
     app.add_flag("--mip-filter", o.mip_filter, "apply the optional 2D mip filter");
+    app.add_option("--render-scale", o.render_scale, "rasterise splats at this fraction of the size and upscale")
+        ->check(CLI::Range(1e-3f, 1.0f));
+    app.add_option("--upscaler", o.upscaler, "spline, bicubic, bilinear or lanczos3")
+        ->check(CLI::IsMember({"spline", "bicubic", "bilinear", "lanczos3"}));
+    app.add_option("--low-res-tile", o.low_res_tile, "raster tile side below render scale 1")->check(CLI::IsMember({4u, 8u, 16u}));
     CLI11_PARSE(app, argc, argv);
     try {
         return run(o);

@@ -16,6 +16,10 @@
 #include "engine/render/image.h"
 #include "splat_lod/splat_cloud.h"
 
+namespace splat_lod::upscale {
+struct GradientImage;  // splat_lod/upscale.h
+}
+
 namespace splat_lod::reference {
 
 // The constants of ALGORITHMS §1, named once.
@@ -38,6 +42,9 @@ struct ReferenceSettings {
     glm::dvec3 background{0.0};    // composited behind the splats when there is no mesh layer
     int sh_degree_cap = kMaxShDegree;
     int threads = 0;               // 0: std::thread::hardware_concurrency()
+    // Also output the splat-only colour and alpha with their x, y and xy image derivatives
+    // (ALGORITHMS §5), the input of the spline upscaler. Off: no extra memory and no extra work.
+    bool gradients = false;
 };
 
 // The camera in double precision. View coordinates follow camera.h (looking down −Z, +Y up);
@@ -52,14 +59,30 @@ struct ReferenceCamera {
     double cy = 0.5;
     int width = 1;
     int height = 1;
+    // When > 0, used instead of tan_half_fov_x()/tan_half_fov_y() in the ±1.3·tan Jacobian clamp
+    // (§1). A low-resolution render for upscaling sets them to the output camera's values: its
+    // image is rounded up to whole texels, so its own field of view is slightly wider, and the
+    // clamp must not move with it. Must be finite and not negative.
+    double clamp_tan_x = 0.0;
+    double clamp_tan_y = 0.0;
 
     double tan_half_fov_x() const { return 0.5 * width / fx; }
     double tan_half_fov_y() const { return 0.5 * height / fy; }
+    double jacobian_clamp_tan_x() const { return clamp_tan_x > 0.0 ? clamp_tan_x : tan_half_fov_x(); }
+    double jacobian_clamp_tan_y() const { return clamp_tan_y > 0.0 ? clamp_tan_y : tan_half_fov_y(); }
 };
 
 // fx = fy = (H/2)/tan(fov_y/2) and the principal point at the image centre (camera.h), computed in
 // double from the float fields; the centre is taken from inverse(view), the authoritative matrix.
 ReferenceCamera make_reference_camera(const engine::CameraView& camera);
+
+// The camera that rasterises the low-resolution image for render scale s (upscale.h): fx, fy, cx,
+// cy × s, size upscale::low_res_size(W, s) × upscale::low_res_size(H, s), and the Jacobian clamp of
+// `full` (clamp_tan_x/y), so a Gaussian's projection is the native one scaled by s: mean × s
+// (i.e. (native + 0.5)·s − 0.5 in texel-centre coordinates) and Σ2D × s² before the dilation
+// (render with dilation 0.3·s² for the native blur, ALGORITHMS §5). Throws engine::Error for s
+// outside (0, 1] or NaN, or an invalid `full`.
+ReferenceCamera scaled_camera(const ReferenceCamera& full, double render_scale);
 
 enum class CullReason : std::uint8_t {
     none,           // drawn
@@ -127,6 +150,14 @@ struct ReferenceImage {
     std::vector<double> rgb;                   // 3 per pixel, row-major, top row first
     std::vector<double> alpha;                 // A = 1 − T
     std::vector<std::uint32_t> contributors;   // splats blended into the pixel
+    // With ReferenceSettings::gradients only (empty otherwise), 4 per pixel as (r, g, b, A): the
+    // splat-only premultiplied colour C = Σ cᵢαᵢTᵢ and alpha A = 1 − T, before the background or
+    // the mesh colour is added, and their derivatives in pixels of this image (x right, y down).
+    // Zero where no splat was blended.
+    std::vector<double> splat{};
+    std::vector<double> splat_dx{};
+    std::vector<double> splat_dy{};
+    std::vector<double> splat_dxy{};
 
     std::size_t pixel_index(int x, int y) const {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
@@ -163,5 +194,9 @@ ReferenceImage render_reference(std::span<const ReferenceInstance> instances, co
 
 // 8-bit RGBA: round(clamp(v, 0, 1)·255) per channel (§1 "Output values"), alpha 255.
 engine::Image to_image8(const ReferenceImage& image);
+
+// The splat-only channels and their derivatives (`splat`, `splat_dx`, …) as the float image the
+// upscalers take. Throws engine::Error when the image was rendered without gradients.
+upscale::GradientImage to_gradient_image(const ReferenceImage& image);
 
 }  // namespace splat_lod::reference

@@ -6,6 +6,7 @@
 #include "engine/render/renderer.h"
 #include "engine/scene/component_registry.h"
 #include "passes/splat_pass.h"
+#include "splat_lod/lod_panel.h"
 #include "splat_lod/splat_component.h"
 
 namespace splat_lod {
@@ -24,6 +25,8 @@ public:
             [pass = pass.get()](const plugin_msgs::LodSettings& lod) { pass->apply(lod); });
         context.renderer.add_pass(std::move(pass));
     }
+
+    void add_ui_panels(engine::UiOverlay& overlay, engine::MessageBus& bus) override { add_lod_panel(overlay, bus); }
 
     void shutdown(engine::PluginContext& context) override {
         settings_.reset();

@@ -14,6 +14,7 @@
 #include "gpu/prefix_scan.h"
 #include "gpu/radix_sort.h"
 #include "splat_lod/splat_component.h"
+#include "splat_lod/upscale.h"
 
 namespace splat_lod {
 namespace {
@@ -41,6 +42,8 @@ void SplatPass::apply(const plugin_msgs::LodSettings& lod) {
     settings.lod.rel_max = lod.rel_max;
     settings.mip_filter = lod.mip_filter;
     settings.level_colouring = lod.level_colouring;
+    settings.render_scale = lod.render_scale;
+    settings.upscaler = lod.upscaler;
 }
 SplatPass::~SplatPass() = default;
 
@@ -76,28 +79,62 @@ void SplatPass::ensure_frame_buffers(std::uint32_t gaussians, std::uint32_t tile
     pending_growth_ = 0;
 }
 
-void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, std::uint32_t tiles_x, std::uint32_t tiles_y) {
+void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, const RasterSize& raster) {
     const engine::CameraView& camera = frame.camera;
-    const float f = camera.focal_length();
-    const glm::vec2 c = camera.principal_point();
+    // The raster's pixel coordinates are the output's times s (splat_lod/upscale.h); the Jacobian's
+    // clamp stays the output camera's, so both resolutions clamp the same Gaussians.
+    const float s = raster.scale;
+    const float f = camera.focal_length() * s;
+    const glm::vec2 c = camera.principal_point() * s;
     const float tan_y = std::tan(0.5f * camera.fov_y);
     const float tan_x = tan_y * static_cast<float>(camera.width) / static_cast<float>(camera.height);
     gpu::FrameUniforms u;
     u.view = camera.view;
     u.camera_position = glm::vec4(camera.position, 1.0f);
     u.focal_principal = glm::vec4(f, f, c.x, c.y);
-    u.image = glm::vec4(camera.width, camera.height, 1.3f * tan_x, 1.3f * tan_y);
-    u.params = glm::vec4(settings.znear, settings.dilation, settings.mip_filter ? 1.0f : 0.0f,
-                         settings.cluster_skipping ? 1.0f : 0.0f);
+    u.image = glm::vec4(raster.width, raster.height, 1.3f * tan_x, 1.3f * tan_y);
+    // Resolution-consistent dilation (ALGORITHMS §5): 0.3 output px² is 0.3·s² raster px².
+    const float dilation = settings.dilation * (settings.scaled_dilation ? s * s : 1.0f);
+    u.params = glm::vec4(settings.znear, dilation, settings.mip_filter ? 1.0f : 0.0f, settings.cluster_skipping ? 1.0f : 0.0f);
     u.counts = glm::uvec4(scene_.gaussian_count(), scene_.sh_stride(), key_capacity_, scene_.instance_count());
-    u.tiles = glm::uvec4(tiles_x, tiles_y, tiles_x * tiles_y, 0u);
+    u.tiles = glm::uvec4(raster.tiles_x, raster.tiles_y, raster.tiles_x * raster.tiles_y, raster.tile_size);
     const LodRule& lod = settings.lod;
-    u.lod_rule = glm::vec4(lod.size_threshold_px, lod.rel_min, lod.rel_max, 0.0f);
+    u.lod_rule = glm::vec4(lod.size_threshold_px, lod.rel_min, lod.rel_max, 1.0f / s);
     u.lod_levels = glm::uvec4(static_cast<std::uint32_t>(lod.mode), static_cast<std::uint32_t>(lod.finest_level),
                               scene_.coarsest_level(), settings.level_colouring ? 1u : 0u);
+    u.upscale = glm::vec4(frame.target.width(), frame.target.height(), s, 1.0f / s);
     uniforms_.upload(0, sizeof(u), &u);
     const std::uint32_t count = scene_.gaussian_count();
     count_.upload(0, sizeof(count), &count);
+}
+
+SplatPass::RasterSize SplatPass::raster_size(const engine::FrameContext& frame) const {
+    const float s = settings.render_scale;
+    if (!(s > 0.0f && s <= 1.0f))
+        engine::fail("splat_lod: render_scale must be in (0, 1], got " + std::to_string(s));
+    RasterSize r;
+    r.scale = s;
+    r.upscaled = s < 1.0f;
+    r.width = r.upscaled ? upscale::low_res_size(frame.target.width(), s) : frame.target.width();
+    r.height = r.upscaled ? upscale::low_res_size(frame.target.height(), s) : frame.target.height();
+    r.tile_size = r.upscaled ? settings.low_res_tile_size : settings.tile_size;
+    r.tiles_x = groups(static_cast<std::uint32_t>(r.width), r.tile_size);
+    r.tiles_y = groups(static_cast<std::uint32_t>(r.height), r.tile_size);
+    return r;
+}
+
+// The low-resolution images of the upscaled path, kept while the raster size stays the same.
+void SplatPass::ensure_low_res_images(int width, int height) {
+    if (low_.width == width && low_.height == height) return;
+    const char* labels[] = {"splat low-res value", "splat low-res dx", "splat low-res dy", "splat low-res dxy"};
+    for (int k = 0; k < 4; ++k) {
+        low_.images[k] = engine::gl::Texture(GL_TEXTURE_2D, labels[k]);
+        glTextureStorage2D(low_.images[k].id(), 1, GL_RGBA32F, width, height);
+    }
+    low_.front = engine::gl::Texture(GL_TEXTURE_2D, "splat low-res front depth");
+    glTextureStorage2D(low_.front.id(), 1, GL_R32F, width, height);
+    low_.width = width;
+    low_.height = height;
 }
 
 // The sort and the scan bind their own buffers; every pass of ours binds the whole set again.
@@ -113,6 +150,11 @@ void SplatPass::bind_all(const engine::FrameContext& frame) {
     for (const auto& [binding, buffer] : storage) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer);
     glBindImageTexture(SPLAT_IMAGE_COLOR, frame.target.color().id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
     glBindTextureUnit(SPLAT_TEXTURE_VIEW_DEPTH, frame.target.view_depth().id());
+    if (low_.width > 0) {
+        for (int k = 0; k < 4; ++k)
+            glBindImageTexture(SPLAT_IMAGE_LOW_VALUE + k, low_.images[k].id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+        glBindImageTexture(SPLAT_IMAGE_LOW_FRONT, low_.front.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
+    }
 }
 
 void SplatPass::execute(engine::FrameContext& frame) {
@@ -127,10 +169,14 @@ void SplatPass::execute(engine::FrameContext& frame) {
         scan_ = std::make_unique<gpu::PrefixScan>(frame.shaders);
         sort_ = std::make_unique<gpu::RadixSort>(frame.shaders);
     }
-    const auto tiles_x = groups(static_cast<std::uint32_t>(frame.target.width()), SPLAT_TILE_SIZE);
-    const auto tiles_y = groups(static_cast<std::uint32_t>(frame.target.height()), SPLAT_TILE_SIZE);
+    const RasterSize raster = raster_size(frame);
+    const std::uint32_t tiles_x = raster.tiles_x, tiles_y = raster.tiles_y;
+    if (raster.upscaled)
+        ensure_low_res_images(raster.width, raster.height);
+    else if (low_.width > 0)
+        low_ = LowResImages{};  // back at native resolution: nothing keeps them
     ensure_frame_buffers(n, tiles_x * tiles_y);
-    upload_frame_uniforms(frame, tiles_x, tiles_y);
+    upload_frame_uniforms(frame, raster);
     glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     glClearNamedBufferData(tile_ranges_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     // Gaussians of skipped clusters are never visited: their tile counts stay 0.
@@ -176,11 +222,24 @@ void SplatPass::execute(engine::FrameContext& frame) {
         glDispatchComputeIndirect(0);
         barrier();
     }
-    {  // 6. per-tile front-to-back raster, stopping at the mesh depth; composite C + T·mesh
+    {  // 6. per-tile front-to-back raster, stopping at the mesh depth; composite C + T·mesh, or below
+       //    render scale 1, C and A with their derivatives at low resolution
         GpuTimerScope t(frame.timers, "splat.raster");
         bind_all(frame);
-        glUseProgram(program(frame, "splat_tile_raster.comp.glsl").id());
+        std::vector<std::string> defines{"RASTER_TILE_SIZE=" + std::to_string(raster.tile_size)};
+        if (raster.upscaled) defines.push_back("SPLAT_GRADIENTS");
+        const auto& raster_program = frame.shaders.program({"splat_lod/splat_tile_raster.comp.glsl"}, defines);
+        glUseProgram(raster_program.id());
         glDispatchCompute(tiles_x, tiles_y, 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
+                        GL_TEXTURE_UPDATE_BARRIER_BIT);
+    }
+    if (raster.upscaled) {  // 7. upscale to the output and composite over the mesh pass
+        GpuTimerScope t(frame.timers, "splat.upscale");
+        const std::string method = "UPSCALE_METHOD=" + std::to_string(static_cast<int>(settings.upscaler));
+        glUseProgram(frame.shaders.program({"splat_lod/splat_upscale.comp.glsl"}, {method}).id());
+        glDispatchCompute(groups(static_cast<std::uint32_t>(frame.target.width()), SPLAT_UPSCALE_WORKGROUP_SIZE),
+                          groups(static_cast<std::uint32_t>(frame.target.height()), SPLAT_UPSCALE_WORKGROUP_SIZE), 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
                         GL_TEXTURE_UPDATE_BARRIER_BIT);
     }
@@ -196,7 +255,7 @@ void SplatPass::record_statistics(engine::FrameContext& frame) {
     r.fence.insert();
     r.frame = frame.frame_index;
     r.resident_bytes = scene_.resident_bytes() + projected_.size() + tile_counts_.size() + keys_.size() +
-                       values_.size() + tile_ranges_.size() + cluster_list_.size();
+                       values_.size() + tile_ranges_.size() + cluster_list_.size() + low_res_bytes();
     ++frames_;
 }
 
@@ -228,6 +287,34 @@ void SplatPass::collect_statistics(engine::MessageBus& bus, bool wait) {
         if (!latest_ || latest_->frame_index <= s.frame_index) latest_ = s;
         bus.publish(s);
     }
+}
+
+upscale::GradientImage SplatPass::read_low_res_image() const {
+    upscale::GradientImage image;
+    if (low_.width == 0) return image;
+    image.width = low_.width;
+    image.height = low_.height;
+    std::vector<float>* channels[] = {&image.value, &image.dx, &image.dy, &image.dxy};
+    const std::size_t floats = std::size_t(low_.width) * std::size_t(low_.height) * 4;
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    for (int k = 0; k < 4; ++k) {
+        channels[k]->resize(floats);
+        glGetTextureImage(low_.images[k].id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(floats * sizeof(float)),
+                          channels[k]->data());
+    }
+    return image;
+}
+
+std::vector<float> SplatPass::read_low_res_front_depth() const {
+    std::vector<float> depth(std::size_t(low_.width) * std::size_t(low_.height));
+    if (depth.empty()) return depth;
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glGetTextureImage(low_.front.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(depth.size() * sizeof(float)), depth.data());
+    return depth;
+}
+
+std::uint64_t SplatPass::low_res_bytes() const {
+    return std::uint64_t(low_.width) * std::uint64_t(low_.height) * (4 * 16 + 4);
 }
 
 // glGetNamedBufferSubData waits for the copy, so reading with `wait` blocks until it is done.

@@ -8,6 +8,7 @@
 
 #include "engine/core/error.h"
 #include "reference/instance_frame.h"
+#include "splat_lod/upscale.h"
 
 namespace splat_lod::reference {
 namespace detail {
@@ -69,8 +70,8 @@ struct ScreenCovariance {
 ScreenCovariance screen_covariance(const glm::dmat3& local_to_camera_rotation, const glm::dvec3& scale,
                                    const glm::dvec3& t, const ReferenceCamera& camera) {
     // Jacobian at the mean with x/z, y/z clamped as 3DGS does (forward.cu computeCov2D).
-    const double limit_x = kJacobianClampFactor * camera.tan_half_fov_x();
-    const double limit_y = kJacobianClampFactor * camera.tan_half_fov_y();
+    const double limit_x = kJacobianClampFactor * camera.jacobian_clamp_tan_x();
+    const double limit_y = kJacobianClampFactor * camera.jacobian_clamp_tan_y();
     const double tx = std::clamp(t.x / t.z, -limit_x, limit_x) * t.z;
     const double ty = std::clamp(t.y / t.z, -limit_y, limit_y) * t.z;
     const glm::dvec3 j0(camera.fx / t.z, 0.0, -camera.fx * tx / (t.z * t.z));
@@ -137,6 +138,9 @@ void check_camera(const ReferenceCamera& camera, const char* caller) {
         bad("focal lengths must be positive and finite");
     if (!std::isfinite(camera.cx) || !std::isfinite(camera.cy) || !finite(camera.position) || !finite_matrix(camera.view))
         bad("camera has a non-finite principal point, centre or view matrix");
+    if (!(camera.clamp_tan_x >= 0.0 && camera.clamp_tan_y >= 0.0 && std::isfinite(camera.clamp_tan_x) &&
+          std::isfinite(camera.clamp_tan_y)))
+        bad("clamp_tan_x and clamp_tan_y must be finite and not negative (0: use the field of view)");
 }
 
 void check_settings(const ReferenceSettings& settings, const char* caller) {
@@ -219,6 +223,25 @@ ReferenceCamera make_reference_camera(const engine::CameraView& view) {
     camera.cy = 0.5 * view.height;
     detail::check_camera(camera, "splat_lod::reference::make_reference_camera()");
     return camera;
+}
+
+ReferenceCamera scaled_camera(const ReferenceCamera& full, double render_scale) {
+    const char* caller = "splat_lod::reference::scaled_camera()";
+    if (!(render_scale > 0.0 && render_scale <= 1.0))
+        engine::fail(std::string(caller) + ": render scale must be in (0, 1], got " + std::to_string(render_scale));
+    detail::check_camera(full, caller);
+    ReferenceCamera low = full;
+    low.fx = full.fx * render_scale;
+    low.fy = full.fy * render_scale;
+    low.cx = full.cx * render_scale;
+    low.cy = full.cy * render_scale;
+    low.width = upscale::low_res_size(full.width, render_scale);
+    low.height = upscale::low_res_size(full.height, render_scale);
+    // The rounded-up size widens the field of view by up to one texel; the clamp stays the
+    // output's (the full camera's own clamp if it has one), so Σ2D is exactly s² times the native.
+    low.clamp_tan_x = full.jacobian_clamp_tan_x();
+    low.clamp_tan_y = full.jacobian_clamp_tan_y();
+    return low;
 }
 
 ProjectedGaussian project_gaussian(const SplatCloud& cloud, std::size_t index, const glm::dmat4& model,

@@ -2,6 +2,8 @@
 // drawn ones front to back, bin them to 16-row bands and 16×16 tiles by their exact α ≥ 1/255
 // bounding box, and blend each pixel. The binning only shortens the candidate lists; a pixel
 // still tests every splat's pixel rectangle, so the image does not depend on the tile size.
+// Optionally (ReferenceSettings::gradients) each pixel also gets the analytic image derivatives
+// of the splat layer (ALGORITHMS §5), the input of the gradient-aware upscaler.
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -11,6 +13,7 @@
 #include "engine/core/error.h"
 #include "reference/instance_frame.h"
 #include "reference/parallel_for.h"
+#include "splat_lod/upscale.h"
 
 namespace splat_lod::reference {
 namespace {
@@ -127,16 +130,50 @@ BandLists bin_to_bands(const std::vector<DrawnSplat>& splats, int height) {
     return lists;
 }
 
+// ∂/∂x, ∂/∂y and ∂²/∂x∂y of the splat-only (C.rgb, A) at one pixel, in pixels (ALGORITHMS §5).
+struct PixelDerivatives {
+    glm::dvec4 dx{0.0};
+    glm::dvec4 dy{0.0};
+    glm::dvec4 dxy{0.0};
+};
+
 struct PixelResult {
     glm::dvec3 colour{0.0};
     double transmittance = 1.0;
     std::uint32_t contributors = 0;
 };
 
+// One splat's term of paper Eqs. 8–14 in the accumulated-alpha form of ALGORITHMS §5, taken
+// before the splat is blended: `transmittance` is still T = 1 − A of the splats in front. The
+// exponent g = −½ dᵀ C d has g_x = −(Cxx dx + Cxy dy), g_y = −(Cxy dx + Cyy dy), g_xy = −Cxy;
+// α is the clamped value and the clamp itself is not differentiated.
+void accumulate_derivatives(PixelDerivatives& sum, const DrawnSplat& s, const glm::dvec2& d, double alpha,
+                            double transmittance) {
+    const double g_x = -(s.conic.x * d.x + s.conic.y * d.y);
+    const double g_y = -(s.conic.y * d.x + s.conic.z * d.y);
+    const double alpha_x = alpha * g_x;
+    const double alpha_y = alpha * g_y;
+    const double alpha_xy = alpha * (g_x * g_y - s.conic.y);
+    const double a_x = sum.dx.w, a_y = sum.dy.w, a_xy = sum.dxy.w;  // of A before this splat
+    const glm::dvec3 dx = s.colour * (alpha_x * transmittance - alpha * a_x);
+    const glm::dvec3 dy = s.colour * (alpha_y * transmittance - alpha * a_y);
+    const glm::dvec3 dxy = s.colour * (alpha_xy * transmittance - alpha_x * a_y - alpha_y * a_x - alpha * a_xy);
+    sum.dx += glm::dvec4(dx, 0.0);
+    sum.dy += glm::dvec4(dy, 0.0);
+    sum.dxy += glm::dvec4(dxy, 0.0);
+    // A ← A + α(1 − A), differentiated (Eq. 14 and its y and xy counterparts).
+    sum.dx.w = a_x * (1.0 - alpha) + transmittance * alpha_x;
+    sum.dy.w = a_y * (1.0 - alpha) + transmittance * alpha_y;
+    sum.dxy.w = a_xy * (1.0 - alpha) - a_x * alpha_y - a_y * alpha_x + transmittance * alpha_xy;
+}
+
 // §1 per pixel: α = min(0.99, o·exp(−½ dᵀΣ2D⁻¹d)), skip α < 1/255, stop before T < 1e−4,
-// C = Σ cᵢαᵢTᵢ (3DGS Eq. 3). Splats at or behind the mesh depth do not contribute.
+// C = Σ cᵢαᵢTᵢ (3DGS Eq. 3). Splats at or behind the mesh depth do not contribute. With
+// `kGradients` the image derivatives are accumulated into `derivatives` over the same splats (same
+// skips, same stops); without, the loop is the plain one and `derivatives` is not touched.
+template <bool kGradients>
 PixelResult blend_pixel(std::span<const std::uint32_t> ids, const std::vector<DrawnSplat>& splats, int x, int y,
-                        double mesh_depth) {
+                        double mesh_depth, PixelDerivatives* derivatives) {
     const glm::dvec2 centre(x + 0.5, y + 0.5);
     PixelResult result;
     for (const std::uint32_t id : ids) {
@@ -149,6 +186,7 @@ PixelResult blend_pixel(std::span<const std::uint32_t> ids, const std::vector<Dr
         if (alpha < kMinAlpha) continue;
         const double next = result.transmittance * (1.0 - alpha);
         if (next < kMinTransmittance) break;
+        if constexpr (kGradients) accumulate_derivatives(*derivatives, s, d, alpha, result.transmittance);
         result.colour += s.colour * (alpha * result.transmittance);
         result.transmittance = next;
         ++result.contributors;
@@ -161,7 +199,19 @@ struct RasterInputs {
     const BandLists& bands;
     const MeshLayer* mesh;
     glm::dvec3 background;
+    bool gradients;
 };
+
+void store_gradients(const PixelResult& r, const PixelDerivatives& d, std::size_t pixel, ReferenceImage& image) {
+    const glm::dvec4 value(r.colour, 1.0 - r.transmittance);
+    for (glm::length_t c = 0; c < 4; ++c) {
+        const std::size_t i = 4 * pixel + static_cast<std::size_t>(c);
+        image.splat[i] = value[c];
+        image.splat_dx[i] = d.dx[c];
+        image.splat_dy[i] = d.dy[c];
+        image.splat_dxy[i] = d.dxy[c];
+    }
+}
 
 void rasterise_band(const RasterInputs& in, int band, ReferenceImage& image) {
     const auto first = in.bands.ids.begin() + static_cast<std::ptrdiff_t>(in.bands.offsets[static_cast<std::size_t>(band)]);
@@ -178,7 +228,14 @@ void rasterise_band(const RasterInputs& in, int band, ReferenceImage& image) {
             for (int x = x0; x < x1; ++x) {
                 const std::size_t p = image.pixel_index(x, y);
                 const double mesh_depth = in.mesh ? in.mesh->depth[p] : std::numeric_limits<double>::infinity();
-                const PixelResult r = blend_pixel(tile, in.splats, x, y, mesh_depth);
+                PixelResult r;
+                if (in.gradients) {
+                    PixelDerivatives derivatives;
+                    r = blend_pixel<true>(tile, in.splats, x, y, mesh_depth, &derivatives);
+                    store_gradients(r, derivatives, p, image);
+                } else {
+                    r = blend_pixel<false>(tile, in.splats, x, y, mesh_depth, nullptr);
+                }
                 const glm::dvec3 behind = in.mesh ? in.mesh->colour[p] : in.background;
                 const glm::dvec3 c = r.colour + r.transmittance * behind;
                 image.rgb[3 * p] = c.x;
@@ -220,7 +277,10 @@ ReferenceImage render_reference(std::span<const ReferenceInstance> instances, co
     image.rgb.assign(3 * pixels, 0.0);
     image.alpha.assign(pixels, 0.0);
     image.contributors.assign(pixels, 0);
-    const RasterInputs inputs{projection.splats, bands, mesh, settings.background};
+    if (settings.gradients)
+        for (std::vector<double>* channel : {&image.splat, &image.splat_dx, &image.splat_dy, &image.splat_dxy})
+            channel->assign(4 * pixels, 0.0);
+    const RasterInputs inputs{projection.splats, bands, mesh, settings.background, settings.gradients};
     detail::parallel_for(bands.offsets.size() - 1, threads,
                          [&](std::size_t band) { rasterise_band(inputs, static_cast<int>(band), image); });
     if (stats) *stats = projection.stats;
@@ -243,6 +303,24 @@ engine::Image to_image8(const ReferenceImage& image) {
         for (std::size_t c = 0; c < 3; ++c) out.rgba[4 * p + c] = to8(image.rgb[3 * p + c]);
         out.rgba[4 * p + 3] = 255;
     }
+    return out;
+}
+
+upscale::GradientImage to_gradient_image(const ReferenceImage& image) {
+    const std::size_t size = 4 * static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+    if (image.splat.size() != size || image.splat_dx.size() != size || image.splat_dy.size() != size ||
+        image.splat_dxy.size() != size)
+        engine::fail("splat_lod::reference::to_gradient_image(): the " + std::to_string(image.width) + "x" +
+                     std::to_string(image.height) +
+                     " image has no gradients (render it with ReferenceSettings::gradients)");
+    const auto to_float = [](const std::vector<double>& v) { return std::vector<float>(v.begin(), v.end()); };
+    upscale::GradientImage out;
+    out.width = image.width;
+    out.height = image.height;
+    out.value = to_float(image.splat);
+    out.dx = to_float(image.splat_dx);
+    out.dy = to_float(image.splat_dy);
+    out.dxy = to_float(image.splat_dxy);
     return out;
 }
 
