@@ -53,9 +53,8 @@ void main() {
     vec2 centre = vec2(pixel) + 0.5;
 #ifdef SPLAT_GRADIENTS
     float mesh_depth = inside ? footprint_mesh_depth(pixel) : 0.0;
-    // Accumulated alpha A = 1 − T and its derivatives; colour derivatives (ALGORITHMS §5).
-    vec3 color_x = vec3(0.0), color_y = vec3(0.0), color_xy = vec3(0.0);
-    float a_x = 0.0, a_y = 0.0, a_xy = 0.0;
+    // ∂x, ∂y, ∂²xy of (C, A) (ALGORITHMS §5); .w holds the accumulated alpha's derivatives.
+    vec4 grad_x = vec4(0.0), grad_y = vec4(0.0), grad_xy = vec4(0.0);
     float front = mesh_depth;
 #else
     float mesh_depth = inside ? texelFetch(view_depth, pixel, 0).r : 0.0;
@@ -76,16 +75,16 @@ void main() {
         if (next < 1e-4) break;  // stop before T would fall below 1e-4
 #ifdef SPLAT_GRADIENTS
         // g = −½ dᵀ C d: g_x = −(Cxx dx + Cxy dy), g_y = −(Cxy dx + Cyy dy), g_xy = −Cxy; the 0.99
-        // clamp and the 1/255 cut are not differentiated.
-        // With T = 1 − A: C_x += c (α_x T − α A_x), A_x ← A_x (1 − α) + T α_x, and so on.
+        // clamp and the 1/255 cut are not differentiated. With T = 1 − A, colour and alpha change
+        // by the same scalar times (c, 1): C_x += c (α_x T − α A_x) and A_x ← A_x (1 − α) + T α_x
+        // = A_x + (α_x T − α A_x); likewise for y, and for xy with α_xy T − α_x A_y − α_y A_x − α A_xy.
         float g_x = -(q.x * d.x + q.y * d.y), g_y = -(q.y * d.x + q.z * d.y);
         float alpha_x = alpha * g_x, alpha_y = alpha * g_y, alpha_xy = alpha * (g_x * g_y - q.y);
-        color_x += s.color.rgb * (alpha_x * transmittance - alpha * a_x);
-        color_y += s.color.rgb * (alpha_y * transmittance - alpha * a_y);
-        color_xy += s.color.rgb * (alpha_xy * transmittance - alpha_x * a_y - alpha_y * a_x - alpha * a_xy);
-        a_xy = a_xy * (1.0 - alpha) - a_x * alpha_y - a_y * alpha_x + transmittance * alpha_xy;
-        a_x = a_x * (1.0 - alpha) + transmittance * alpha_x;
-        a_y = a_y * (1.0 - alpha) + transmittance * alpha_y;
+        vec4 weight = vec4(s.color.rgb, 1.0);
+        float k_xy = alpha_xy * transmittance - alpha_x * grad_y.w - alpha_y * grad_x.w - alpha * grad_xy.w;
+        grad_x += weight * (alpha_x * transmittance - alpha * grad_x.w);
+        grad_y += weight * (alpha_y * transmittance - alpha * grad_y.w);
+        grad_xy += weight * k_xy;
         if (transmittance >= 0.5 && next < 0.5) front = md.z;
 #endif
         color += s.color.rgb * (alpha * transmittance);
@@ -94,9 +93,9 @@ void main() {
     if (!inside) return;
 #ifdef SPLAT_GRADIENTS
     imageStore(low_value, pixel, vec4(color, 1.0 - transmittance));
-    imageStore(low_dx, pixel, vec4(color_x, a_x));
-    imageStore(low_dy, pixel, vec4(color_y, a_y));
-    imageStore(low_dxy, pixel, vec4(color_xy, a_xy));
+    imageStore(low_dx, pixel, grad_x);
+    imageStore(low_dy, pixel, grad_y);
+    imageStore(low_dxy, pixel, grad_xy);
     imageStore(low_front, pixel, vec4(front));
 #else
     vec3 behind = imageLoad(color_image, pixel).rgb;  // mesh colour or background

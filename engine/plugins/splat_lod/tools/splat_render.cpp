@@ -1,7 +1,8 @@
 // splat_render: renders a splat file as stored (no axis flips) with a look-at camera, headless.
 //   splat_render --in FILE --width W --height H --fov-y DEG --eye X,Y,Z --target X,Y,Z --up X,Y,Z
 //                --out OUT.png [--background R,G,B] [--sh-degree N] [--frames N] [--mip-filter]
-//                [--render-scale S --upscaler spline|bicubic|bilinear|lanczos3]
+//                [--render-scale S --upscaler spline|bicubic|bilinear|lanczos3] [--tile 4|8|16]
+//                [--low-res-tile 4|8|16]
 // Prints the Gaussians drawn and the per-pass GPU times (median over the frames after the first 2).
 #include <algorithm>
 #include <cstdio>
@@ -30,7 +31,7 @@ struct Options {
     bool mip_filter = false;
     float render_scale = 1.0f;
     std::string upscaler = "spline";
-    unsigned low_res_tile = 8;
+    unsigned tile = 16, low_res_tile = 8;
 };
 
 double median(std::vector<double> v) {
@@ -59,6 +60,7 @@ int run(const Options& o) {
     auto* pass = splat_lod::find_splat_pass(engine.renderer());
     pass->settings.mip_filter = o.mip_filter;
     pass->settings.render_scale = o.render_scale;
+    pass->settings.tile_size = o.tile;
     pass->settings.low_res_tile_size = o.low_res_tile;
     pass->settings.upscaler = plugin_msgs::detail::enum_from_json<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, o.upscaler);
     engine::RenderTarget target_image(o.width, o.height);
@@ -108,6 +110,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1e-3f, 1.0f));
     app.add_option("--upscaler", o.upscaler, "spline, bicubic, bilinear or lanczos3")
         ->check(CLI::IsMember({"spline", "bicubic", "bilinear", "lanczos3"}));
+    app.add_option("--tile", o.tile, "raster tile side at render scale 1")->check(CLI::IsMember({4u, 8u, 16u}));
     app.add_option("--low-res-tile", o.low_res_tile, "raster tile side below render scale 1")->check(CLI::IsMember({4u, 8u, 16u}));
     CLI11_PARSE(app, argc, argv);
     try {

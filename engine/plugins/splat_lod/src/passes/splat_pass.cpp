@@ -118,6 +118,8 @@ SplatPass::RasterSize SplatPass::raster_size(const engine::FrameContext& frame) 
     r.width = r.upscaled ? upscale::low_res_size(frame.target.width(), s) : frame.target.width();
     r.height = r.upscaled ? upscale::low_res_size(frame.target.height(), s) : frame.target.height();
     r.tile_size = r.upscaled ? settings.low_res_tile_size : settings.tile_size;
+    if (r.tile_size != 4 && r.tile_size != 8 && r.tile_size != 16)
+        engine::fail("splat_lod: raster tile size must be 4, 8 or 16, got " + std::to_string(r.tile_size));
     r.tiles_x = groups(static_cast<std::uint32_t>(r.width), r.tile_size);
     r.tiles_y = groups(static_cast<std::uint32_t>(r.height), r.tile_size);
     return r;
