@@ -308,5 +308,10 @@ TEST_F(SplatUpscaleTest, HardCasesStayFiniteAndInRange) {
     // An impossible render scale is a clear error, not a frame of garbage.
     pass().settings.render_scale = 0.0f;
     EXPECT_THROW(harness.render({needles}, front_camera(8, 8)), engine::Error);
-    pass().settings.render_scale = 1.0f;
+    pass().settings.render_scale = 0.5f;
+    pass().settings.low_res_tile_size = 5;
+    EXPECT_THROW(harness.render({needles}, front_camera(8, 8)), engine::Error);
+    pass().settings.low_res_tile_size = 8;
+    // The pass recovers: the next frame is drawn.
+    EXPECT_EQ(render(needles, front_camera(16, 16), 0.5f).width, 16);
 }
