@@ -59,6 +59,7 @@ void LodPanel::draw() {
     // Render scale as its inverse, the upscaling factor: 1 is native, 3 renders a third as wide.
     float factor = 1.0f / edit.render_scale;
     if (ImGui::SliderFloat("upscale factor", &factor, 1.0f, 8.0f, "%.2fx")) edit.render_scale = 1.0f / factor;
+    ImGui::TextUnformatted("presets");
     for (const float preset : {1.0f, 2.0f, 3.0f, 4.0f}) {
         ImGui::SameLine();
         const std::string label = std::to_string(static_cast<int>(preset)) + "x";
