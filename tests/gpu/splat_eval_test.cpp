@@ -1,10 +1,12 @@
-// splat_eval end to end on a tiny synthetic cloud: both sweeps, every output file; and the
-// comparison with a tiny two-level LOD chain written as INRIA PLY files and a lod-meta.json.
+// splat_eval end to end on a tiny synthetic cloud: the scale and distance sweeps, every output file;
+// the comparison with a tiny two-level LOD chain written as INRIA PLY files and a lod-meta.json; and
+// the upscale sweep (every upscaler against the native render, the crops picture).
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include "gpu_fixture.h"
+#include "passes/splat_pass.h"
 #include "splat_lod/eval/eval_report.h"
 #include "splat_lod/eval/eval_run.h"
 #include "splat_lod/eval/eval_scene.h"
@@ -197,6 +199,117 @@ TEST_F(SplatEvalTest, ChainLevelsAreMeasuredAgainstTheMainScenesReference) {
     EXPECT_NE(text.str().find("Matched Gaussian counts"), std::string::npos);
     EXPECT_NE(text.str().find("| 1× | chain_L0 (nearest) | 27 |"), std::string::npos) << text.str();
     EXPECT_NE(text.str().find("LOD verdict"), std::string::npos);
+}
+
+TEST_F(SplatEvalTest, UpscaleSweepScoresEveryUpscalerAgainstNative) {
+    engine::Engine engine;
+    engine.plugins().add_static(splat_lod::make_plugin());
+    eval::EvalScene scene = eval::make_splat_scene(small_cloud());
+    const auto poses = eval::orbit_poses(scene.extent, {0, 1, 0}, 1);
+
+    eval::EvalOptions options;
+    options.scene_name = "tiny";
+    options.width = 96;
+    options.height = 64;
+    options.frames = 1;
+    options.warmup = 0;
+    options.sweeps = {eval::Sweep::upscale};
+    options.upscale_factors = {2, 3};  // every upscaler (the default list)
+    int progress_lines = 0;
+    options.progress = [&](const std::string& line) {
+        ++progress_lines;
+        EXPECT_NE(line.find("(upscale)"), std::string::npos) << line;
+    };
+    eval::FrameMeasurer measurer(engine, *scene.scene);
+    const eval::EvalResults results = eval::run_evaluation(measurer, poses, options);
+    EXPECT_EQ(progress_lines, 1 + 2 * 5);
+    ASSERT_EQ(results.rows.size(), 11u);
+
+    const auto& native = results.rows.front();
+    ASSERT_EQ(native.method, "native");
+    EXPECT_EQ(native.factor, 1);
+    EXPECT_TRUE(std::isinf(*native.psnr)) << "native against the native reference must be exact";
+    EXPECT_DOUBLE_EQ(*native.ssim, 1.0);
+    for (const auto& row : results.rows) {
+        EXPECT_EQ(row.sweep, eval::Sweep::upscale);
+        EXPECT_EQ(row.width, 96) << "every upscaler's image is at the output size";
+        EXPECT_EQ(row.height, 64);
+        EXPECT_EQ(row.statistics.considered, 27u);
+        ASSERT_TRUE(row.psnr && row.ssim);
+        EXPECT_GT(row.wall_ms, 0.0);
+        if (row.factor == 1) continue;
+        // The pass upscaled (it timed splat.upscale): close to native, but not the native image.
+        EXPECT_TRUE(row.gpu_ms.count("splat.upscale")) << row.method << " " << row.factor;
+        EXPECT_TRUE(std::isfinite(*row.psnr)) << row.method << " " << row.factor;
+        EXPECT_GT(*row.psnr, 30.0) << row.method << " " << row.factor;
+    }
+    const auto psnr_of = [&](const std::string& method, int factor) {
+        for (const auto& row : results.rows)
+            if (row.method == method && row.factor == factor) return *row.psnr;
+        throw std::runtime_error("no row for " + method);
+    };
+    for (int f : {2, 3})
+        EXPECT_GT(psnr_of("spline", f), psnr_of("spline_plain", f))
+            << "the resolution-consistent dilation reaches the pass at " << f << "x";
+    // Crops of the first view: native and the five upscalers at 3×.
+    EXPECT_EQ(results.upscale_tiles.size(), 6u);
+
+    const auto folder = engine::test::output_dir("splat_eval") / "tiny_upscale";
+    std::filesystem::remove_all(folder);
+    eval::write_outputs(results, "test", folder);
+    const auto csv = read_lines(folder / "measurements.csv");
+    ASSERT_EQ(csv.size(), 12u);
+    EXPECT_EQ(csv[1].rfind("tiny,upscale,0,\"orbit 0\",native,1,96,64,inf,1.000000,", 0), 0u) << csv[1];
+    EXPECT_EQ(csv[2].rfind("tiny,upscale,0,\"orbit 0\",spline,2,96,64,", 0), 0u) << csv[2];
+    // One row (3×) of six 96×64 crops magnified 3×, under a label line, after the row labels.
+    const engine::Image crops = engine::read_png(folder / "upscale_crops.png");
+    EXPECT_EQ(crops.width, 40 + 6 * (288 + 2));
+    EXPECT_EQ(crops.height, 16 + 192 + 2);
+    std::ifstream report(folder / "report.md");
+    std::stringstream text;
+    text << report.rdbuf();
+    EXPECT_NE(text.str().find("### Upscale sweep"), std::string::npos);
+    EXPECT_NE(text.str().find("| 3\u00d7 | spline | 32\u00d722 |"), std::string::npos) << text.str();
+    EXPECT_NE(text.str().find("Upscale verdict"), std::string::npos);
+    EXPECT_EQ(text.str().find("### Scale sweep"), std::string::npos);
+}
+
+TEST_F(SplatEvalTest, UpscaleMethodsSetTheSplatPassAndBadFactorsFailFirst) {
+    engine::Engine engine;
+    engine.plugins().add_static(splat_lod::make_plugin());
+    splat_lod::SplatPass* pass = splat_lod::find_splat_pass(engine.renderer());
+    ASSERT_NE(pass, nullptr);
+    const eval::UpscalerVariant plain = eval::select_upscalers("spline_plain").front();
+    eval::upscaled_method(eval::find_method("full", "--upscale-mode"), plain, 4).configure(*pass);
+    EXPECT_FLOAT_EQ(pass->settings.render_scale, 0.25f);
+    EXPECT_EQ(pass->settings.upscaler, plugin_msgs::Upscaler::spline);
+    EXPECT_FALSE(pass->settings.scaled_dilation);
+    EXPECT_EQ(pass->settings.lod.mode, plugin_msgs::LodMode::full);
+    pass->settings = splat_lod::SplatPassSettings{};
+    eval::upscaled_method(eval::reference_method(), eval::select_upscalers("lanczos3").front(), 3).configure(*pass);
+    EXPECT_FLOAT_EQ(pass->settings.render_scale, 1.0f / 3.0f);
+    EXPECT_EQ(pass->settings.upscaler, plugin_msgs::Upscaler::lanczos3);
+    EXPECT_TRUE(pass->settings.scaled_dilation);
+    eval::native_method(eval::reference_method()).configure(*pass);
+    EXPECT_FLOAT_EQ(pass->settings.render_scale, 1.0f);
+
+    eval::EvalScene scene = eval::make_splat_scene(small_cloud());
+    eval::FrameMeasurer measurer(engine, *scene.scene);
+    eval::EvalOptions options;
+    options.width = 96;
+    options.height = 64;
+    options.sweeps = {eval::Sweep::upscale};
+    options.upscale_factors = {2, 32};
+    bool rendered = false;
+    options.progress = [&](const std::string&) { rendered = true; };
+    try {
+        eval::run_evaluation(measurer, eval::orbit_poses(scene.extent, {0, 1, 0}, 1), options);
+        ADD_FAILURE() << "factor 32 does not fit 96x64";
+    } catch (const engine::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("--upscale-factors: factor 32 is too large"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_FALSE(rendered);
 }
 
 }  // namespace

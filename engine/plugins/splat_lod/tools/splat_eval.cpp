@@ -1,12 +1,15 @@
 // splat_eval: speed against error, measured the same way for every method (ALGORITHMS §6).
 //   splat_eval --scene FILE | --scene-json FILE  --cameras orbit:N|cameras.json|path.json
-//              --methods baseline,baseline_mip --sweep scale,distance --scales 1,2,4,...
+//              --methods baseline,baseline_mip --sweep scale,distance,upscale --scales 1,2,4,...
 //              --distances 1,2,4,... --out DIR [--width W --height H --frames 5 --warmup 2
 //              --up X,Y,Z --name NAME --max-reference-side PX
-//              --sheet-tile-width PX --sheet-methods a,b --chain lod-meta.json]
-// Writes DIR/measurements.csv, report.md, the gnuplot PNGs, contact_sheet.png and (when `full` is
-// measured) levels.png; progress on stderr. --chain adds each level of an existing LOD chain to
-// the scale sweep as method chain_L<i> (baseline renderer, same views and references).
+//              --sheet-tile-width PX --sheet-methods a,b --chain lod-meta.json
+//              --upscale-factors 2,3,4,8 --upscalers spline,bicubic,... --upscale-mode baseline]
+// Writes DIR/measurements.csv, report.md, the gnuplot PNGs, contact_sheet.png (scale sweep),
+// levels.png (when `full` is measured) and upscale_crops.png (upscale sweep); progress on stderr.
+// --chain adds each level of an existing LOD chain to the scale sweep as method chain_L<i>
+// (baseline renderer, same views and references). The upscale sweep renders the splats at 1/f of
+// the output and upscales them, against the native render of the same LOD mode.
 #include <cstdio>
 #include <optional>
 
@@ -29,18 +32,27 @@ namespace {
 struct Options {
     std::string scene, scene_json, cameras = "orbit:2", methods = "baseline,baseline_mip", sweeps = "scale",
                                    scales = "1,2,4,8,16,32,64,128", distances = "1,2,4,8,16,32,64,128", out,
-                                   up = "0,1,0", name, sheet_methods, chain;
+                                   up = "0,1,0", name, sheet_methods, chain, upscale_factors = "2,3,4,8",
+                                   upscalers = "spline,bicubic,bilinear,lanczos3,spline_plain";
     splat_lod::eval::EvalOptions eval;
 };
 
-// "scale", "distance", "both" or "scale,distance".
+// A comma-separated list of scale, distance and upscale, run in its order; "both" is scale,distance.
 std::vector<splat_lod::eval::Sweep> parse_sweeps(const std::string& text) {
     using splat_lod::eval::Sweep;
-    if (text == "both" || text == "scale,distance") return {Sweep::scale, Sweep::distance};
-    if (text == "distance,scale") return {Sweep::distance, Sweep::scale};
-    if (text == "scale") return {Sweep::scale};
-    if (text == "distance") return {Sweep::distance};
-    engine::fail("--sweep: expected scale, distance or both, got \"" + text + "\"");
+    if (text == "both") return {Sweep::scale, Sweep::distance};
+    std::vector<Sweep> sweeps;
+    for (const std::string& name : splat_lod::eval::parse_name_list(text, "--sweep")) {
+        if (name == "scale")
+            sweeps.push_back(Sweep::scale);
+        else if (name == "distance")
+            sweeps.push_back(Sweep::distance);
+        else if (name == "upscale")
+            sweeps.push_back(Sweep::upscale);
+        else
+            engine::fail("--sweep: expected scale, distance, upscale (comma-separated) or both, got \"" + name + "\"");
+    }
+    return sweeps;
 }
 
 std::string default_name(const Options& o) {
@@ -57,6 +69,8 @@ int run(Options& o) {
     o.eval.sweeps = parse_sweeps(o.sweeps);
     o.eval.scales = eval::parse_int_list(o.scales, "--scales");
     o.eval.distances = eval::parse_int_list(o.distances, "--distances");
+    o.eval.upscale_factors = eval::parse_int_list(o.upscale_factors, "--upscale-factors");
+    o.eval.upscalers = eval::select_upscalers(o.upscalers);
     o.eval.scene_name = default_name(o);
     o.eval.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
     if (!o.sheet_methods.empty()) o.eval.sheet_methods = eval::parse_name_list(o.sheet_methods, "--sheet-methods");
@@ -99,7 +113,7 @@ int main(int argc, char** argv) {
     app.add_option("--cameras", o.cameras, "orbit:N, an INRIA cameras.json, or a camera-path JSON");
     app.add_option("--methods", o.methods,
                    "comma-separated methods (baseline, baseline_mip, filter_small, insert_large, full)");
-    app.add_option("--sweep", o.sweeps, "scale, distance or both");
+    app.add_option("--sweep", o.sweeps, "comma-separated sweeps: scale, distance, upscale (both: scale,distance)");
     app.add_option("--scales", o.scales, "downsampling factors per side; each must divide width and height");
     app.add_option("--distances", o.distances, "dolly factors for the distance sweep");
     app.add_option("--out", o.out, "output folder")->required();
@@ -117,6 +131,12 @@ int main(int argc, char** argv) {
                    "contact-sheet rows after the reference (default: every method of --methods; chain_L<i> allowed)");
     app.add_option("--chain", o.chain,
                    "an existing LOD chain's lod-meta.json: each level joins the scale sweep as chain_L<i>");
+    app.add_option("--upscale-factors", o.upscale_factors,
+                   "upscale sweep: render at 1/f of the output and upscale (integers >= 2)");
+    app.add_option("--upscalers", o.upscalers,
+                   "upscale sweep: spline, bicubic, bilinear, lanczos3, spline_plain (spline, plain dilation)");
+    app.add_option("--upscale-mode", o.eval.upscale_mode,
+                   "upscale sweep: the LOD method of native and upscaled renders (baseline, full, ...)");
     CLI11_PARSE(app, argc, argv);
     try {
         return run(o);

@@ -41,6 +41,65 @@ const Method& level_colouring_method() {
     return method;
 }
 
+const Method& find_method(const std::string& name, const std::string& option) {
+    const auto& all = method_registry();
+    const auto it = std::find_if(all.begin(), all.end(), [&](const Method& m) { return m.name == name; });
+    if (it != all.end()) return *it;
+    std::string known;
+    for (const auto& m : all) known += (known.empty() ? "" : ", ") + m.name;
+    engine::fail(option + ": unknown method \"" + name + "\" (known: " + known + ")");
+}
+
+const std::vector<UpscalerVariant>& upscaler_registry() {
+    using plugin_msgs::Upscaler;
+    static const std::vector<UpscalerVariant> variants = {
+        {"spline", "Hermite spline patches from the analytic derivatives (gradient-aware upscaling)", Upscaler::spline,
+         true},
+        {"bicubic", "bicubic from the low-resolution values (Keys, a = \u22120.5)", Upscaler::bicubic, true},
+        {"bilinear", "bilinear from the low-resolution values", Upscaler::bilinear, true},
+        {"lanczos3", "Lanczos-3 from the low-resolution values", Upscaler::lanczos3, true},
+        {"spline_plain", "the spline with the plain 0.3 px\u00b2 dilation at the low resolution", Upscaler::spline,
+         false},
+    };
+    return variants;
+}
+
+std::vector<UpscalerVariant> select_upscalers(const std::string& list) {
+    std::vector<UpscalerVariant> selected;
+    for (const std::string& name : parse_name_list(list, "--upscalers")) {
+        const auto& all = upscaler_registry();
+        const auto it = std::find_if(all.begin(), all.end(), [&](const UpscalerVariant& v) { return v.name == name; });
+        if (it == all.end()) {
+            std::string known;
+            for (const auto& v : all) known += (known.empty() ? "" : ", ") + v.name;
+            engine::fail("--upscalers: unknown upscaler \"" + name + "\" (known: " + known + ")");
+        }
+        selected.push_back(*it);
+    }
+    return selected;
+}
+
+Method upscaled_method(const Method& mode, const UpscalerVariant& variant, int factor) {
+    if (factor < 1)
+        engine::fail(std::string("splat_lod::eval::upscaled_method(): factor ") + std::to_string(factor) + " < 1");
+    const auto configure_mode = mode.configure;
+    return {variant.name, variant.description + ", " + mode.name + " at 1/" + std::to_string(factor),
+            [configure_mode, variant, factor](SplatPass& pass) {
+                if (configure_mode) configure_mode(pass);
+                pass.settings.render_scale = 1.0f / static_cast<float>(factor);
+                pass.settings.upscaler = variant.upscaler;
+                pass.settings.scaled_dilation = variant.scaled_dilation;
+            }};
+}
+
+Method native_method(const Method& mode) {
+    const auto configure_mode = mode.configure;
+    return {"native", mode.name + " at render scale 1", [configure_mode](SplatPass& pass) {
+                if (configure_mode) configure_mode(pass);
+                pass.settings.render_scale = 1.0f;
+            }};
+}
+
 std::vector<Method> select_methods(const std::string& list) {
     std::vector<Method> selected;
     std::stringstream stream(list);

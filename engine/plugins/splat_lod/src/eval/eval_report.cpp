@@ -8,6 +8,7 @@
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
 #include "splat_lod/eval/lod_report.h"
+#include "splat_lod/eval/upscale_report.h"
 
 namespace splat_lod::eval {
 namespace {
@@ -188,7 +189,10 @@ std::string format_count(double value) {
 
 std::string format_levels(const std::array<double, 4>& per_level) {
     std::string text;
-    for (double count : per_level) text += (text.empty() ? "" : "/") + format_count(count);
+    for (double count : per_level) {
+        if (!text.empty()) text += '/';  // (appended: GCC 12 warns falsely on "/" + std::string)
+        text += format_count(count);
+    }
     return text;
 }
 
@@ -196,6 +200,13 @@ std::string format_db(const std::optional<double>& value) {
     if (!value) return "\u2013";
     if (std::isinf(*value)) return "\u221e";
     return format_fixed(*value, 2);
+}
+
+std::string format_signed_db(double value) {
+    std::string text = value >= 0.0 ? "+" : "";
+    text += format_fixed(value, 2);
+    text += " dB";
+    return text;
 }
 
 Summary summarize(const EvalResults& results, Sweep sweep, const std::string& method, int factor) {
@@ -211,6 +222,8 @@ Summary summarize(const EvalResults& results, Sweep sweep, const std::string& me
         s.wall_ms += row.wall_ms;
         const auto it = row.gpu_ms.find("splat");
         s.splat_gpu_ms += it == row.gpu_ms.end() ? 0.0 : it->second;
+        const auto upscale = row.gpu_ms.find("splat.upscale");
+        s.upscale_gpu_ms += upscale == row.gpu_ms.end() ? 0.0 : upscale->second;
         s.considered += static_cast<double>(row.statistics.considered);
         s.visible += static_cast<double>(row.statistics.visible);
         s.tile_splat_pairs += static_cast<double>(row.statistics.tile_splat_pairs);
@@ -226,6 +239,7 @@ Summary summarize(const EvalResults& results, Sweep sweep, const std::string& me
     }
     s.wall_ms /= n;
     s.splat_gpu_ms /= n;
+    s.upscale_gpu_ms /= n;
     s.considered /= n;
     s.visible /= n;
     s.tile_splat_pairs /= n;
@@ -259,6 +273,7 @@ void write_markdown_report(const EvalResults& results, const std::string& render
             << "![time vs distance](time_vs_distance.png) ![Gaussians vs distance](gaussians_vs_distance.png)\n\n"
             << work_table(results, Sweep::distance, o.distances) << '\n';
     }
+    if (has_sweep(results, Sweep::upscale)) out << upscale_section(results);
     engine::write_text_file_atomic(path, out.str());
 }
 
@@ -271,6 +286,7 @@ void write_outputs(const EvalResults& results, const std::string& renderer, cons
     write_plots(results, folder);
     if (has_sweep(results, Sweep::scale)) write_contact_sheet(results, folder / "contact_sheet.png");
     if (!results.level_tiles.empty()) write_level_picture(results, folder / "levels.png");
+    if (has_sweep(results, Sweep::upscale)) write_upscale_crops(results, folder / "upscale_crops.png");
 }
 
 }  // namespace splat_lod::eval

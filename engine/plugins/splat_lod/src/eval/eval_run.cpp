@@ -16,10 +16,15 @@ struct Progress {
 
     void step(int view, const std::string& method, int factor, Sweep sweep) {
         ++done;
-        if (options.progress)
-            options.progress("[" + std::to_string(done) + "/" + std::to_string(total) + "] " + options.scene_name +
-                             " view " + std::to_string(view) + " " + method + " " + std::to_string(factor) +
-                             "\u00d7 (" + sweep_name(sweep) + ")");
+        if (!options.progress) return;
+        // Appended piece by piece: GCC 12 warns falsely on "[" + std::string when inlined.
+        std::string line = "[";
+        line += std::to_string(done) + "/" + std::to_string(total) + "] " + options.scene_name;
+        line += " view ";
+        line += std::to_string(view) + " " + method + " " + std::to_string(factor) + "\u00d7 (";
+        line += sweep_name(sweep);
+        line += ")";
+        options.progress(line);
     }
 };
 
@@ -131,14 +136,104 @@ void distance_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, P
     }
 }
 
+// The upscale sweep at one view: a native reference frame, the native render measured (and scored
+// against that reference: the renderer is deterministic, so this is exact), then every factor and
+// upscaler at the output size against the reference.
+void upscale_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, Progress& progress,
+                   EvalResults& results) {
+    const EvalOptions& o = results.options;
+    const Method& mode = find_method(o.upscale_mode, "--upscale-mode");
+    const engine::CameraView camera = make_view(pose, o.width, o.height);
+    const Method native = native_method(mode);
+    const FloatImage reference = to_float(measurer.render(native, camera));
+    const std::vector<int> crop_factors = upscale_crop_factors(o);
+    const auto keep_tile = [&](int factor) {
+        return view == 0 &&
+               (factor == 1 || std::find(crop_factors.begin(), crop_factors.end(), factor) != crop_factors.end());
+    };
+
+    const auto measure = [&](const Method& method, int factor) {
+        progress.step(view, method.name, factor, Sweep::upscale);
+        FrameMeasurement m = measurer.measure(method, camera, o.frames, o.warmup);
+        Measurement row = make_row(o, Sweep::upscale, view, pose, method.name, factor, m);
+        score(row, reference, m.image);
+        results.rows.push_back(std::move(row));
+        if (keep_tile(factor)) results.upscale_tiles.push_back({method.name, factor, std::move(m.image)});
+    };
+    measure(native, 1);
+    for (int f : o.upscale_factors)
+        for (const UpscalerVariant& variant : o.upscalers) measure(upscaled_method(mode, variant, f), f);
+}
+
+void validate_upscale_options(const EvalOptions& o) {
+    if (o.upscale_factors.empty()) engine::fail("--upscale-factors: no factor given");
+    for (std::size_t i = 0; i < o.upscale_factors.size(); ++i) {
+        const int f = o.upscale_factors[i];
+        const std::string factor = std::string("--upscale-factors: factor ") + std::to_string(f);
+        if (f < 2) engine::fail(factor + " is no upscaling (factors must be integers \u2265 2)");
+        if (std::find(o.upscale_factors.begin(), o.upscale_factors.begin() + static_cast<std::ptrdiff_t>(i), f) !=
+            o.upscale_factors.begin() + static_cast<std::ptrdiff_t>(i))
+            engine::fail(factor + " is listed twice");
+        const int w = upscale_source_side(o.width, f), h = upscale_source_side(o.height, f);
+        if (w < kMinUpscaleSource || h < kMinUpscaleSource)
+            engine::fail(factor + " is too large for " + std::to_string(o.width) + "\u00d7" + std::to_string(o.height) +
+                         ": it renders " + std::to_string(w) + "\u00d7" + std::to_string(h) + " pixels, fewer than " +
+                         std::to_string(kMinUpscaleSource) + " per side");
+    }
+    if (o.upscalers.empty()) engine::fail("--upscalers: no upscaler given");
+    for (std::size_t i = 0; i < o.upscalers.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (o.upscalers[i].name == o.upscalers[j].name)
+                engine::fail("--upscalers: \"" + o.upscalers[i].name + "\" is listed twice");
+    find_method(o.upscale_mode, "--upscale-mode");
+}
+
+bool runs(const EvalOptions& o, Sweep sweep) {
+    return std::find(o.sweeps.begin(), o.sweeps.end(), sweep) != o.sweeps.end();
+}
+
+std::size_t measurements_per_view(const EvalOptions& o, Sweep sweep) {
+    switch (sweep) {
+        case Sweep::scale:
+            return measured_methods(o, sweep).size() * o.scales.size();
+        case Sweep::distance:
+            return o.methods.size() * o.distances.size();
+        case Sweep::upscale:
+            return 1 + o.upscale_factors.size() * o.upscalers.size();
+    }
+    return 0;
+}
+
 }  // namespace
 
 const char* sweep_name(Sweep sweep) {
-    return sweep == Sweep::scale ? "scale" : "distance";
+    switch (sweep) {
+        case Sweep::scale:
+            return "scale";
+        case Sweep::distance:
+            return "distance";
+        case Sweep::upscale:
+            return "upscale";
+    }
+    return "?";
+}
+
+std::vector<int> upscale_crop_factors(const EvalOptions& o) {
+    std::vector<int> factors;
+    for (int f : {3, 4})
+        if (std::find(o.upscale_factors.begin(), o.upscale_factors.end(), f) != o.upscale_factors.end())
+            factors.push_back(f);
+    if (factors.empty() && !o.upscale_factors.empty()) factors.push_back(o.upscale_factors.front());
+    return factors;
 }
 
 std::vector<std::string> measured_methods(const EvalOptions& o, Sweep sweep) {
     std::vector<std::string> names;
+    if (sweep == Sweep::upscale) {
+        names.push_back("native");
+        for (const UpscalerVariant& variant : o.upscalers) names.push_back(variant.name);
+        return names;
+    }
     for (const Method& method : o.methods) names.push_back(method.name);
     if (sweep == Sweep::scale)
         for (const ComparisonScene& comparison : o.comparisons) names.push_back(comparison.method);
@@ -149,12 +244,15 @@ void validate_options(const EvalOptions& o) {
     if (o.width < 1 || o.height < 1) engine::fail("--width/--height: the image size must be positive");
     if (o.frames < 1) engine::fail("--frames: at least one timed frame is needed");
     if (o.warmup < 0) engine::fail("--warmup: must not be negative");
-    if (o.methods.empty()) engine::fail("--methods: no method given");
-    for (int k : o.scales) check_scale(k, o.width, o.height, "--scales");
+    if (o.sweeps.empty()) engine::fail("--sweep: no sweep given");
+    if ((runs(o, Sweep::scale) || runs(o, Sweep::distance)) && o.methods.empty())
+        engine::fail("--methods: no method given");
+    if (runs(o, Sweep::scale))
+        for (int k : o.scales) check_scale(k, o.width, o.height, "--scales");
     for (int d : o.distances)
         if (d < 1) engine::fail("--distances: distance " + std::to_string(d) + " is not a positive integer");
-    const bool scale_sweep = std::find(o.sweeps.begin(), o.sweeps.end(), Sweep::scale) != o.sweeps.end();
-    if (!o.comparisons.empty() && !scale_sweep)
+    if (runs(o, Sweep::upscale)) validate_upscale_options(o);
+    if (!o.comparisons.empty() && !runs(o, Sweep::scale))
         engine::fail("--chain: comparison scenes are measured in the scale sweep, which is not run");
     std::vector<std::string> names;
     for (const Method& method : o.methods) names.push_back(method.name);
@@ -178,14 +276,17 @@ EvalResults run_evaluation(FrameMeasurer& measurer, const std::vector<CameraPose
     results.views = static_cast<int>(poses.size());
     Progress progress{options};
     for (Sweep sweep : options.sweeps)
-        progress.total += static_cast<int>(poses.size() * measured_methods(options, sweep).size() *
-                                           (sweep == Sweep::scale ? options.scales.size() : options.distances.size()));
+        progress.total += static_cast<int>(poses.size() * measurements_per_view(options, sweep));
     // The comparison scenes need every view's references after the main scene's sweeps; kept only then.
     std::vector<References> references;
     for (Sweep sweep : options.sweeps)
         for (std::size_t v = 0; v < poses.size(); ++v) {
             if (sweep == Sweep::distance) {
                 distance_sweep(measurer, poses[v], static_cast<int>(v), progress, results);
+                continue;
+            }
+            if (sweep == Sweep::upscale) {
+                upscale_sweep(measurer, poses[v], static_cast<int>(v), progress, results);
                 continue;
             }
             References view_references = scale_sweep(measurer, poses[v], static_cast<int>(v), progress, results);

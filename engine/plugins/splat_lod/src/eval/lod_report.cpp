@@ -19,10 +19,6 @@ bool measured(const EvalResults& results, const std::string& method) {
                        [&](const Measurement& row) { return row.sweep == Sweep::scale && row.method == method; });
 }
 
-std::string signed_db(double value) {
-    return (value >= 0.0 ? "+" : "") + format_fixed(value, 2) + " dB";
-}
-
 const LodVerdictRow* row_at(const LodVerdict& verdict, int scale) {
     for (const auto& row : verdict.rows)
         if (row.scale == scale) return &row;
@@ -34,7 +30,7 @@ LodCriterion gain_criterion(const LodVerdict& verdict, int scale) {
     c.text = std::to_string(scale) + "\u00d7: full \u2212 baseline PSNR \u2265 +" + format_fixed(kMinGainDb, 0) + " dB";
     if (const LodVerdictRow* row = row_at(verdict, scale); row && row->psnr_gain_db) {
         c.value = row->psnr_gain_db;
-        c.value_text = signed_db(*c.value);
+        c.value_text = format_signed_db(*c.value);
         c.met = *c.value >= kMinGainDb;
     }
     return c;
@@ -62,12 +58,6 @@ LodCriterion fidelity_criterion(const LodVerdict& verdict) {
         c.met = *c.value >= kMinPsnrAt1x;
     }
     return c;
-}
-
-// ✓ met, ✗ not met, – not measured.
-const char* mark(const LodCriterion& c) {
-    if (!c.value) return "\u2013";
-    return c.met ? "\u2713" : "\u2717";
 }
 
 MatchedEntry entry(const EvalResults& results, const std::string& method, int scale) {
@@ -109,11 +99,10 @@ std::string lod_verdict_markdown(const LodVerdict& verdict) {
            "|---|---|---|---|\n";
     for (const auto& row : verdict.rows)
         out << "| " << row.scale << "\u00d7 | " << format_db(row.full_psnr) << " | "
-            << (row.psnr_gain_db ? signed_db(*row.psnr_gain_db) : "\u2013") << " | "
+            << (row.psnr_gain_db ? format_signed_db(*row.psnr_gain_db) : "\u2013") << " | "
             << (row.speedup ? format_fixed(*row.speedup, 2) + "\u00d7" : "\u2013") << " |\n";
     out << '\n';
-    for (const auto& c : verdict.criteria)
-        out << "- " << mark(c) << ' ' << c.text << ": " << (c.value ? c.value_text : "not measured") << '\n';
+    for (const auto& c : verdict.criteria) out << criterion_line(c);
     return out.str();
 }
 

@@ -1,9 +1,12 @@
 #pragma once
 // A method of the evaluation: a name and how it sets up the splat pass before its frames.
-// Later LOD modes and upscalers join the registry as further methods through this interface.
+// The LOD modes are in the registry; the upscale sweep builds its methods from a mode, an upscaler
+// variant and a factor.
 #include <functional>
 #include <string>
 #include <vector>
+
+#include <plugin_msgs/lod_settings.h>
 
 namespace splat_lod {
 class SplatPass;
@@ -26,6 +29,27 @@ std::vector<Method> select_methods(const std::string& list);
 const Method& reference_method();
 // `full` with each Gaussian tinted by its LOD level (the pass's debug view), for the level picture.
 const Method& level_colouring_method();
+
+// Finds a method of the registry by name; throws naming `option` and the known names otherwise.
+const Method& find_method(const std::string& name, const std::string& option);
+
+// How the upscale sweep brings a render at 1/f of the output to the output (ALGORITHMS §5).
+struct UpscalerVariant {
+    std::string name;  // the method name its measurements carry: "spline", "spline_plain", ...
+    std::string description;
+    plugin_msgs::Upscaler upscaler = plugin_msgs::Upscaler::spline;
+    bool scaled_dilation = true;  // false: the plain 0.3 low-res px² (blurrier than native)
+};
+
+// spline, bicubic, bilinear, lanczos3 (resolution-consistent dilation) and spline_plain (the
+// spline with the plain dilation, to show what the consistent one buys).
+const std::vector<UpscalerVariant>& upscaler_registry();
+// The variants of a comma-separated list, in its order; throws naming an unknown or repeated one.
+std::vector<UpscalerVariant> select_upscalers(const std::string& list);
+// `mode` rendered at render scale 1/factor and brought to the output by `variant`.
+Method upscaled_method(const Method& mode, const UpscalerVariant& variant, int factor);
+// `mode` at render scale 1 under the name "native": the upscale sweep's reference and time base.
+Method native_method(const Method& mode);
 
 // "1,2,4" → {1, 2, 4}; throws naming `option` on anything but positive integers.
 std::vector<int> parse_int_list(const std::string& text, const std::string& option);

@@ -4,10 +4,12 @@
 //                      with the Gaussians drawn per level (drawn_l1..drawn_l4)
 //   report.md          the paper's Table 1 shape (methods × scales: PSNR, SSIM, time) and the
 //                      Gaussians drawn per level, the LOD verdict and the matched-count comparison
-//                      (lod_report.h) where measured, the distance profile, and links to the
-//                      plots and pictures
+//                      (lod_report.h) where measured, the distance profile, the upscalers against
+//                      native with their verdict (upscale_report.h), and links to the plots and
+//                      pictures
 //   *.png              gnuplot plots (time vs error, time vs distance, Gaussians vs distance)
 //   contact_sheet.png  rows reference and methods, columns scales (first view)
+//   upscale_crops.png  the upscale sweep's side-by-side crops (upscale_report.h)
 //   levels.png         the first view with `full`, each Gaussian tinted by its level (when measured)
 #include <array>
 #include <filesystem>
@@ -23,6 +25,7 @@ struct Summary {
     int views = 0;
     std::optional<double> psnr, ssim;  // absent when any view lacks them
     double wall_ms = 0.0, splat_gpu_ms = 0.0;
+    double upscale_gpu_ms = 0.0;  // the "splat.upscale" span (inside "splat"); 0 where absent
     double considered = 0.0, visible = 0.0, tile_splat_pairs = 0.0, resident_bytes = 0.0;
     std::array<double, 4> per_level{};  // Gaussians drawn per LOD level 1..4
 };
@@ -45,6 +48,8 @@ void write_outputs(const EvalResults& results, const std::string& renderer, cons
 
 // "38.21", "∞" for +inf, "–" when absent.
 std::string format_db(const std::optional<double>& value);
+// "+4.21 dB", "-0.50 dB".
+std::string format_signed_db(double value);
 // `value` with `digits` decimals.
 std::string format_fixed(double value, int digits);
 // A Gaussian count for a table: "950", "120.3k", "1.25M" (means over views may be fractional).

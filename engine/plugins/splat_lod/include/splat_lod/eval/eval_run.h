@@ -1,10 +1,14 @@
 #pragma once
-// The two sweeps of the evaluation (ALGORITHMS §6) over a camera set and a list of methods:
+// The sweeps of the evaluation (ALGORITHMS §6) over a camera set and a list of methods:
 //   scale k:    each method at (W/k)×(H/k), same field of view, against the baseline render of the
 //               fine model at W×H area-averaged by k×k;
 //   distance d: each method at W×H with the camera d times farther from its target (the scene
 //               covers 1/d of its screen size), against the baseline at (dW)×(dH) area-averaged
-//               by d×d where that fits in max_reference_side, with no error reported beyond.
+//               by d×d where that fits in max_reference_side, with no error reported beyond;
+//   upscale f:  each upscaler variant renders the splats at render scale 1/f and upscales them to
+//               W×H (ALGORITHMS §5), against the native render (render scale 1, same LOD mode) at
+//               W×H; the native render is also measured as method "native", factor 1, the time
+//               base of the speed-ups.
 // Comparison scenes (another model of the same content, e.g. each level of an existing LOD chain)
 // join the scale sweep: each is rendered with the baseline at every scale and view and scored
 // against the main scene's references, so that their errors and the methods' are comparable.
@@ -26,7 +30,7 @@ namespace splat_lod::eval {
 
 class FrameMeasurer;
 
-enum class Sweep { scale, distance };
+enum class Sweep { scale, distance, upscale };
 const char* sweep_name(Sweep sweep);
 
 // A scene measured against the main scene's references (scale sweep only).
@@ -49,6 +53,11 @@ struct EvalOptions {
     std::vector<int> scales{1, 2, 4, 8, 16, 32, 64, 128};
     std::vector<int> distances{1, 2, 4, 8, 16, 32, 64, 128};
     int max_reference_side = 2048;
+    // The upscale sweep: factors (≥ 2, leaving at least kMinUpscaleSource pixels per side), the
+    // upscaler variants, and the LOD mode (a method of the registry) of both native and upscaled.
+    std::vector<int> upscale_factors{2, 3, 4, 8};
+    std::vector<UpscalerVariant> upscalers = select_upscalers("spline,bicubic,bilinear,lanczos3,spline_plain");
+    std::string upscale_mode = "baseline";
     int sheet_tile_width = 0;  // contact-sheet tile width in pixels; 0: width / 4
     // Contact-sheet rows after the reference; empty: every method of `methods` (comparison scenes
     // appear only when named here).
@@ -88,17 +97,32 @@ struct EvalResults {
     std::vector<ContactTile> tiles;
     std::vector<ContactTile> level_tiles;  // the level picture, method "full"
     int max_reference_distance = 0;        // largest distance with an error measurement
+    // The first view of the upscale sweep at its crop factors (upscale_crop_factors): "native"
+    // (factor 1) and each upscaler's output, all W×H.
+    std::vector<ContactTile> upscale_tiles;
 };
 
 // The scales of the level picture (levels.png): the first view with `full` and each Gaussian
 // tinted by its level, at those of these scales that fit the size. Rendered when `full` is measured.
 constexpr int kLevelPictureScales[] = {1, 4, 16, 64};
 
+// The upscale sweep's smallest low-resolution side: below it the upscalers' footprints (Lanczos-3:
+// 6 texels) mostly clamp at the border, and nothing is learned about them.
+constexpr int kMinUpscaleSource = 6;
+// The low-resolution side the splat pass rasterises for an output side at factor f: ⌈side / f⌉.
+constexpr int upscale_source_side(int side, int factor) {
+    return (side + factor - 1) / factor;
+}
+// The factors of the side-by-side crops: 3 and 4 where measured, else the first factor.
+std::vector<int> upscale_crop_factors(const EvalOptions& options);
+
 // Throws engine::Error before any rendering when a scale or distance is impossible for the size,
-// a comparison scene lacks the scale sweep or repeats a method name, or a contact-sheet row names
-// nothing measured.
+// a comparison scene lacks the scale sweep or repeats a method name, a contact-sheet row names
+// nothing measured, or (when the upscale sweep runs) an upscale factor is below 2, repeated or too
+// large for the size, no upscaler is given, or the upscale mode is unknown.
 void validate_options(const EvalOptions& options);
-// The method names measured in a sweep, in the order of `methods` then `comparisons`.
+// The method names measured in a sweep, in the order of `methods` then `comparisons`; for the
+// upscale sweep "native" then the upscalers.
 std::vector<std::string> measured_methods(const EvalOptions& options, Sweep sweep);
 EvalResults run_evaluation(FrameMeasurer& measurer, const std::vector<CameraPose>& poses, const EvalOptions& options);
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "splat_lod/eval/criterion.h"
 #include "splat_lod/eval/eval_run.h"
 
 namespace splat_lod::eval {
@@ -20,12 +21,7 @@ struct LodVerdictRow {
     std::optional<double> speedup;       // baseline splat GPU ms / full splat GPU ms; absent without times
 };
 
-struct LodCriterion {
-    std::string text;             // "64×: full − baseline PSNR ≥ +3 dB"
-    std::optional<double> value;  // absent: the scale was not measured
-    std::string value_text;       // "+4.21 dB", "6.30×"
-    bool met = false;
-};
+using LodCriterion = Criterion;  // value absent: the scale was not measured
 
 struct LodVerdict {
     std::vector<LodVerdictRow> rows;  // one per scale of the sweep
