@@ -58,6 +58,7 @@ TEST(LodPanel, DrawsInAHeadlessFrame) {
     ImGuiContext* context = ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
     io.DisplaySize = ImVec2(800, 600);
+    io.IniFilename = nullptr;  // no imgui.ini in the working directory
     unsigned char* pixels = nullptr;
     int w = 0, h = 0;
     io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
