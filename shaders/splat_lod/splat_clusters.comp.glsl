@@ -44,6 +44,7 @@ void main() {
     if (cluster == 0u) tile_counts[count] = 0u;  // the scan's extra slot, which receives the total
     uint first = cluster * SPLAT_PROJECT_WORKGROUP_SIZE;
     if (first >= count) return;
+    if (clusters[cluster].sphere.w < 0.0) return;  // an empty range of the scene (GpuScene): no members
     if (skip_cluster(cluster)) {
         atomicAdd(stats.skipping.x, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
         return;

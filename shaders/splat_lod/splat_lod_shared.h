@@ -139,7 +139,8 @@ SPLAT_LOD_STRUCT(GpuInstance) {
 // even its largest member would be too small to draw at the cluster's nearest depth, the whole
 // workgroup skips its Gaussians (ALGORITHMS §3 "not too small", bounded from above).
 SPLAT_LOD_STRUCT(GpuCluster) {
-    vec4 sphere;  // local-space centre xyz and radius w of the members' means
+    vec4 sphere;  // local-space centre xyz and radius w of the members' means; w < 0: an empty
+                  // cluster (a freed or padding range of the scene), never projected
     vec4 bounds;  // x: max over members of sqrt(2·ln(255·o))·min(σ_max, √2·σ_mid) (local units; 0 if invisible)
                   // y: max over members of that extent / coverage_min (−1 when any member has no
                   //    coverage_min > 0: never skipped)

@@ -175,65 +175,189 @@ float spectral_norm(const glm::mat3& m) {
     return static_cast<float>(std::clamp(std::sqrt(lambda) * (1.0 + 1e-4), column, frobenius));
 }
 
-bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
-    std::vector<Resident> wanted;
-    for (const auto* c : components) wanted.push_back({c->cloud.get(), drawn_degree(*c)});
-    const bool rebuild = wanted != resident_ || !gaussians_;
-    if (rebuild) upload(components, std::move(wanted));
+namespace {
 
-    std::vector<GpuInstance> instances;
-    std::uint32_t first = 0;
-    for (const auto* c : components) {
-        GpuInstance inst;
-        inst.model = c->node()->world_matrix();
+constexpr std::uint32_t kCluster = SPLAT_PROJECT_WORKGROUP_SIZE;
+
+std::uint32_t cluster_span(std::size_t count) {
+    return static_cast<std::uint32_t>((count + kCluster - 1) / kCluster * kCluster);
+}
+
+// A cluster with no members: step 1a drops it in every mode (sphere radius < 0).
+GpuCluster empty_cluster() {
+    GpuCluster c{};
+    c.sphere = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+    c.bounds = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+    return c;
+}
+
+}  // namespace
+
+std::uint64_t GpuScene::live_gaussians() const {
+    std::uint64_t n = 0;
+    for (const Slot& s : slots_)
+        if (s.cloud) n += s.cloud->size();
+    return n;
+}
+
+void GpuScene::reset(int sh_degree) {
+    slots_.clear();
+    free_.clear();
+    capacity_ = 0;
+    gaussian_count_ = 0;
+    sh_degree_ = sh_degree;
+    sh_stride_ = static_cast<std::uint32_t>(3 * (sh_degree + 1) * (sh_degree + 1));
+    gaussians_ = engine::gl::Buffer(engine::gl::NoCreate);
+    sh_ = engine::gl::Buffer(engine::gl::NoCreate);
+    clusters_ = engine::gl::Buffer(engine::gl::NoCreate);
+}
+
+// Grows the buffers to `capacity` Gaussian slots, keeping their contents (a GPU-side copy).
+void GpuScene::grow(std::uint32_t capacity) {
+    auto regrow = [&](engine::gl::Buffer& buffer, std::size_t bytes, const char* label) {
+        engine::gl::Buffer bigger(label);
+        bigger.storage(bytes);
+        if (buffer && buffer.size() > 0) glCopyNamedBufferSubData(buffer.id(), bigger.id(), 0, 0, static_cast<GLsizeiptr>(buffer.size()));
+        buffer = std::move(bigger);
+    };
+    regrow(gaussians_, std::size_t(capacity) * sizeof(GpuGaussian), "splat gaussians");
+    regrow(sh_, std::size_t(capacity) * sh_stride_ * sizeof(float), "splat sh");
+    // New clusters start empty so that slots beyond the high-water mark are never drawn.
+    const std::size_t old_clusters = capacity_ / kCluster;
+    regrow(clusters_, std::max<std::size_t>(capacity / kCluster, 1) * sizeof(GpuCluster), "splat clusters");
+    const std::vector<GpuCluster> empty(capacity / kCluster - old_clusters, empty_cluster());
+    if (!empty.empty()) clusters_.upload(old_clusters * sizeof(GpuCluster), empty.size() * sizeof(GpuCluster), empty.data());
+    capacity_ = capacity;
+}
+
+// First fit in the freed ranges, else at the end (growing by half again when full).
+std::uint32_t GpuScene::allocate(std::uint32_t span) {
+    for (auto it = free_.begin(); it != free_.end(); ++it) {
+        if (it->second < span) continue;
+        const std::uint32_t first = it->first;
+        if (it->second == span) free_.erase(it);
+        else *it = {first + span, it->second - span};
+        return first;
+    }
+    const std::uint64_t end = std::uint64_t(gaussian_count_) + span;
+    if (end > std::numeric_limits<std::uint32_t>::max() / 2)
+        engine::fail("splat_lod: " + std::to_string(end) + " Gaussians exceed what one scene can draw");
+    if (end > capacity_) grow(static_cast<std::uint32_t>(std::max<std::uint64_t>(end, capacity_ + capacity_ / 2)));
+    const std::uint32_t first = gaussian_count_;
+    gaussian_count_ = static_cast<std::uint32_t>(end);
+    return first;
+}
+
+// Frees a slot's range: its clusters become empty; a range at the end lowers the high-water mark.
+void GpuScene::release(Slot& slot) {
+    const std::vector<GpuCluster> empty(slot.span / kCluster, empty_cluster());
+    if (!empty.empty()) clusters_.upload(std::size_t(slot.first / kCluster) * sizeof(GpuCluster), empty.size() * sizeof(GpuCluster), empty.data());
+    last_upload_bytes_ += empty.size() * sizeof(GpuCluster);
+    free_.insert(std::upper_bound(free_.begin(), free_.end(), std::make_pair(slot.first, 0u)), {slot.first, slot.span});
+    // Merge neighbours, then give a trailing free range back to the end.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> merged;
+    for (const auto& r : free_) {
+        if (!merged.empty() && merged.back().first + merged.back().second == r.first) merged.back().second += r.second;
+        else merged.push_back(r);
+    }
+    free_ = std::move(merged);
+    if (!free_.empty() && free_.back().first + free_.back().second == gaussian_count_) {
+        gaussian_count_ = free_.back().first;
+        free_.pop_back();
+    }
+    slot = Slot{};
+}
+
+// Uploads a slot's cloud into a fresh range: Gaussians tagged with the slot's instance index, its
+// SH at the common stride, and the clusters of its range (padding Gaussians have opacity 0).
+void GpuScene::place(Slot& slot) {
+    const SplatCloud& cloud = *slot.cloud;
+    const auto instance = static_cast<std::uint32_t>(&slot - slots_.data());
+    slot.span = std::max(cluster_span(cloud.size()), kCluster);
+    slot.first = allocate(slot.span);
+    std::vector<GpuGaussian> gaussians;
+    slot.dropped = pack_gaussians(cloud, instance, gaussians);
+    GpuGaussian padding{};
+    padding.covariance_b.w = std::bit_cast<float>(instance);
+    gaussians.resize(slot.span, padding);
+    std::vector<float> sh;
+    pack_sh(cloud, slot.sh_degree, sh_stride_, sh);
+    sh.resize(std::size_t(slot.span) * sh_stride_, 0.0f);
+    std::vector<GpuCluster> clusters = build_clusters({&cloud});
+    clusters.resize(slot.span / kCluster, empty_cluster());
+    for (GpuCluster& c : clusters)
+        if (c.bounds.w >= 0.0f) c.bounds.w = std::bit_cast<float>(instance);
+    gaussians_.upload(std::size_t(slot.first) * sizeof(GpuGaussian), gaussians.size() * sizeof(GpuGaussian), gaussians.data());
+    sh_.upload(std::size_t(slot.first) * sh_stride_ * sizeof(float), sh.size() * sizeof(float), sh.data());
+    clusters_.upload(std::size_t(slot.first / kCluster) * sizeof(GpuCluster), clusters.size() * sizeof(GpuCluster), clusters.data());
+    last_upload_bytes_ += gaussians.size() * sizeof(GpuGaussian) + sh.size() * sizeof(float) + clusters.size() * sizeof(GpuCluster);
+    slot.coarsest = 1;
+    for (const std::uint8_t level : cloud.lod_level) slot.coarsest = std::max<std::uint32_t>(slot.coarsest, level);
+}
+
+bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
+    last_upload_bytes_ = 0;
+    int max_degree = 0;
+    for (const auto* c : components) max_degree = std::max(max_degree, drawn_degree(*c));
+    // More SH coefficients than the buffers hold: start over at the new stride.
+    if (max_degree > sh_degree_) reset(max_degree);
+
+    // Which resident slot each component keeps (same cloud, same degree); the rest are freed.
+    std::vector<std::int64_t> slot_of(components.size(), -1);
+    std::vector<bool> kept(slots_.size(), false);
+    for (std::size_t i = 0; i < components.size(); ++i)
+        for (std::size_t k = 0; k < slots_.size(); ++k)
+            if (!kept[k] && slots_[k].cloud.get() == components[i]->cloud.get() &&
+                slots_[k].sh_degree == drawn_degree(*components[i])) {
+                kept[k] = true;
+                slot_of[i] = static_cast<std::int64_t>(k);
+                break;
+            }
+    bool changed = false;
+    for (std::size_t k = 0; k < slots_.size(); ++k)
+        if (!kept[k] && slots_[k].cloud) {
+            release(slots_[k]);
+            changed = true;
+        }
+    for (std::size_t i = 0; i < components.size(); ++i) {
+        if (slot_of[i] >= 0) continue;
+        std::size_t k = 0;  // a free instance index, else a new one
+        while (k < slots_.size() && (slots_[k].cloud || kept[k])) ++k;
+        if (k == slots_.size()) {
+            slots_.emplace_back();
+            kept.push_back(false);
+        }
+        kept[k] = true;
+        slots_[k].cloud = components[i]->cloud;
+        slots_[k].sh_degree = drawn_degree(*components[i]);
+        place(slots_[k]);
+        slot_of[i] = static_cast<std::int64_t>(k);
+        changed = true;
+    }
+    while (!slots_.empty() && !slots_.back().cloud) slots_.pop_back();  // trailing free instances
+
+    dropped_ = 0;
+    coarsest_level_ = 1;
+    for (const Slot& s : slots_) {
+        dropped_ += s.dropped;
+        if (s.cloud) coarsest_level_ = std::max(coarsest_level_, s.coarsest);
+    }
+    if (changed && dropped_ > 0)
+        engine::log_warning("splat_lod: " + std::to_string(dropped_) + " Gaussians with NaN/Inf values or a zero rotation are not drawn");
+
+    std::vector<GpuInstance> instances(slots_.size());  // free instance indices keep count 0
+    for (std::size_t i = 0; i < components.size(); ++i) {
+        const Slot& slot = slots_[static_cast<std::size_t>(slot_of[i])];
+        GpuInstance& inst = instances[static_cast<std::size_t>(slot_of[i])];
+        inst.model = components[i]->node()->world_matrix();
         inst.rotation_inverse = inverse_rotation(inst.model);
-        const auto count = static_cast<std::uint32_t>(c->cloud->size());
-        inst.info = glm::uvec4(first, count, static_cast<std::uint32_t>(drawn_degree(*c)),
+        inst.info = glm::uvec4(slot.first, static_cast<std::uint32_t>(slot.cloud->size()), static_cast<std::uint32_t>(slot.sh_degree),
                                std::bit_cast<std::uint32_t>(spectral_norm(glm::mat3(inst.model))));
-        first += count;
-        instances.push_back(inst);
     }
     const std::size_t bytes = std::max<std::size_t>(instances.size(), 1) * sizeof(GpuInstance);
     instances_.ensure_size(bytes, "splat instances");
     if (!instances.empty()) instances_.upload(0, instances.size() * sizeof(GpuInstance), instances.data());
-    return rebuild;
-}
-
-void GpuScene::upload(const std::vector<const SplatComponent*>& components, std::vector<Resident> wanted) {
-    int max_degree = 0;
-    std::size_t total = 0;
-    coarsest_level_ = 1;
-    for (const auto* c : components) {
-        max_degree = std::max(max_degree, drawn_degree(*c));
-        total += c->cloud->size();
-        for (const std::uint8_t level : c->cloud->lod_level) coarsest_level_ = std::max<std::uint32_t>(coarsest_level_, level);
-    }
-    if (total > std::numeric_limits<std::uint32_t>::max() / 2)
-        engine::fail("splat_lod: " + std::to_string(total) + " Gaussians exceed what one scene can draw");
-    sh_stride_ = static_cast<std::uint32_t>(3 * (max_degree + 1) * (max_degree + 1));
-    std::vector<GpuGaussian> gaussians;
-    std::vector<float> sh;
-    dropped_ = 0;
-    gaussians.reserve(total);
-    sh.reserve(total * sh_stride_);
-    for (std::uint32_t i = 0; i < components.size(); ++i) {
-        dropped_ += pack_gaussians(*components[i]->cloud, i, gaussians);
-        pack_sh(*components[i]->cloud, drawn_degree(*components[i]), sh_stride_, sh);
-    }
-    gaussian_count_ = static_cast<std::uint32_t>(total);
-    if (dropped_ > 0) engine::log_warning("splat_lod: " + std::to_string(dropped_) + " Gaussians with NaN/Inf values or a zero rotation are not drawn");
-    gaussians_ = engine::gl::Buffer("splat gaussians");
-    gaussians_.storage(gaussians.size() * sizeof(GpuGaussian), gaussians.data(), 0);
-    sh_ = engine::gl::Buffer("splat sh");
-    sh_.storage(sh.size() * sizeof(float), sh.data(), 0);
-    std::vector<const SplatCloud*> clouds;
-    for (const auto* c : components) clouds.push_back(c->cloud.get());
-    const auto clusters = build_clusters(clouds);
-    clusters_ = engine::gl::Buffer("splat clusters");
-    clusters_.storage(std::max<std::size_t>(clusters.size(), 1) * sizeof(GpuCluster), clusters.empty() ? nullptr : clusters.data(), 0);
-    resident_ = std::move(wanted);
-    keep_alive_.clear();
-    for (const auto* c : components) keep_alive_.push_back(c->cloud);
+    return changed;
 }
 
 }  // namespace splat_lod::gpu

@@ -32,18 +32,31 @@ std::vector<GpuCluster> build_clusters(const std::vector<const SplatCloud*>& clo
 // ‖M‖₂, the largest singular value of a 3×3 matrix (how much the model matrix can stretch a length).
 float spectral_norm(const glm::mat3& m);
 
+// Gaussians of every component live in one buffer, each cloud in its own range that starts on a
+// cluster boundary (SPLAT_PROJECT_WORKGROUP_SIZE), so clusters never mix clouds. Adding a cloud
+// uploads only its range (first fit in the freed ranges, else at the end, growing the buffers by a
+// GPU-side copy when full); removing one marks its clusters empty, which step 1a drops in every
+// mode. This is what makes streaming affordable: a chunk level that arrives costs its own bytes,
+// not a re-upload of the scene. Only a cloud needing more SH coefficients than the buffers hold
+// rebuilds everything.
 class GpuScene {
 public:
-    // Uploads when the components' clouds or SH caps differ from the resident ones; refreshes the
-    // instance transforms always. Returns true when the Gaussian buffers were rebuilt.
+    // Uploads the clouds that are new since the last call, frees those that are gone, and
+    // refreshes the instance transforms. Returns true when anything was uploaded or freed.
     bool update(const std::vector<const SplatComponent*>& components);
 
+    // Gaussian slots up to the end of the last range in use (what step 1a walks).
     std::uint32_t gaussian_count() const { return gaussian_count_; }
-    std::uint32_t instance_count() const { return static_cast<std::uint32_t>(resident_.size()); }
+    std::uint32_t instance_count() const { return static_cast<std::uint32_t>(slots_.size()); }
     std::uint32_t sh_stride() const { return sh_stride_; }
     std::uint32_t coarsest_level() const { return coarsest_level_; }  // highest LOD level present
     std::size_t dropped() const { return dropped_; }  // not drawable (NaN/Inf, zero rotation)
     std::size_t resident_bytes() const { return gaussians_.size() + sh_.size() + instances_.size() + clusters_.size(); }
+    // Bytes sent to the GPU by the last update() for Gaussians, SH and clusters (GPU-side copies
+    // when the buffers grow are not uploads and are not counted).
+    std::uint64_t last_upload_bytes() const { return last_upload_bytes_; }
+    // Gaussian slots in use by clouds (without the padding to cluster boundaries).
+    std::uint64_t live_gaussians() const;
 
     const engine::gl::Buffer& gaussians() const { return gaussians_; }
     const engine::gl::Buffer& sh() const { return sh_; }
@@ -51,17 +64,27 @@ public:
     const engine::gl::Buffer& clusters() const { return clusters_; }
 
 private:
-    struct Resident {
-        const SplatCloud* cloud;
-        int sh_degree;
-        bool operator==(const Resident&) const = default;
+    struct Slot {  // one instance index; `cloud` null when free
+        std::shared_ptr<const SplatCloud> cloud;
+        int sh_degree = 0;
+        std::uint32_t first = 0;  // Gaussian index of its range
+        std::uint32_t span = 0;   // range length, a multiple of the cluster size
+        std::uint32_t coarsest = 1;
+        std::size_t dropped = 0;
     };
-    void upload(const std::vector<const SplatComponent*>& components, std::vector<Resident> wanted);
+    void reset(int sh_degree);
+    std::uint32_t allocate(std::uint32_t span);
+    void release(Slot& slot);
+    void place(Slot& slot);
+    void grow(std::uint32_t capacity);
 
-    std::vector<Resident> resident_;
-    std::vector<std::shared_ptr<const SplatCloud>> keep_alive_;  // the clouds the buffers were made from
+    std::vector<Slot> slots_;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> free_;  // (first, span) ranges, sorted by first
+    std::uint32_t capacity_ = 0;   // Gaussian slots the buffers hold
     std::uint32_t gaussian_count_ = 0;
+    std::uint64_t last_upload_bytes_ = 0;
     std::size_t dropped_ = 0;
+    int sh_degree_ = -1;           // the degree the SH stride holds; −1 before the first upload
     std::uint32_t sh_stride_ = 3;
     std::uint32_t coarsest_level_ = 1;
     engine::gl::Buffer gaussians_{engine::gl::NoCreate};

@@ -256,6 +256,7 @@ void SplatPass::record_statistics(engine::FrameContext& frame) {
     glCopyNamedBufferSubData(counters_.id(), r.buffer.id(), 0, 0, sizeof(gpu::FrameCounters));
     r.fence.insert();
     r.frame = frame.frame_index;
+    r.considered = scene_.live_gaussians();
     r.resident_bytes = scene_.resident_bytes() + projected_.size() + tile_counts_.size() + keys_.size() +
                        values_.size() + tile_ranges_.size() + cluster_list_.size() + low_res_bytes();
     ++frames_;
@@ -271,7 +272,7 @@ void SplatPass::collect_statistics(engine::MessageBus& bus, bool wait) {
         r.fence.reset();
         plugin_msgs::SplatStatistics s;
         s.frame_index = r.frame;
-        s.considered = c.considered;
+        s.considered = r.considered;  // the clouds' Gaussians, not the slots padded to cluster boundaries
         s.visible = c.visible;
         for (int l = 0; l < 4; ++l) s.per_level[static_cast<std::size_t>(l)] = c.per_level[l];
         s.skipped = c.skipping.x;

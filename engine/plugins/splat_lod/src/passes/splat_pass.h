@@ -65,6 +65,8 @@ public:
     // Blocks until the statistics of every frame drawn so far are read; for tools and tests.
     void wait_for_statistics(engine::MessageBus& bus);
     std::uint32_t key_capacity() const { return key_capacity_; }
+    // The resident Gaussians (which clouds, where, what the last frame uploaded); for tools and tests.
+    const gpu::GpuScene& scene() const { return scene_; }
     // The last frame's low-resolution splat image with its derivatives (rows top first) and its
     // front depths, read back blocking; empty at render scale 1. For tools and tests.
     upscale::GradientImage read_low_res_image() const;
@@ -76,6 +78,7 @@ private:
         engine::gl::Fence fence;
         std::uint64_t frame = 0;
         std::uint64_t resident_bytes = 0;
+        std::uint64_t considered = 0;
     };
     // What the tile raster draws this frame: the output size at render scale 1, else the
     // low-resolution size of splat_lod/upscale.h.

@@ -1,0 +1,103 @@
+// The incremental GPU scene (gpu/gpu_scene.h): clouds that arrive or leave cost only their own
+// bytes, freed ranges are reused, and the frame is the same as with the whole set uploaded at once.
+#include <cmath>
+
+#include "gpu/gpu_scene.h"
+#include "gpu_fixture.h"
+#include "passes/splat_pass.h"
+#include "splat_lod/splat_lod_plugin.h"
+#include "splat_test_scenes.h"
+#include "test_support.h"
+
+using engine::test::GaussianSpec;
+
+namespace {
+
+// `count` Gaussians in a slab at depth offset `z` (each cloud its own region of the view).
+std::shared_ptr<const splat_lod::SplatCloud> slab(int count, float x, int seed) {
+    std::vector<GaussianSpec> specs;
+    for (int i = 0; i < count; ++i) {
+        const float t = static_cast<float>(i + 1000 * seed);
+        specs.push_back({{x + 0.35f * std::sin(t * 1.3f), 0.8f * std::cos(t * 0.7f), 0.4f * std::sin(t * 0.31f)},
+                         glm::vec3(-3.4f + 0.5f * std::sin(t)), {1, 0, 0, 0}, 1.0f + std::sin(t * 0.9f),
+                         {0.5f + 0.4f * std::sin(t), 0.5f + 0.4f * std::cos(t * 1.1f), 0.5f}});
+    }
+    return std::make_shared<const splat_lod::SplatCloud>(engine::test::make_cloud(specs));
+}
+
+int max_difference(const engine::Image& a, const engine::Image& b) {
+    int worst = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, std::abs(int(a.rgba[i]) - int(b.rgba[i])));
+    return worst;
+}
+
+class SplatGpuSceneTest : public engine::test::GpuTest {
+protected:
+    engine::test::SplatRenderHarness incremental;
+    engine::CameraView camera = engine::make_look_at_camera({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 128, 96, 0.1f, 100.0f);
+
+    const splat_lod::gpu::GpuScene& scene() { return splat_lod::find_splat_pass(incremental.engine().renderer())->scene(); }
+    // The same clouds rendered by a pass that never saw another set: the reference frame.
+    engine::Image from_scratch(const std::vector<std::shared_ptr<const splat_lod::SplatCloud>>& clouds) {
+        engine::test::SplatRenderHarness fresh;
+        return fresh.render(clouds, camera);
+    }
+};
+
+}  // namespace
+
+TEST_F(SplatGpuSceneTest, ArrivingCloudsUploadOnlyTheirOwnBytes) {
+    const auto a = slab(700, -1.2f, 1), b = slab(300, 0.0f, 2), c = slab(1000, 1.2f, 3);
+    incremental.render({a}, camera);
+    const std::uint64_t first = scene().last_upload_bytes();
+    incremental.render({a}, camera);
+    EXPECT_EQ(scene().last_upload_bytes(), 0u) << "an unchanged scene uploads nothing";
+    const auto ab = incremental.render({a, b}, camera);
+    const std::uint64_t second = scene().last_upload_bytes();
+    // Bytes per Gaussian slot: 64 (GpuGaussian) + 12 (SH degree 0) + a cluster record per 256.
+    const auto slot_bytes = [](std::uint64_t count) {
+        const std::uint64_t span = (count + 255) / 256 * 256;
+        return span * (64 + 12) + span / 256 * 32;
+    };
+    EXPECT_EQ(first, slot_bytes(700));
+    EXPECT_EQ(second, slot_bytes(300));
+    EXPECT_LE(max_difference(ab, from_scratch({a, b})), 1);
+    const auto abc = incremental.render({a, b, c}, camera);
+    EXPECT_EQ(scene().last_upload_bytes(), slot_bytes(1000));
+    EXPECT_LE(max_difference(abc, from_scratch({a, b, c})), 1);
+    EXPECT_EQ(splat_lod::find_splat_pass(incremental.engine().renderer())->latest_statistics()->considered, 2000u);
+}
+
+TEST_F(SplatGpuSceneTest, LeavingCloudsFreeTheirRangesForReuse) {
+    const auto a = slab(700, -1.2f, 1), b = slab(500, 0.0f, 2), c = slab(900, 1.2f, 3), d = slab(450, 0.6f, 4);
+    incremental.render({a, b, c}, camera);
+    const std::uint32_t high_water = scene().gaussian_count();
+    EXPECT_EQ(high_water, 768u + 512u + 1024u);
+    // b leaves: its clusters empty, nothing of it drawn; the frame equals one without b.
+    const auto ac = incremental.render({a, c}, camera);
+    EXPECT_LE(max_difference(ac, from_scratch({a, c})), 1);
+    auto* pass = splat_lod::find_splat_pass(incremental.engine().renderer());
+    EXPECT_EQ(pass->latest_statistics()->considered, 1600u);
+    EXPECT_EQ(pass->latest_statistics()->skipped, 0u) << "empty ranges are not counted as skipped";
+    // d fits b's old range: the buffers do not grow past the old end.
+    const auto acd = incremental.render({a, c, d}, camera);
+    EXPECT_EQ(scene().gaussian_count(), high_water);
+    EXPECT_LE(max_difference(acd, from_scratch({a, c, d})), 1);
+    // The last range leaving lowers the end, and an empty scene draws nothing.
+    incremental.render({a}, camera);
+    EXPECT_EQ(scene().gaussian_count(), 768u);
+    EXPECT_EQ(scene().live_gaussians(), 700u);
+}
+
+TEST_F(SplatGpuSceneTest, AHigherShDegreeRebuildsAndStaysCorrect) {
+    const auto a = slab(400, -0.6f, 1);
+    auto with_sh = engine::test::make_cloud({{{0.6f, 0.0f, 0.0f}, glm::vec3(-2.5f), {1, 0, 0, 0}, 2.0f, {0.8f, 0.3f, 0.2f}}});
+    with_sh.set_sh_degree(1);
+    with_sh.sh_rest_at(0, 1, 0) = 0.4f;
+    const auto b = std::make_shared<const splat_lod::SplatCloud>(with_sh);
+    incremental.render({a}, camera);
+    EXPECT_EQ(scene().sh_stride(), 3u);
+    const auto ab = incremental.render({a, b}, camera);
+    EXPECT_EQ(scene().sh_stride(), 12u);
+    EXPECT_LE(max_difference(ab, from_scratch({a, b})), 1);
+}
