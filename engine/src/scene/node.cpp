@@ -1,5 +1,7 @@
 #include "engine/scene/node.h"
 
+#include <algorithm>
+
 #include "engine/scene/scene.h"
 
 namespace engine {
@@ -28,6 +30,13 @@ Node& Node::add_child(std::string name) {
     children_.push_back(std::make_unique<Node>(std::move(name)));
     children_.back()->parent_ = this;
     return *children_.back();
+}
+
+bool Node::remove_child(const Node& child) {
+    const auto it = std::find_if(children_.begin(), children_.end(), [&](const auto& c) { return c.get() == &child; });
+    if (it == children_.end()) return false;
+    children_.erase(it);
+    return true;
 }
 
 void Node::attach(std::unique_ptr<Component> component) {

@@ -21,6 +21,9 @@ public:
     Node* parent() const { return parent_; }
 
     Node& add_child(std::string name);
+    // Destroys a direct child with its subtree and components; false when `child` is not one.
+    // References to it (and to anything below it) dangle afterwards.
+    bool remove_child(const Node& child);
     const std::vector<std::unique_ptr<Node>>& children() const { return children_; }
 
     template <class T>
