@@ -130,7 +130,7 @@ SPLAT_LOD_STRUCT(GpuGaussian) {
 SPLAT_LOD_STRUCT(GpuInstance) {
     mat4 model;             // local → world
     mat4 rotation_inverse;  // world → local directions (for SH)
-    uvec4 info;             // x first Gaussian, y count, z SH degree used, w floatBitsToUint(‖M‖₂), M = mat3(model)
+    uvec4 info;             // x first slot of its first page, y count, z SH degree used, w floatBitsToUint(‖M‖₂), M = mat3(model)
 };
 
 // What the project pass knows about the Gaussians one of its workgroups handles (cluster c holds

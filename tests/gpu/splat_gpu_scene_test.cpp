@@ -101,3 +101,31 @@ TEST_F(SplatGpuSceneTest, AHigherShDegreeRebuildsAndStaysCorrect) {
     EXPECT_EQ(scene().sh_stride(), 12u);
     EXPECT_LE(max_difference(ab, from_scratch({a, b})), 1);
 }
+
+// A cloud may take pages that are not adjacent (what keeps freed memory usable by any later cloud),
+// and a reserved scene never grows its buffers.
+TEST_F(SplatGpuSceneTest, CloudsSpreadOverScatteredPagesAndReservedBuffersDoNotGrow) {
+    const auto a = slab(200, -1.2f, 1), b = slab(250, 0.0f, 2), c = slab(100, 1.2f, 3), d = slab(480, 0.6f, 4);
+    auto* pass = splat_lod::find_splat_pass(incremental.engine().renderer());
+    incremental.render({a, b, c}, camera);  // pages 0, 1, 2
+    incremental.render({b, c}, camera);     // page 0 free
+    EXPECT_EQ(scene().free_pages(), 1u);
+    const auto bcd = incremental.render({b, c, d}, camera);  // d: pages 0 and 3
+    EXPECT_EQ(scene().free_pages(), 0u);
+    EXPECT_EQ(scene().gaussian_count(), 4u * 256u);
+    EXPECT_LE(max_difference(bcd, from_scratch({b, c, d})), 1);
+    EXPECT_EQ(pass->latest_statistics()->considered, 830u);
+
+    engine::test::SplatRenderHarness reserved;
+    auto* reserved_pass = splat_lod::find_splat_pass(reserved.engine().renderer());
+    reserved.render({a}, camera);
+    const_cast<splat_lod::gpu::GpuScene&>(reserved_pass->scene()).reserve(4096, 0);
+    const auto& gpu = reserved_pass->scene();
+    const auto bytes = [&] { return gpu.gaussians().size() + gpu.sh().size() + gpu.clusters().size(); };
+    const std::size_t reserved_bytes = bytes();
+    EXPECT_EQ(reserved_bytes, 16u * gpu.page_bytes());
+    reserved.render({a, b, c, d}, camera);
+    reserved.render({d}, camera);
+    reserved.render({a, b, c, d}, camera);
+    EXPECT_EQ(bytes(), reserved_bytes) << "the Gaussian, SH and cluster buffers never grew";
+}

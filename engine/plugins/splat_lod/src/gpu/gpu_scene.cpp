@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <bit>
+#include <functional>
 #include <limits>
 
 #include <glm/gtc/quaternion.hpp>
@@ -179,10 +180,6 @@ namespace {
 
 constexpr std::uint32_t kCluster = SPLAT_PROJECT_WORKGROUP_SIZE;
 
-std::uint32_t cluster_span(std::size_t count) {
-    return static_cast<std::uint32_t>((count + kCluster - 1) / kCluster * kCluster);
-}
-
 // A cluster with no members: step 1a drops it in every mode (sphere radius < 0).
 GpuCluster empty_cluster() {
     GpuCluster c{};
@@ -200,6 +197,25 @@ std::uint64_t GpuScene::live_gaussians() const {
     return n;
 }
 
+std::uint32_t GpuScene::pages_in_use() const {
+    std::uint32_t n = 0;
+    for (const Slot& s : slots_) n += static_cast<std::uint32_t>(s.pages.size());
+    return n;
+}
+
+std::uint64_t GpuScene::page_bytes() const {
+    return std::uint64_t(kCluster) * (sizeof(GpuGaussian) + sh_stride_ * sizeof(float)) + sizeof(GpuCluster);
+}
+
+void GpuScene::reserve(std::uint64_t gaussians, int sh_degree) {
+    if (sh_degree < 0 || sh_degree > kMaxShDegree) engine::fail("splat_lod: SH degree " + std::to_string(sh_degree) + " is not 0..3");
+    const std::uint64_t pages = (gaussians + kCluster - 1) / kCluster;
+    if (pages * kCluster > std::numeric_limits<std::uint32_t>::max() / 2)
+        engine::fail("splat_lod: cannot reserve " + std::to_string(gaussians) + " Gaussians");
+    if (sh_degree > sh_degree_) reset(sh_degree);
+    if (pages * kCluster > capacity_) grow(static_cast<std::uint32_t>(pages * kCluster));
+}
+
 void GpuScene::reset(int sh_degree) {
     slots_.clear();
     free_.clear();
@@ -212,7 +228,8 @@ void GpuScene::reset(int sh_degree) {
     clusters_ = engine::gl::Buffer(engine::gl::NoCreate);
 }
 
-// Grows the buffers to `capacity` Gaussian slots, keeping their contents (a GPU-side copy).
+// Grows the buffers to `capacity` Gaussian slots (whole pages), keeping their contents (a
+// GPU-side copy).
 void GpuScene::grow(std::uint32_t capacity) {
     auto regrow = [&](engine::gl::Buffer& buffer, std::size_t bytes, const char* label) {
         engine::gl::Buffer bigger(label);
@@ -222,7 +239,7 @@ void GpuScene::grow(std::uint32_t capacity) {
     };
     regrow(gaussians_, std::size_t(capacity) * sizeof(GpuGaussian), "splat gaussians");
     regrow(sh_, std::size_t(capacity) * sh_stride_ * sizeof(float), "splat sh");
-    // New clusters start empty so that slots beyond the high-water mark are never drawn.
+    // New clusters start empty so that pages beyond the end are never drawn.
     const std::size_t old_clusters = capacity_ / kCluster;
     regrow(clusters_, std::max<std::size_t>(capacity / kCluster, 1) * sizeof(GpuCluster), "splat clusters");
     const std::vector<GpuCluster> empty(capacity / kCluster - old_clusters, empty_cluster());
@@ -230,67 +247,71 @@ void GpuScene::grow(std::uint32_t capacity) {
     capacity_ = capacity;
 }
 
-// First fit in the freed ranges, else at the end (growing by half again when full).
-std::uint32_t GpuScene::allocate(std::uint32_t span) {
-    for (auto it = free_.begin(); it != free_.end(); ++it) {
-        if (it->second < span) continue;
-        const std::uint32_t first = it->first;
-        if (it->second == span) free_.erase(it);
-        else *it = {first + span, it->second - span};
-        return first;
+// The lowest free page, else a new one at the end (growing by half again when full).
+std::uint32_t GpuScene::allocate_page() {
+    if (!free_.empty()) {
+        const std::uint32_t page = free_.back();
+        free_.pop_back();
+        return page;
     }
-    const std::uint64_t end = std::uint64_t(gaussian_count_) + span;
+    const std::uint64_t end = std::uint64_t(gaussian_count_) + kCluster;
     if (end > std::numeric_limits<std::uint32_t>::max() / 2)
         engine::fail("splat_lod: " + std::to_string(end) + " Gaussians exceed what one scene can draw");
-    if (end > capacity_) grow(static_cast<std::uint32_t>(std::max<std::uint64_t>(end, capacity_ + capacity_ / 2)));
-    const std::uint32_t first = gaussian_count_;
+    if (end > capacity_) {
+        const std::uint64_t wanted = std::max<std::uint64_t>(end, (std::uint64_t(capacity_) + capacity_ / 2) / kCluster * kCluster);
+        grow(static_cast<std::uint32_t>(wanted));
+    }
     gaussian_count_ = static_cast<std::uint32_t>(end);
-    return first;
+    return static_cast<std::uint32_t>(end / kCluster - 1);
 }
 
-// Frees a slot's range: its clusters become empty; a range at the end lowers the high-water mark.
+// Frees a slot's pages: their clusters become empty; free pages at the end lower it.
 void GpuScene::release(Slot& slot) {
-    const std::vector<GpuCluster> empty(slot.span / kCluster, empty_cluster());
-    if (!empty.empty()) clusters_.upload(std::size_t(slot.first / kCluster) * sizeof(GpuCluster), empty.size() * sizeof(GpuCluster), empty.data());
-    last_upload_bytes_ += empty.size() * sizeof(GpuCluster);
-    free_.insert(std::upper_bound(free_.begin(), free_.end(), std::make_pair(slot.first, 0u)), {slot.first, slot.span});
-    // Merge neighbours, then give a trailing free range back to the end.
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> merged;
-    for (const auto& r : free_) {
-        if (!merged.empty() && merged.back().first + merged.back().second == r.first) merged.back().second += r.second;
-        else merged.push_back(r);
+    const GpuCluster empty = empty_cluster();
+    for (const std::uint32_t page : slot.pages) {
+        clusters_.upload(std::size_t(page) * sizeof(GpuCluster), sizeof(GpuCluster), &empty);
+        last_upload_bytes_ += sizeof(GpuCluster);
+        free_.push_back(page);
     }
-    free_ = std::move(merged);
-    if (!free_.empty() && free_.back().first + free_.back().second == gaussian_count_) {
-        gaussian_count_ = free_.back().first;
-        free_.pop_back();
+    std::sort(free_.begin(), free_.end(), std::greater<>());
+    while (!free_.empty() && std::uint64_t(free_.front() + 1) * kCluster == gaussian_count_) {
+        gaussian_count_ -= kCluster;
+        free_.erase(free_.begin());
     }
     slot = Slot{};
 }
 
-// Uploads a slot's cloud into a fresh range: Gaussians tagged with the slot's instance index, its
-// SH at the common stride, and the clusters of its range (padding Gaussians have opacity 0).
+// Uploads a slot's cloud into its pages: Gaussians tagged with the slot's instance index, SH at the
+// common stride, one cluster record per page (padding Gaussians have opacity 0). Runs of adjacent
+// pages go up in one call.
 void GpuScene::place(Slot& slot) {
     const SplatCloud& cloud = *slot.cloud;
     const auto instance = static_cast<std::uint32_t>(&slot - slots_.data());
-    slot.span = std::max(cluster_span(cloud.size()), kCluster);
-    slot.first = allocate(slot.span);
+    const std::size_t pages = std::max<std::size_t>((cloud.size() + kCluster - 1) / kCluster, 1);
     std::vector<GpuGaussian> gaussians;
     slot.dropped = pack_gaussians(cloud, instance, gaussians);
     GpuGaussian padding{};
     padding.covariance_b.w = std::bit_cast<float>(instance);
-    gaussians.resize(slot.span, padding);
+    gaussians.resize(pages * kCluster, padding);
     std::vector<float> sh;
     pack_sh(cloud, slot.sh_degree, sh_stride_, sh);
-    sh.resize(std::size_t(slot.span) * sh_stride_, 0.0f);
+    sh.resize(pages * kCluster * sh_stride_, 0.0f);
     std::vector<GpuCluster> clusters = build_clusters({&cloud});
-    clusters.resize(slot.span / kCluster, empty_cluster());
+    clusters.resize(pages, empty_cluster());
     for (GpuCluster& c : clusters)
         if (c.bounds.w >= 0.0f) c.bounds.w = std::bit_cast<float>(instance);
-    gaussians_.upload(std::size_t(slot.first) * sizeof(GpuGaussian), gaussians.size() * sizeof(GpuGaussian), gaussians.data());
-    sh_.upload(std::size_t(slot.first) * sh_stride_ * sizeof(float), sh.size() * sizeof(float), sh.data());
-    clusters_.upload(std::size_t(slot.first / kCluster) * sizeof(GpuCluster), clusters.size() * sizeof(GpuCluster), clusters.data());
-    last_upload_bytes_ += gaussians.size() * sizeof(GpuGaussian) + sh.size() * sizeof(float) + clusters.size() * sizeof(GpuCluster);
+    slot.pages.clear();
+    for (std::size_t j = 0; j < pages; ++j) slot.pages.push_back(allocate_page());
+    for (std::size_t j = 0; j < pages;) {
+        std::size_t run = 1;
+        while (j + run < pages && slot.pages[j + run] == slot.pages[j] + run) ++run;
+        const std::size_t page = slot.pages[j];
+        gaussians_.upload(page * kCluster * sizeof(GpuGaussian), run * kCluster * sizeof(GpuGaussian), &gaussians[j * kCluster]);
+        sh_.upload(page * kCluster * sh_stride_ * sizeof(float), run * kCluster * sh_stride_ * sizeof(float), &sh[j * kCluster * sh_stride_]);
+        clusters_.upload(page * sizeof(GpuCluster), run * sizeof(GpuCluster), &clusters[j]);
+        j += run;
+    }
+    last_upload_bytes_ += pages * page_bytes();
     slot.coarsest = 1;
     for (const std::uint8_t level : cloud.lod_level) slot.coarsest = std::max<std::uint32_t>(slot.coarsest, level);
 }
@@ -351,7 +372,9 @@ bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
         GpuInstance& inst = instances[static_cast<std::size_t>(slot_of[i])];
         inst.model = components[i]->node()->world_matrix();
         inst.rotation_inverse = inverse_rotation(inst.model);
-        inst.info = glm::uvec4(slot.first, static_cast<std::uint32_t>(slot.cloud->size()), static_cast<std::uint32_t>(slot.sh_degree),
+        // x: its first page's first slot (informational: the pages need not be adjacent).
+        inst.info = glm::uvec4(slot.pages.empty() ? 0u : slot.pages.front() * kCluster,
+                               static_cast<std::uint32_t>(slot.cloud->size()), static_cast<std::uint32_t>(slot.sh_degree),
                                std::bit_cast<std::uint32_t>(spectral_norm(glm::mat3(inst.model))));
     }
     const std::size_t bytes = std::max<std::size_t>(instances.size(), 1) * sizeof(GpuInstance);

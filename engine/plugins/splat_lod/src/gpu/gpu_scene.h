@@ -32,9 +32,10 @@ std::vector<GpuCluster> build_clusters(const std::vector<const SplatCloud*>& clo
 // ‖M‖₂, the largest singular value of a 3×3 matrix (how much the model matrix can stretch a length).
 float spectral_norm(const glm::mat3& m);
 
-// Gaussians of every component live in one buffer, each cloud in its own range that starts on a
-// cluster boundary (SPLAT_PROJECT_WORKGROUP_SIZE), so clusters never mix clouds. Adding a cloud
-// uploads only its range (first fit in the freed ranges, else at the end, growing the buffers by a
+// Gaussians of every component live in one buffer made of pages of SPLAT_PROJECT_WORKGROUP_SIZE
+// slots, one cluster each; a cloud takes whole pages (not necessarily adjacent), so clusters never
+// mix clouds and freed pages fit any later cloud (no fragmentation). Adding a cloud uploads only
+// its pages (freed pages first, lowest first, else new ones at the end, growing the buffers by a
 // GPU-side copy when full); removing one marks its clusters empty, which step 1a drops in every
 // mode. This is what makes streaming affordable: a chunk level that arrives costs its own bytes,
 // not a re-upload of the scene. Only a cloud needing more SH coefficients than the buffers hold
@@ -45,7 +46,7 @@ public:
     // refreshes the instance transforms. Returns true when anything was uploaded or freed.
     bool update(const std::vector<const SplatComponent*>& components);
 
-    // Gaussian slots up to the end of the last range in use (what step 1a walks).
+    // Gaussian slots up to the end of the last page in use (what step 1a walks).
     std::uint32_t gaussian_count() const { return gaussian_count_; }
     std::uint32_t instance_count() const { return static_cast<std::uint32_t>(slots_.size()); }
     std::uint32_t sh_stride() const { return sh_stride_; }
@@ -55,8 +56,16 @@ public:
     // Bytes sent to the GPU by the last update() for Gaussians, SH and clusters (GPU-side copies
     // when the buffers grow are not uploads and are not counted).
     std::uint64_t last_upload_bytes() const { return last_upload_bytes_; }
-    // Gaussian slots in use by clouds (without the padding to cluster boundaries).
+    // Gaussians of the resident clouds (without the padding of their last pages).
     std::uint64_t live_gaussians() const;
+    // Pages in use and free below the end; bytes one page costs (Gaussians, SH, cluster record).
+    std::uint32_t pages_in_use() const;
+    std::uint32_t free_pages() const { return static_cast<std::uint32_t>(free_.size()); }
+    std::uint64_t page_bytes() const;
+    // Makes room for `gaussians` slots (rounded up to pages) with SH up to `sh_degree` now, so that
+    // a streamed world of a known budget never grows or rebuilds the buffers while running. A
+    // higher degree than the resident one starts the scene over (what update() would do).
+    void reserve(std::uint64_t gaussians, int sh_degree);
 
     const engine::gl::Buffer& gaussians() const { return gaussians_; }
     const engine::gl::Buffer& sh() const { return sh_; }
@@ -67,20 +76,19 @@ private:
     struct Slot {  // one instance index; `cloud` null when free
         std::shared_ptr<const SplatCloud> cloud;
         int sh_degree = 0;
-        std::uint32_t first = 0;  // Gaussian index of its range
-        std::uint32_t span = 0;   // range length, a multiple of the cluster size
+        std::vector<std::uint32_t> pages;  // page j holds the cloud's Gaussians [256·j, 256·(j + 1))
         std::uint32_t coarsest = 1;
         std::size_t dropped = 0;
     };
     void reset(int sh_degree);
-    std::uint32_t allocate(std::uint32_t span);
+    std::uint32_t allocate_page();
     void release(Slot& slot);
     void place(Slot& slot);
     void grow(std::uint32_t capacity);
 
     std::vector<Slot> slots_;
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> free_;  // (first, span) ranges, sorted by first
-    std::uint32_t capacity_ = 0;   // Gaussian slots the buffers hold
+    std::vector<std::uint32_t> free_;  // free pages below the end, sorted descending (lowest at the back)
+    std::uint32_t capacity_ = 0;       // Gaussian slots the buffers hold (whole pages)
     std::uint32_t gaussian_count_ = 0;
     std::uint64_t last_upload_bytes_ = 0;
     std::size_t dropped_ = 0;
