@@ -1,0 +1,101 @@
+#pragma once
+// A streamed world on disk: a grid of chunk files (baked LOD splat assets, coarse level first) and
+// the glTF props placed on it, described by one manifest, `world.json`, written last and
+// atomically by the generator (its presence means the world is complete). The streamer reads
+// only the manifest up front; chunk files are read later, a level prefix at a time.
+//
+// Level prefixes: a chunk file holds its Gaussians ordered level 4 (coarsest) first, then 3, 2, 1
+// (finest). `prefix_count[l - 1]` is the number of Gaussians with level ≥ l, so the chunk drawn
+// down to level l is the file's first prefix_count[l - 1] Gaussians, and prefix_count[0] is the
+// whole file. Vertices are fixed-size records after the header: the bytes of a prefix are
+// header_bytes + count · vertex_bytes.
+//
+// Streaming decisions: level l < 4 of a chunk can be selected (ALGORITHMS §3, "not too small")
+// only while, at the chunk's nearest distance z, some Gaussian of the level has coverage ≥ S_T or
+// coverage / S_min ≥ S_rel_min. With coverage ≤ 2·e·f / z (e: the Gaussian's extent in world
+// units, f: focal length in pixels) the per-level maxima below bound both tests:
+//   needed(l) ⇔ 2·extent_max·f / z ≥ S_T  or  2·extent_per_min_coverage_max·f / z ≥ S_rel_min.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "splat_lod/splat_cloud.h"
+
+namespace splat_lod::world {
+
+inline constexpr int kManifestVersion = 1;
+inline constexpr int kLevels = 4;
+inline constexpr const char* kManifestFileName = "world.json";
+
+struct ChunkLevel {
+    // Largest extent sqrt(2·ln(255·o))·min(σ_max, √2·σ_mid) over the level's Gaussians (world
+    // units; 0 for an empty level) and the largest ratio of that extent to the Gaussian's
+    // coverage_min (−1 when some Gaussian of the level has none: always needed).
+    float extent_max = 0.0f;
+    float extent_per_min_coverage_max = 0.0f;
+};
+
+struct ChunkEntry {
+    std::string id;                        // "chunk_+003_-002": grid column and row, signed
+    std::filesystem::path file;            // relative to the manifest's folder
+    glm::ivec2 cell{0};                    // grid column (x) and row (z)
+    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // of the Gaussians' means, world space
+    std::array<std::uint64_t, kLevels> prefix_count{};  // [l − 1]: Gaussians with level ≥ l
+    std::array<ChunkLevel, kLevels> levels{};           // [l − 1]
+    std::uint64_t header_bytes = 0;
+    std::uint64_t vertex_bytes = 0;        // bytes per Gaussian record in the file
+    std::uint64_t file_bytes = 0;          // the whole file (checked before use)
+
+    std::uint64_t prefix_bytes(int level) const { return header_bytes + prefix_count[level - 1] * vertex_bytes; }
+};
+
+struct Prop {
+    std::filesystem::path mesh;            // a glTF file, relative to the manifest's folder
+    glm::vec3 translation{0.0f};
+    glm::vec3 rotation_euler_deg{0.0f};
+    glm::vec3 scale{1.0f};
+};
+
+struct WorldManifest {
+    int version = kManifestVersion;
+    std::uint64_t seed = 1;
+    float size_m = 1024.0f;                // the world spans [−size/2, size/2] in x and z
+    float chunk_size_m = 64.0f;
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    std::uint64_t gaussians = 0;           // over all chunks
+    // What the world was made with beyond seed and sizes: the Gaussian count scale and the
+    // generator's content and bake settings. A cached world is reused only when both are equal.
+    float density = 1.0f;
+    std::string generator;
+    std::vector<ChunkEntry> chunks;
+    std::vector<Prop> props;
+    std::filesystem::path terrain_mesh;    // optional glTF ground under the splats (may be empty)
+};
+
+// "chunk_+003_-002" for column 3, row −2.
+std::string chunk_id(const glm::ivec2& cell);
+
+// Reads and checks a manifest. Every problem throws engine::Error as "<file>: <key path>: <problem>"
+// ("world.json: chunks[3].prefix_count: counts must not increase with the level"): a missing or
+// unreadable file, bad JSON, another version, an unknown or missing key, a wrong type, a negative
+// or non-finite number, prefix counts that grow with the level or disagree with the byte counts,
+// and paths (chunk files, meshes) that are absolute or leave the manifest's folder.
+WorldManifest read_world_manifest(const std::filesystem::path& path);
+
+// Writes the manifest through a temporary file and a rename (engine::write_file_atomic): a reader
+// sees the old manifest or the new one, never a part. Checks the same rules as the reader first.
+void write_world_manifest(const std::filesystem::path& path, const WorldManifest& manifest);
+
+// The manifest entry of a baked chunk already written to `folder / file` (an INRIA PLY by
+// write_inria_ply): prefix counts (the cloud must be ordered level 4 first, levels 1..4), bounds of
+// the means, per-level extent bounds (world/gaussian_extent.h) and the byte layout read back from
+// the file's header. Throws engine::Error naming the file when the order is wrong or the file does
+// not hold the cloud's records.
+ChunkEntry describe_chunk(const SplatCloud& baked, const std::filesystem::path& folder,
+                          const std::filesystem::path& file, const glm::ivec2& cell);
+
+}  // namespace splat_lod::world

@@ -1,0 +1,87 @@
+// describe_chunk(): the manifest entry of a baked chunk (world/world_manifest.h) from the cloud that
+// was written and the header of the file it was written to.
+#include <limits>
+
+#include "engine/core/error.h"
+#include "io/ply_vertex_layout.h"
+#include "splat_lod/world/gaussian_extent.h"
+#include "splat_lod/world/world_manifest.h"
+
+namespace splat_lod::world {
+namespace {
+
+// prefix_count[l − 1] = Gaussians with level ≥ l; the levels must come 4, 3, 2, 1 so that each of
+// those sets is a prefix of the file.
+std::array<std::uint64_t, kLevels> level_prefixes(const SplatCloud& baked, const std::string& name) {
+    std::array<std::uint64_t, kLevels> counts{};
+    int previous = kLevels;
+    for (std::size_t i = 0; i < baked.size(); ++i) {
+        const int level = baked.lod_level.empty() ? 1 : baked.lod_level[i];
+        if (level < 1 || level > kLevels)
+            engine::fail(name + ": Gaussian " + std::to_string(i) + " has level " + std::to_string(level) +
+                         ", expected 1..4");
+        if (level > previous)
+            engine::fail(name + ": Gaussian " + std::to_string(i) + " has level " + std::to_string(level) +
+                         " after level " + std::to_string(previous) +
+                         ": a chunk must be ordered coarsest level (4) first so that levels are prefixes");
+        previous = level;
+        for (int l = 1; l <= level; ++l) ++counts[static_cast<std::size_t>(l - 1)];
+    }
+    return counts;
+}
+
+// Per level: the largest extent and the largest extent / coverage_min (−1 when some Gaussian has
+// no coverage_min: the level can never be ruled out). Rounded up by a relative 1e−6 so that the
+// float bound is never below the double value, as build_clusters() does.
+std::array<ChunkLevel, kLevels> level_bounds(const SplatCloud& baked) {
+    std::array<ChunkLevel, kLevels> levels{};
+    for (std::size_t i = 0; i < baked.size(); ++i) {
+        const int level = baked.lod_level.empty() ? 1 : baked.lod_level[i];
+        ChunkLevel& bound = levels[static_cast<std::size_t>(level - 1)];
+        const double extent = gaussian_extent(baked.log_scales[i], baked.opacity_logits[i]);
+        bound.extent_max = std::max(bound.extent_max, static_cast<float>(extent * (1.0 + 1e-6)));
+        const float coverage_min = baked.coverage_min.empty() ? -1.0f : baked.coverage_min[i];
+        if (!(coverage_min > 0.0f) || bound.extent_per_min_coverage_max < 0.0f)
+            bound.extent_per_min_coverage_max = -1.0f;
+        else
+            bound.extent_per_min_coverage_max = std::max(
+                bound.extent_per_min_coverage_max, static_cast<float>(extent / coverage_min * (1.0 + 1e-6)));
+    }
+    return levels;
+}
+
+}  // namespace
+
+ChunkEntry describe_chunk(const SplatCloud& baked, const std::filesystem::path& folder,
+                          const std::filesystem::path& file, const glm::ivec2& cell) {
+    const std::filesystem::path path = folder / file;
+    const std::string name = path.string();
+    baked.check_consistent();
+    ChunkEntry entry;
+    entry.id = chunk_id(cell);
+    entry.file = file;
+    entry.cell = cell;
+    entry.prefix_count = level_prefixes(baked, name);
+    entry.levels = level_bounds(baked);
+    if (!baked.empty()) {
+        entry.bounds_min = glm::vec3(std::numeric_limits<float>::max());
+        entry.bounds_max = glm::vec3(std::numeric_limits<float>::lowest());
+        for (const glm::vec3& p : baked.positions) {
+            entry.bounds_min = glm::min(entry.bounds_min, p);
+            entry.bounds_max = glm::max(entry.bounds_max, p);
+        }
+    }
+
+    const io::PlyVertexLayout layout = io::read_ply_vertex_layout(path);
+    if (layout.vertex_count != baked.size() ||
+        layout.file_bytes != layout.header_bytes + layout.vertex_count * layout.vertex_bytes)
+        engine::fail(name + ": holds " + std::to_string(layout.vertex_count) + " records in " +
+                     std::to_string(layout.file_bytes) + " bytes, expected the " + std::to_string(baked.size()) +
+                     " Gaussians of the cloud that was written");
+    entry.header_bytes = layout.header_bytes;
+    entry.vertex_bytes = layout.vertex_bytes;
+    entry.file_bytes = layout.file_bytes;
+    return entry;
+}
+
+}  // namespace splat_lod::world

@@ -1,0 +1,137 @@
+// What the chunk streamer wants this frame and what it gives up first (chunk_streamer.h, steps 1
+// and 4, and the eviction order of step 5).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+#include "stream_state.h"
+
+namespace splat_lod::world {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// m(l) = D(l) / z: how many times closer than its load distance the chunk is (∞ inside the bounds).
+double margin(double load_distance, double distance) {
+    if (!(load_distance > 0.0)) return 0.0;
+    if (!(distance > 0.0)) return kInfinity;
+    return load_distance / distance;
+}
+
+}  // namespace
+
+bool LevelRank::operator<(const LevelRank& o) const {
+    return std::tie(tier, primary, distance, coarseness, chunk) <
+           std::tie(o.tier, o.primary, o.distance, o.coarseness, o.chunk);
+}
+
+LevelRank ChunkStreamer::State::rank(std::size_t chunk, int level) const {
+    const ChunkSlot& slot = chunks[chunk];
+    LevelRank r;
+    r.tier = level == kLevels ? 0 : 1;
+    r.distance = slot.distance;
+    r.primary = level == kLevels ? r.distance : -slot.level(level).margin;
+    r.coarseness = -level;
+    r.chunk = chunk;
+    return r;
+}
+
+void ChunkStreamer::State::plan(const StreamView& view) {
+    const double keep_factor = settings.unload_distance_factor;
+    order.clear();
+    for (std::size_t c = 0; c < chunks.size(); ++c) {
+        ChunkSlot& slot = chunks[c];
+        slot.distance = nearest_distance(*slot.entry, view.camera_position);
+        // Prefix semantics: a level is needed when it or any finer level could be selected.
+        double finer = 0.0;
+        for (int l = 1; l < kLevels; ++l) {
+            const double load = slot.failure_permanent
+                                    ? 0.0
+                                    : level_load_distance(*slot.entry, l, view.focal_length_px, settings.lod) *
+                                          settings.load_distance_scale;
+            finer = std::max(finer, margin(load, slot.distance));
+            slot.level(l).margin = finer;
+        }
+        slot.level(kLevels).margin = kInfinity;
+        slot.finest_needed = kLevels;
+        for (int l = kLevels - 1; l >= 1; --l)
+            if (slot.level(l).margin >= 1.0) slot.finest_needed = l;
+
+        for (int l = kLevels; l >= 1; --l) {
+            LevelSlot& s = slot.level(l);
+            const bool needed = s.margin >= 1.0;
+            const bool within_keep = s.margin * keep_factor >= 1.0;
+            s.frames_outside_keep = s.active() && !within_keep ? s.frames_outside_keep + 1 : 0;
+            const bool held = s.active() && s.frames_outside_keep <= settings.unload_delay_frames;
+            s.wanted = (needed || held) && !slot.failure_permanent && !slot.blocked(l) &&
+                       (l == kLevels || slot.level(l + 1).wanted);
+            s.target = false;
+            if (s.wanted) order.push_back({rank(c, l), c, l});
+        }
+    }
+    std::sort(order.begin(), order.end(), [](const PlannedLevel& a, const PlannedLevel& b) { return a.rank < b.rank; });
+
+    // Greedy within the memory budget; a level that does not fit is skipped (with its finer levels,
+    // which rank after it), and smaller ones further down may still fit.
+    std::uint64_t planned = 0;
+    for (const PlannedLevel& p : order) {
+        ChunkSlot& slot = chunks[p.chunk];
+        LevelSlot& s = slot.level(p.level);
+        if (p.level < kLevels && !slot.level(p.level + 1).target) continue;
+        const std::uint64_t bytes = s.complete() ? s.resident_bytes : s.planned_bytes;
+        if (bytes > settings.memory_budget_bytes - planned) continue;
+        planned += bytes;
+        s.target = true;
+    }
+}
+
+namespace {
+
+struct EvictionCandidate {
+    bool found = false;
+    bool target = false;
+    LevelRank rank;
+    std::size_t chunk = 0;
+    int level = 0;
+};
+
+// The level to give up first: outside the target set before inside it, then the worst rank. Only
+// a chunk's finest level holding GPU memory is a candidate (what stays must be a coarse prefix).
+EvictionCandidate worst_candidate(const ChunkStreamer::State& state, bool allow_target) {
+    EvictionCandidate worst;
+    for (std::size_t c = 0; c < state.chunks.size(); ++c) {
+        const ChunkSlot& slot = state.chunks[c];
+        int finest = 0;
+        for (int l = 1; l <= kLevels && finest == 0; ++l)
+            if (slot.level(l).any_uploaded()) finest = l;
+        if (finest == 0) continue;
+        const bool target = slot.level(finest).target;
+        if (target && !allow_target) continue;
+        const LevelRank r = state.rank(c, finest);
+        if (!worst.found || (worst.target && !target) || (worst.target == target && worst.rank < r))
+            worst = {true, target, r, c, finest};
+    }
+    return worst;
+}
+
+}  // namespace
+
+bool ChunkStreamer::State::make_room(std::uint64_t bytes) {
+    while (resident + bytes > settings.memory_budget_bytes) {
+        const EvictionCandidate victim = worst_candidate(*this, false);
+        if (!victim.found) return false;
+        drop_levels(victim.chunk, victim.level, DropReason::memory);
+    }
+    return true;
+}
+
+void ChunkStreamer::State::enforce_memory_budget() {
+    while (resident > settings.memory_budget_bytes) {
+        const EvictionCandidate victim = worst_candidate(*this, true);
+        if (!victim.found) return;
+        drop_levels(victim.chunk, victim.level, DropReason::memory);
+    }
+}
+
+}  // namespace splat_lod::world

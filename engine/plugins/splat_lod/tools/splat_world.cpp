@@ -1,0 +1,107 @@
+// splat_world: generates and bakes the sample world into a folder (world/world_generator.h), or
+// reuses the world already there when it was made with the same options.
+//   splat_world --out DIR [--seed N] [--size M] [--chunk M] [--density F] [--threads N]
+//               [--refine-iterations N] [--bake-width W --bake-height H] [--no-terrain-mesh] [--force]
+//               [--count-only]
+// Progress (chunks done, Gaussians, elapsed, ETA) goes to stderr, the summary (chunks, Gaussians per
+// level, bytes, stage times) to stdout. Exit code 1 on any error; the manifest is written last, so a
+// failed run leaves no world.json.
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "engine/core/error.h"
+#include "splat_lod/world/world_generator.h"
+
+namespace {
+
+// CLI11 wraps "-3" and 2^64 into a std::uint64_t without complaint, so the seed is parsed here.
+std::uint64_t parse_seed(const std::string& text) {
+    std::uint64_t seed = 0;
+    const char* end = text.data() + text.size();
+    const auto [stop, error] = std::from_chars(text.data(), end, seed);
+    if (text.empty() || error != std::errc() || stop != end)
+        engine::fail("--seed must be a whole number from 0 to 18446744073709551615, got \"" + text + "\"");
+    return seed;
+}
+
+std::string duration(double seconds) {
+    if (seconds < 0.0) return "?";
+    const auto s = static_cast<long long>(seconds + 0.5);
+    char text[32];
+    if (s >= 3600) std::snprintf(text, sizeof text, "%lldh%02lldm%02llds", s / 3600, s / 60 % 60, s % 60);
+    else std::snprintf(text, sizeof text, "%lldm%02llds", s / 60, s % 60);
+    return text;
+}
+
+// One line per chunk for small worlds; for large ones at most one every two seconds (and the last).
+void print_progress(const splat_lod::world::WorldProgress& p) {
+    static auto last = std::chrono::steady_clock::time_point{};
+    const auto now = std::chrono::steady_clock::now();
+    if (p.stage != "chunks") {
+        std::fprintf(stderr, "splat_world: %s (%s elapsed)\n", p.stage.c_str(), duration(p.elapsed_seconds).c_str());
+        return;
+    }
+    const bool last_chunk = p.chunks_done == p.chunks_total;
+    if (p.chunks_total > 64 && !last_chunk && now - last < std::chrono::seconds(2)) return;
+    last = now;
+    std::fprintf(stderr, "splat_world: chunks %zu/%zu (%.1f%%), %llu Gaussians, %s elapsed, ETA %s\n", p.chunks_done,
+                 p.chunks_total, p.chunks_total ? 100.0 * static_cast<double>(p.chunks_done) / static_cast<double>(p.chunks_total) : 100.0,
+                 static_cast<unsigned long long>(p.gaussians), duration(p.elapsed_seconds).c_str(),
+                 duration(p.eta_seconds).c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    splat_lod::world::WorldOptions options;
+    std::string out, seed_text = "1";
+    bool no_terrain_mesh = false, count_only = false;
+    CLI::App app{"Generate and bake the sample world of LOD splat chunks and glTF props (cached in --out)"};
+    app.add_option("--out", out, "the world's folder (world.json, chunks/, meshes/)")->required();
+    app.add_option("--seed", seed_text, "random seed, 0 to 2^64 - 1 (the same seed gives the same bytes)");
+    app.add_option("--size", options.size_m, "world size in metres (a multiple of --chunk); 1024 by default")
+        ->check(CLI::Range(4.0, 65536.0));
+    app.add_option("--chunk", options.chunk_size_m, "chunk size in metres; 64 by default")->check(CLI::Range(4.0, 65536.0));
+    app.add_option("--density", options.density, "scales every Gaussian count, (0, 8]; 1 by default")
+        ->check(CLI::Range(0.0, 8.0));
+    app.add_option("--threads", options.threads, "chunks baked at once (0: all cores)")->check(CLI::Range(0, 1024));
+    app.add_option("--refine-iterations", options.bake.refine_iterations,
+                   "Adam iterations per coarse level of each chunk's bake (0: off)")
+        ->check(CLI::Range(0, 100000));
+    app.add_option("--bake-width", options.bake_width, "chunk bake camera width (a multiple of 64)")->check(CLI::Range(64, 8192));
+    app.add_option("--bake-height", options.bake_height, "chunk bake camera height (a multiple of 64)")
+        ->check(CLI::Range(64, 8192));
+    app.add_flag("--no-terrain-mesh", no_terrain_mesh, "do not write the coarse terrain mesh");
+    app.add_flag("--force", options.force, "regenerate even when the cached world matches");
+    app.add_flag("--count-only", count_only, "only generate the content and print its Gaussian counts (no bake, no files)");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // CLI11 prints the message; its own exit codes (100+) are folded into the tools' 1.
+        return app.exit(e) == 0 ? 0 : 1;
+    }
+    try {
+        options.seed = parse_seed(seed_text);
+        options.output = out;
+        options.terrain_mesh = !no_terrain_mesh;
+        options.progress = print_progress;
+        if (count_only) {
+            const auto summary = splat_lod::world::count_world_content(options);
+            std::printf("%s", splat_lod::world::format_summary(summary).c_str());
+            return 0;
+        }
+        const auto result = splat_lod::world::generate_world(options);
+        if (!result.summary.cached && !result.summary.cache_note.empty())
+            std::fprintf(stderr, "splat_world: not cached: %s\n", result.summary.cache_note.c_str());
+        std::printf("%s", splat_lod::world::format_summary(result.summary).c_str());
+        std::printf("world: %s\n", (options.output / splat_lod::world::kManifestFileName).string().c_str());
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "splat_world: %s\n", e.what());
+        return 1;
+    }
+}
