@@ -1,0 +1,36 @@
+#include "splat_lod/world/stream_scene_sink.h"
+
+#include <memory>
+
+#include "engine/core/error.h"
+#include "splat_lod/splat_component.h"
+
+namespace splat_lod::world {
+
+SceneResidencySink::SceneResidencySink(engine::Node& root, int sh_degree_cap) : root_(root), sh_degree_cap_(sh_degree_cap) {}
+
+void SceneResidencySink::upload(const LevelPart& part) {
+    if (!part.gaussians) engine::fail("SceneResidencySink: " + part.chunk_id + " level " + std::to_string(part.level) + " has no Gaussians");
+    engine::Node& node =
+        root_.add_child(part.chunk_id + " L" + std::to_string(part.level) + " part " + std::to_string(part.part));
+    auto component = std::make_unique<SplatComponent>();
+    component->cloud = part.gaussians;
+    component->sh_degree_cap = sh_degree_cap_;
+    node.attach(std::move(component));
+    nodes_[{part.chunk_id, part.level}].push_back(&node);
+}
+
+void SceneResidencySink::release(const std::string& chunk_id, int level) {
+    const auto it = nodes_.find({chunk_id, level});
+    if (it == nodes_.end()) return;
+    for (engine::Node* node : it->second) root_.remove_child(*node);
+    nodes_.erase(it);
+}
+
+std::size_t SceneResidencySink::resident_parts() const {
+    std::size_t n = 0;
+    for (const auto& [key, nodes] : nodes_) n += nodes.size();
+    return n;
+}
+
+}  // namespace splat_lod::world
