@@ -1,5 +1,6 @@
 #include "engine/core/cli_values.h"
 
+#include <charconv>
 #include <cmath>
 #include <sstream>
 
@@ -15,6 +16,15 @@ glm::vec3 parse_vec3(const std::string& text, const std::string& option) {
         !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
         fail(option + ": expected three finite numbers X,Y,Z, got '" + text + "'");
     return v;
+}
+
+std::uint64_t parse_u64(const std::string& text, const std::string& option) {
+    std::uint64_t value = 0;
+    const char* end = text.data() + text.size();
+    const auto [stop, error] = std::from_chars(text.data(), end, value);
+    if (text.empty() || error != std::errc() || stop != end)
+        fail(option + " must be a whole number from 0 to 18446744073709551615, got \"" + text + "\"");
+    return value;
 }
 
 }  // namespace engine

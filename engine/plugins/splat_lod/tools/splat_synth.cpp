@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
+#include "engine/core/cli_values.h"
 #include "engine/core/error.h"
 #include "splat_lod/splat_io.h"
 #include "splat_lod/synth/fine_detail_scene.h"
@@ -23,15 +24,6 @@ struct Options {
     float detail = 1.0f;
 };
 
-// CLI11 wraps "-3" and 2^64 into a std::uint64_t without complaint, so the seed is parsed here.
-std::uint64_t parse_seed(const std::string& text) {
-    std::uint64_t seed = 0;
-    const char* end = text.data() + text.size();
-    const auto [stop, error] = std::from_chars(text.data(), end, seed);
-    if (text.empty() || error != std::errc() || stop != end)
-        engine::fail("--seed must be a whole number from 0 to 18446744073709551615, got \"" + text + "\"");
-    return seed;
-}
 
 int run(const Options& o) {
     namespace synth = splat_lod::synth;
@@ -43,7 +35,7 @@ int run(const Options& o) {
                       static_cast<double>(o.detail));
         engine::fail(message);
     }
-    const std::uint64_t seed = parse_seed(o.seed_text);
+    const std::uint64_t seed = engine::parse_u64(o.seed_text, "--seed");
     const auto started = std::chrono::steady_clock::now();
     const splat_lod::SplatCloud cloud = synth::make_fine_detail_scene({seed, o.detail});
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -13,20 +13,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include "engine/core/cli_values.h"
 #include "engine/core/error.h"
 #include "splat_lod/world/world_generator.h"
 
 namespace {
 
-// CLI11 wraps "-3" and 2^64 into a std::uint64_t without complaint, so the seed is parsed here.
-std::uint64_t parse_seed(const std::string& text) {
-    std::uint64_t seed = 0;
-    const char* end = text.data() + text.size();
-    const auto [stop, error] = std::from_chars(text.data(), end, seed);
-    if (text.empty() || error != std::errc() || stop != end)
-        engine::fail("--seed must be a whole number from 0 to 18446744073709551615, got \"" + text + "\"");
-    return seed;
-}
 
 std::string duration(double seconds) {
     if (seconds < 0.0) return "?";
@@ -85,7 +77,7 @@ int main(int argc, char** argv) {
         return app.exit(e) == 0 ? 0 : 1;
     }
     try {
-        options.seed = parse_seed(seed_text);
+        options.seed = engine::parse_u64(seed_text, "--seed");
         options.output = out;
         options.terrain_mesh = !no_terrain_mesh;
         options.progress = print_progress;

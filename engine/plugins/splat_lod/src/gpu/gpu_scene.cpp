@@ -12,11 +12,10 @@
 #include "engine/core/log.h"
 #include "engine/scene/node.h"
 #include "splat_lod/splat_component.h"
+#include "splat_lod/world/gaussian_extent.h"
 
 namespace splat_lod::gpu {
 namespace {
-
-double sigmoid(double x) { return x >= 0 ? 1.0 / (1.0 + std::exp(-x)) : std::exp(x) / (1.0 + std::exp(x)); }
 
 int drawn_degree(const SplatComponent& c) { return std::min(c.sh_degree_cap, c.cloud->sh_degree); }
 
@@ -65,7 +64,7 @@ std::size_t pack_gaussians(const SplatCloud& cloud, std::uint32_t instance, std:
         for (int c = 0; c < 3; ++c) m[c] *= s[c];
         const glm::dmat3 sigma = m * glm::transpose(m);
         GpuGaussian g;
-        g.position_opacity = glm::vec4(cloud.positions[i], static_cast<float>(sigmoid(cloud.opacity_logits[i])));
+        g.position_opacity = glm::vec4(cloud.positions[i], static_cast<float>(world::opacity_from_logit(cloud.opacity_logits[i])));
         g.covariance_a = glm::vec4(sigma[0][0], sigma[0][1], sigma[0][2], sigma[1][1]);
         g.covariance_b = glm::vec4(static_cast<float>(sigma[1][2]), static_cast<float>(sigma[2][2]), 0.0f, instance_bits);
         const float level = cloud.lod_level.empty() ? 1.0f : static_cast<float>(cloud.lod_level[i]);
@@ -110,14 +109,8 @@ std::vector<GpuCluster> build_clusters(const std::vector<const SplatCloud*>& clo
             }
             c.bounds.z = std::max(c.bounds.z, cloud.lod_level.empty() ? 1.0f : static_cast<float>(cloud.lod_level[i]));
             if (!drawable(cloud, i, cloud.sh_rest_stride())) continue;  // never drawn: no bound needed
-            const double opacity = sigmoid(cloud.opacity_logits[i]);
-            // Coverage takes the shorter chord: S² ≤ 2·L·λ_min(Σ2D) ≤ 2·L·‖J‖₂²·σ_mid² (Courant–Fischer:
-            // the projected 2D covariance's smaller eigenvalue cannot exceed the 3D middle one), and
-            // S² ≤ L·‖J‖₂²·σ_max² always: the extent is the smaller of √2·σ_mid and σ_max, times √L.
-            glm::vec3 s = cloud.log_scales[i];
-            std::sort(&s.x, &s.x + 3);
-            const double sigma = std::min(std::exp(static_cast<double>(s.z)), std::sqrt(2.0) * std::exp(static_cast<double>(s.y)));
-            const double extent = opacity > 1.0 / 255.0 ? std::sqrt(2.0 * std::log(255.0 * opacity)) * sigma : 0.0;
+            // The shorter chord's bound (world/gaussian_extent.h): coverage ≤ 2·e·‖M‖₂·‖J‖₂.
+            const double extent = world::gaussian_extent(cloud.log_scales[i], cloud.opacity_logits[i]);
             c.bounds.x = std::max(c.bounds.x, static_cast<float>(extent));
             // The ratio, not the smallest coverage_min: one tiny member would otherwise pin the
             // whole cluster, while e / S_min is about the same for neighbours seen from the same

@@ -1,9 +1,9 @@
 #pragma once
 // A world-space bound on how far a Gaussian reaches for the purposes of pixel coverage
 // (ALGORITHMS §2), shared by whatever needs "could this Gaussian be large enough at distance z":
-// the chunk manifest's per-level bounds (world_manifest.h) and, identically, the GPU cluster
-// bounds of build_clusters() in src/gpu/gpu_scene.cpp, which can call this instead of its own
-// copy (header-only and GL-free so that neither side needs another library).
+// the chunk manifest's per-level bounds (world_manifest.h) and the GPU cluster bounds of
+// build_clusters() in src/gpu/gpu_scene.cpp (header-only and GL-free so that neither side needs
+// another library).
 //
 // Coverage takes the shorter chord: S² ≤ 2·L·λ_min(Σ2D) ≤ 2·L·‖J‖₂²·σ_mid² (Courant–Fischer: the
 // projected 2D covariance's smaller eigenvalue cannot exceed the 3D middle one), and
