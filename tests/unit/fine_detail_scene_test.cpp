@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
 
+#include "splat_io_test_helpers.h"
 #include "engine/core/error.h"
 #include "splat_lod/splat_io.h"
 #include "splat_lod/synth/fine_detail_scene.h"
@@ -48,14 +49,7 @@ glm::vec3 local_axis(const splat_lod::Rotation& q, int k) {
     return {2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)};
 }
 
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const engine::Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
+using splat_io_test::error_of;  // the engine::Error message, "" when none
 
 }  // namespace
 

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "splat_io_test_helpers.h"
 #include "engine/assets/mesh_asset.h"
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
@@ -34,14 +35,7 @@ using namespace splat_lod;
 using namespace splat_lod::world;
 using nlohmann::json;
 
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const engine::Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
+using splat_io_test::error_of;  // the engine::Error message, "" when none
 
 // A manifest with two chunks and a prop; nothing on disk needs to exist for the manifest alone.
 WorldManifest sample_manifest() {

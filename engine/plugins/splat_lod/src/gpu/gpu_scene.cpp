@@ -5,6 +5,7 @@
 #include <bit>
 #include <functional>
 #include <limits>
+#include <unordered_map>
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -317,16 +318,22 @@ bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
     if (max_degree > sh_degree_) reset(max_degree);
 
     // Which resident slot each component keeps (same cloud, same degree); the rest are freed.
+    // Linear in the number of clouds: a streamed world has thousands of parts every frame.
+    std::unordered_multimap<const SplatCloud*, std::size_t> resident;
+    for (std::size_t k = 0; k < slots_.size(); ++k)
+        if (slots_[k].cloud) resident.emplace(slots_[k].cloud.get(), k);
     std::vector<std::int64_t> slot_of(components.size(), -1);
     std::vector<bool> kept(slots_.size(), false);
-    for (std::size_t i = 0; i < components.size(); ++i)
-        for (std::size_t k = 0; k < slots_.size(); ++k)
-            if (!kept[k] && slots_[k].cloud.get() == components[i]->cloud.get() &&
-                slots_[k].sh_degree == drawn_degree(*components[i])) {
-                kept[k] = true;
-                slot_of[i] = static_cast<std::int64_t>(k);
+    for (std::size_t i = 0; i < components.size(); ++i) {
+        auto [first, last] = resident.equal_range(components[i]->cloud.get());
+        for (auto it = first; it != last; ++it)
+            if (slots_[it->second].sh_degree == drawn_degree(*components[i])) {
+                kept[it->second] = true;
+                slot_of[i] = static_cast<std::int64_t>(it->second);
+                resident.erase(it);
                 break;
             }
+    }
     bool changed = false;
     for (std::size_t k = 0; k < slots_.size(); ++k)
         if (!kept[k] && slots_[k].cloud) {

@@ -46,11 +46,15 @@ WorldTerrain::WorldTerrain(std::uint64_t seed, float size_m) : size_(size_m) {
     synth::Rng rng(seed, stream_id(StreamKind::terrain, 0, 0));
     for (auto& s : hill_seed_) s = rng.next_u64();
     for (auto& s : forest_seed_) s = rng.next_u64();
-    for (auto& phase : river_phase_) phase = rng.uniform(0.0f, synth::kTwoPiF);
-    for (auto& phase : path_phase_) phase = rng.uniform(0.0f, synth::kTwoPiF);
+    river_.amplitude = kRiverAmplitude;
+    river_.wavelength = kRiverWavelength;
+    path_.amplitude = kPathAmplitude;
+    path_.wavelength = kPathWavelength;
+    for (auto& phase : river_.phase) phase = rng.uniform(0.0f, synth::kTwoPiF);
+    for (auto& phase : path_.phase) phase = rng.uniform(0.0f, synth::kTwoPiF);
     // Offsets keep both lines well inside the world, whatever its size.
-    river_offset_ = size_ * rng.uniform(-0.15f, 0.15f);
-    path_offset_ = size_ * rng.uniform(-0.2f, 0.2f);
+    river_.offset = size_ * rng.uniform(-0.15f, 0.15f);
+    path_.offset = size_ * rng.uniform(-0.2f, 0.2f);
 }
 
 float WorldTerrain::hills(float x, float z) const {
@@ -60,52 +64,36 @@ float WorldTerrain::hills(float x, float z) const {
     return kHillHeight * (sum - 0.5f);
 }
 
-float WorldTerrain::river_x(float z) const {
-    float x = river_offset_;
+float WorldTerrain::CentreLine::across(float along, float size) const {
+    float value = offset;
     for (int k = 0; k < 2; ++k)
-        x += kRiverAmplitude[k] * size_ * sine(kTwoPi * z / (kRiverWavelength[k] * size_) + river_phase_[k]);
-    return x;
+        value += amplitude[k] * size * sine(kTwoPi * along / (wavelength[k] * size) + phase[k]);
+    return value;
 }
 
-float WorldTerrain::river_slope(float z) const {
-    float slope = 0.0f;
+float WorldTerrain::CentreLine::slope(float along, float size) const {
+    float value = 0.0f;
     for (int k = 0; k < 2; ++k)
-        slope += static_cast<float>(kTwoPi) * kRiverAmplitude[k] / kRiverWavelength[k] *
-                 cosine(kTwoPi * z / (kRiverWavelength[k] * size_) + river_phase_[k]);
-    return slope;
+        value += static_cast<float>(kTwoPi) * amplitude[k] / wavelength[k] *
+                 cosine(kTwoPi * along / (wavelength[k] * size) + phase[k]);
+    return value;
 }
 
-float WorldTerrain::river_distance(float x, float z) const {
-    // The offset along x projected on the line's normal: exact for a straight line and close
-    // enough for bends far wider than the river.
-    const float slope = river_slope(z);
-    return std::abs(x - river_x(z)) / std::sqrt(1.0f + slope * slope);
+float WorldTerrain::CentreLine::distance(float across_value, float along, float size) const {
+    const float s = slope(along, size);
+    return std::abs(across_value - across(along, size)) / std::sqrt(1.0f + s * s);
 }
+
+float WorldTerrain::river_x(float z) const { return river_.across(z, size_); }
+float WorldTerrain::river_distance(float x, float z) const { return river_.distance(x, z, size_); }
 
 float WorldTerrain::water_level(float z) const { return kWaterLevel - kWaterFall * z; }
 
-float WorldTerrain::path_z(float x) const {
-    float z = path_offset_;
-    for (int k = 0; k < 2; ++k)
-        z += kPathAmplitude[k] * size_ * sine(kTwoPi * x / (kPathWavelength[k] * size_) + path_phase_[k]);
-    return z;
-}
-
-float WorldTerrain::path_slope(float x) const {
-    float slope = 0.0f;
-    for (int k = 0; k < 2; ++k)
-        slope += static_cast<float>(kTwoPi) * kPathAmplitude[k] / kPathWavelength[k] *
-                 cosine(kTwoPi * x / (kPathWavelength[k] * size_) + path_phase_[k]);
-    return slope;
-}
-
-float WorldTerrain::path_distance(float x, float z) const {
-    const float slope = path_slope(x);
-    return std::abs(z - path_z(x)) / std::sqrt(1.0f + slope * slope);
-}
+float WorldTerrain::path_z(float x) const { return path_.across(x, size_); }
+float WorldTerrain::path_distance(float x, float z) const { return path_.distance(z, x, size_); }
 
 glm::vec2 WorldTerrain::path_direction(float x) const {
-    const float slope = path_slope(x);
+    const float slope = path_.slope(x, size_);
     return glm::vec2(1.0f, slope) / std::sqrt(1.0f + slope * slope);
 }
 

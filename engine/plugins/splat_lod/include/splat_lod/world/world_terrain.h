@@ -42,15 +42,24 @@ public:
 
 private:
     float hills(float x, float z) const;
-    float river_slope(float z) const;  // dx/dz of the centre line
-    float path_slope(float x) const;   // dz/dx of the centre line
+    // A meandering centre line: across(along) = offset + Σ a·size·sin(2π·along / (λ·size) + φ)
+    // over two terms (the river's x(z), the path's z(x)).
+    struct CentreLine {
+        const float* amplitude;   // a, 2 terms, in world sizes
+        const float* wavelength;  // λ, 2 terms, in world sizes
+        double phase[2];
+        float offset;
+        float across(float along, float size) const;
+        float slope(float along, float size) const;  // d across / d along
+        // Distance of (across, along) from the line: the offset projected on the line's normal,
+        // exact for a straight line and close enough for bends far wider than river or path.
+        float distance(float across_value, float along, float size) const;
+    };
 
     float size_;
     std::uint64_t hill_seed_[3];
     std::uint64_t forest_seed_[2];
-    double river_phase_[2];
-    double path_phase_[2];
-    float river_offset_, path_offset_;
+    CentreLine river_, path_;
 };
 
 }  // namespace splat_lod::world
