@@ -72,6 +72,24 @@ sw::WorldManifest make_world() {
     return world;
 }
 
+// Makes Gaussian i of `cloud` one of stream level `level` under the manifest's default rule
+// (world/stream_levels.h; S_T 2, S_rel_min 0.5): level 4 as bake level 4 (reach ∞), levels 3 / 2 / 1
+// as bake level 1 with S_min 100, whose reach 2·e / min(2, 50) is its extent e, set between the
+// level's bounds.
+void set_stream_level(splat_lod::SplatCloud& cloud, std::size_t i, int level) {
+    static const double root_l = std::sqrt(2.0 * std::log(255.0 / (1.0 + std::exp(-2.0))));  // opacity logit 2
+    const auto& reach = sw::StreamLevelRule{}.reach_min;  // of levels 4, 3, 2
+    const double extent = level == 4   ? 1.0
+                          : level == 1 ? 0.5 * reach[2]
+                                       : std::sqrt(reach[static_cast<std::size_t>(3 - level)] *
+                                                   reach[static_cast<std::size_t>(4 - level)]);
+    cloud.lod_level[i] = static_cast<std::uint8_t>(level == 4 ? 4 : 1);
+    cloud.opacity_logits[i] = 2.0f;
+    cloud.log_scales[i] = glm::vec3(static_cast<float>(std::log(extent / root_l)));
+    cloud.coverage_min[i] = 100.0f;
+    cloud.coverage_max[i] = 200.0f;
+}
+
 int level_of_record(const sw::ChunkEntry& e, std::uint64_t record) {
     for (int l = 4; l >= 1; --l)
         if (record < e.prefix_count[static_cast<std::size_t>(l - 1)]) return l;
@@ -83,7 +101,7 @@ class FakeSource final : public sw::ChunkSource {
 public:
     std::set<std::string> missing;                          // file names that "do not exist"
     std::map<std::string, std::uint64_t> truncated_at;      // reads reaching past this record throw
-    std::map<std::string, std::uint64_t> wrong_level_from;  // records from here decode as level 1
+    std::map<std::string, std::uint64_t> wrong_level_from;  // records from here decode as stream level 1
     std::chrono::milliseconds delay{0};
     std::atomic<int> reads{0};
     std::map<std::string, int> reads_per_file;  // synchronous tests only
@@ -102,8 +120,7 @@ public:
         const auto wrong = wrong_level_from.find(name);
         for (std::uint64_t r = begin; r < end; ++r) {
             const bool corrupt = wrong != wrong_level_from.end() && r >= wrong->second;
-            cloud.lod_level[static_cast<std::size_t>(r - begin)] =
-                static_cast<std::uint8_t>(corrupt ? 1 : level_of_record(chunk, r));
+            set_stream_level(cloud, static_cast<std::size_t>(r - begin), corrupt ? 1 : level_of_record(chunk, r));
             cloud.positions[static_cast<std::size_t>(r - begin)] = (chunk.bounds_min + chunk.bounds_max) * 0.5f;
         }
         return cloud;
@@ -426,7 +443,7 @@ TEST(ChunkStreamer, MissingTruncatedAndCorruptChunksAreReportedOnceAndSkipped) {
     Harness h(sync_settings(), &bus);
     h.source.missing.insert("chunk_1_1.ply");
     h.source.truncated_at["chunk_2_2.ply"] = 60;      // inside level 2
-    h.source.wrong_level_from["chunk_3_3.ply"] = 12;  // level 3 records decode as level 1
+    h.source.wrong_level_from["chunk_3_3.ply"] = 12;  // stream level 3 records decode as stream level 1
     h.steps({20.0f, 1.0f, 20.0f}, 30);
 
     ASSERT_EQ(failures.size(), 3u);
@@ -439,7 +456,7 @@ TEST(ChunkStreamer, MissingTruncatedAndCorruptChunksAreReportedOnceAndSkipped) {
     EXPECT_NE(by_chunk["chunk_2_2"].message.find("truncated"), std::string::npos);
     EXPECT_EQ(by_chunk["chunk_3_3"].level, 3);
     EXPECT_NE(by_chunk["chunk_3_3"].message.find("/world/chunk_3_3.ply"), std::string::npos);
-    EXPECT_NE(by_chunk["chunk_3_3"].message.find("record 12 has lod_level 1"), std::string::npos);
+    EXPECT_NE(by_chunk["chunk_3_3"].message.find("record 12 has stream level 1"), std::string::npos);
 
     EXPECT_EQ(h.status("chunk_1_1").finest_resident_level, 0);
     EXPECT_EQ(h.status("chunk_2_2").finest_resident_level, 3);  // what was read before the failure stays
@@ -613,16 +630,13 @@ TEST(ChunkStreamer, StreamsRealChunkFilesAndReportsATruncatedOne) {
         splat_lod::SplatCloud cloud;
         cloud.resize(30);
         for (std::size_t g = 0; g < cloud.size(); ++g) {
-            cloud.lod_level[g] = static_cast<std::uint8_t>(g < 3 ? 4 : g < 8 ? 3 : g < 15 ? 2 : 1);
+            set_stream_level(cloud, g, g < 3 ? 4 : g < 8 ? 3 : g < 15 ? 2 : 1);
             cloud.positions[g] = {static_cast<float>(i) * 10.0f + static_cast<float>(g) * 0.3f, 0.0f, 0.0f};
-            cloud.log_scales[g] = glm::vec3(std::log(0.05f * static_cast<float>(cloud.lod_level[g])));
-            cloud.opacity_logits[g] = 2.0f;
-            cloud.coverage_min[g] = 1.0f;
-            cloud.coverage_max[g] = 8.0f;
         }
         const std::string file = "chunk_" + std::to_string(i) + ".ply";
         splat_lod::write_inria_ply(folder / file, cloud);
-        world.chunks.push_back(sw::describe_chunk(cloud, folder, file, {i, 0}));
+        world.chunks.push_back(sw::describe_chunk(cloud, folder, file, {i, 0}, world.stream_levels));
+        EXPECT_EQ(world.chunks.back().prefix_count, (std::array<std::uint64_t, 4>{30, 15, 8, 3}));
     }
     // Chunk 1 loses its last 10 bytes after the manifest was written.
     const std::filesystem::path truncated = folder / "chunk_1.ply";

@@ -156,7 +156,10 @@ TEST(WorldManifest, EveryBadInputNamesTheFileAndTheKey) {
         const char* key;  // expected in the message
     };
     const std::vector<Case> cases = {
-        {"version", [](json& j) { j["version"] = 2; }, "version"},
+        {"version", [](json& j) { j["version"] = 1; }, "version"},
+        {"reach_order", [](json& j) { j["stream_levels"]["reach_min"][2] = 50; }, "stream_levels"},
+        {"reach_count", [](json& j) { j["stream_levels"]["reach_min"] = {0.4, 0.1}; }, "stream_levels.reach_min"},
+        {"no_rule", [](json& j) { j.erase("stream_levels"); }, "stream_levels: missing"},
         {"unknown_top", [](json& j) { j["sizem"] = 3; }, "sizem: unknown key"},
         {"unknown_chunk", [](json& j) { j["chunks"][1]["colour"] = 1; }, "chunks[1].colour: unknown key"},
         {"missing", [](json& j) { j.erase("seed"); }, "seed: missing"},
@@ -196,16 +199,58 @@ TEST(WorldManifest, WriterRefusesWhatTheReaderWouldAndWritesNothing) {
     EXPECT_FALSE(fs::exists(path));
 }
 
-TEST(WorldChunk, DescribeRefusesAFileNotOrderedCoarseFirst) {
+TEST(WorldChunk, DescribeRefusesAFileNotInStreamOrder) {
     const fs::path dir = engine::test::output_dir("world");
     SplatCloud cloud;
     cloud.resize(3);
-    cloud.lod_level = {2, 1, 2};
+    // Bake levels 1, 4, 1 of millimetre Gaussians: the level-4 one (reach ∞, stream level 4) must
+    // come before the others (reach < 0.01 m/px, stream level 1).
+    cloud.lod_level = {1, 4, 1};
     cloud.coverage_min = {1.0f, 1.0f, 1.0f};
+    cloud.log_scales.assign(3, glm::vec3(std::log(0.001f)));
     write_inria_ply(dir / "bad.lod.ply", cloud);
-    const std::string message = error_of([&] { describe_chunk(cloud, dir, "bad.lod.ply", {0, 0}); });
+    const std::string message = error_of([&] { describe_chunk(cloud, dir, "bad.lod.ply", {0, 0}, {}); });
     EXPECT_NE(message.find("bad.lod.ply"), std::string::npos) << message;
-    EXPECT_NE(message.find("coarsest level"), std::string::npos) << message;
+    EXPECT_NE(message.find("stream order"), std::string::npos) << message;
+}
+
+// The reach of ALGORITHMS §3's "not too small" test and the split into stream levels: a Gaussian of
+// stream level l < 4 is never selectable beyond reach·f, and nothing the coarsest level holds is left
+// out of stream level 4.
+TEST(WorldChunk, StreamLevelsFollowTheReachOfTheNotTooSmallTest) {
+    SplatCloud cloud;
+    cloud.resize(5);
+    StreamLevelRule rule;  // S_T 2, S_rel_min 0.5
+    rule.reach_min = {0.4f, 0.12f, 0.04f};
+    // Opacity logit 2 and equal scales σ: extent e = sqrt(2·ln(255·o))·σ.
+    const double root_l = std::sqrt(2.0 * std::log(255.0 / (1.0 + std::exp(-2.0))));
+    const double extents[] = {0.01, 0.1, 0.3, 1.0, 0.01};
+    const float coverage_min[] = {100.0f, 100.0f, 100.0f, 100.0f, 0.5f};
+    for (std::size_t i = 0; i < 5; ++i) {
+        cloud.lod_level[i] = 1;
+        cloud.opacity_logits[i] = 2.0f;
+        cloud.log_scales[i] = glm::vec3(static_cast<float>(std::log(extents[i] / root_l)));
+        cloud.coverage_min[i] = coverage_min[i];
+    }
+    // reach = 2·e / min(S_T, S_rel_min·S_min): e for S_min = 100, 2·e / 0.25 = 8·e for S_min = 0.5.
+    for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(gaussian_reach(cloud, i, rule), extents[i], 1e-6) << i;
+    EXPECT_NEAR(gaussian_reach(cloud, 4, rule), 0.08, 1e-7);
+    EXPECT_EQ(stream_levels(cloud, rule), (std::vector<std::uint8_t>{1, 2, 3, 4, 2}));
+    cloud.coverage_min[0] = -1.0f;  // no S_min: never too small
+    EXPECT_TRUE(std::isinf(gaussian_reach(cloud, 0, rule)));
+    cloud.coverage_min[0] = 100.0f;
+    cloud.lod_level[0] = 4;  // the coarsest level: never too small
+    EXPECT_TRUE(std::isinf(gaussian_reach(cloud, 0, rule)));
+    cloud.opacity_logits[1] = -10.0f;  // never visible: extent 0
+    EXPECT_EQ(gaussian_reach(cloud, 1, rule), 0.0);
+    EXPECT_EQ(stream_order(cloud, rule), (std::vector<std::uint32_t>{0, 3, 2, 4, 1}));
+
+    StreamLevelRule bad = rule;
+    bad.reach_min = {0.1f, 0.2f, 0.05f};
+    EXPECT_NE(check_stream_level_rule(bad).find("decrease"), std::string::npos);
+    bad.reach_min = {0.4f, 0.12f, 0.0f};
+    EXPECT_FALSE(check_stream_level_rule(bad).empty());
+    EXPECT_TRUE(check_stream_level_rule(rule).empty());
 }
 
 TEST(WorldGenerator, SameSeedSameBytesForAnyThreadCountAndAnotherSeedDiffers) {
@@ -239,21 +284,27 @@ TEST(WorldGenerator, ManifestMatchesTheChunkFilesAndRangesReadExactlyTheirRecord
         glm::vec3 lo(1e30f), hi(-1e30f);
         std::array<std::uint64_t, kLevels> counts{};
         std::array<double, kLevels> extent{};
+        const std::vector<std::uint8_t> stream = stream_levels(whole, m.stream_levels);
         for (std::size_t i = 0; i < whole.size(); ++i) {
             lo = glm::min(lo, whole.positions[i]);
             hi = glm::max(hi, whole.positions[i]);
-            for (int l = 1; l <= whole.lod_level[i]; ++l) ++counts[static_cast<std::size_t>(l - 1)];
+            for (int l = 1; l <= stream[i]; ++l) ++counts[static_cast<std::size_t>(l - 1)];
             if (i > 0) {
-                EXPECT_LE(whole.lod_level[i], whole.lod_level[i - 1]) << "coarse levels first";
+                EXPECT_LE(stream[i], stream[i - 1]) << "stream level 4 first";
             }
-            auto& e = extent[static_cast<std::size_t>(whole.lod_level[i] - 1)];
+            // Every Gaussian of the coarsest bake level is in stream level 4 (always resident).
+            if (whole.lod_level[i] == kLevels) {
+                EXPECT_EQ(stream[i], kLevels);
+            }
+            auto& e = extent[static_cast<std::size_t>(stream[i] - 1)];
             e = std::max(e, gaussian_extent(whole.log_scales[i], whole.opacity_logits[i]));
         }
         EXPECT_EQ(counts, c.prefix_count);
         EXPECT_EQ(lo, c.bounds_min);
         EXPECT_EQ(hi, c.bounds_max);
         for (int l = 0; l < kLevels; ++l) EXPECT_GE(c.levels[l].extent_max, extent[l]);
-        coarse += c.prefix_count[1];
+        coarse += static_cast<std::uint64_t>(
+            std::count_if(whole.lod_level.begin(), whole.lod_level.end(), [](std::uint8_t l) { return l >= 2; }));
 
         // Ranges: the coarse prefix, one level alone, and an arbitrary window.
         const auto [level2_begin, level2_end] = level_range(c, 2);

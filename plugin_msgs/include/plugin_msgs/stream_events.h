@@ -1,6 +1,8 @@
 #pragma once
-// What the chunk streamer does, for the UI, the profiler and tests. A chunk file is ordered
-// coarse level first, so "level l of a chunk" means its prefix holding levels 4 down to l.
+// What the chunk streamer does, for the UI, the profiler and tests. A chunk file is ordered by
+// stream level (4: selectable from any distance, always resident; 3, 2, 1: needed only within
+// shorter and shorter distances), so "level l of a chunk" means its prefix holding stream levels
+// 4 down to l.
 #include <array>
 #include <cstdint>
 #include <stdexcept>
@@ -32,11 +34,11 @@ inline void from_json(const nlohmann::json& json, StreamEventType& type) {
 
 struct StreamEvent {
     static constexpr std::string_view kind = "stream_event";
-    static constexpr int kMaxLevel = 4;  // the bake produces levels 1 (finest) to 4 (coarsest)
+    static constexpr int kMaxLevel = 4;  // stream levels 1 (needed only close up) to 4 (always resident)
 
     std::string chunk_id;  // the chunk file's stem, e.g. "chunk_+003_-002"
     StreamEventType event = StreamEventType::requested;
-    int level = 0;            // finest level concerned (1..4); 0 when the event is about the whole chunk
+    int level = 0;            // finest stream level concerned (1..4); 0 when the event is about the whole chunk
     std::uint64_t bytes = 0;  // bytes read, uploaded or released by this step
     std::string message;      // the error for `failed`, otherwise free text (may be empty)
 

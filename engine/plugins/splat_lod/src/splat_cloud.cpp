@@ -148,6 +148,32 @@ void SplatCloud::keep_only(const std::vector<std::uint8_t>& keep) {
     for (auto& extra : extras) compact(extra.values, keep, 1);
 }
 
+SplatCloud SplatCloud::permuted(const std::vector<std::uint32_t>& order) const {
+    check_consistent();
+    SplatCloud out;
+    out.sh_degree = sh_degree;
+    for (const auto& extra : extras) out.extras.push_back({extra.name, {}});
+    out.resize(order.size());
+    const std::size_t stride = sh_rest_stride();
+    for (std::size_t j = 0; j < order.size(); ++j) {
+        const std::size_t i = order[j];
+        if (i >= size())
+            engine::fail("splat_lod::SplatCloud::permuted(): index " + std::to_string(i) + " of " + std::to_string(size()));
+        out.positions[j] = positions[i];
+        out.rotations[j] = rotations[i];
+        out.log_scales[j] = log_scales[i];
+        out.opacity_logits[j] = opacity_logits[i];
+        out.sh_dc[j] = sh_dc[i];
+        std::copy_n(sh_rest.begin() + static_cast<std::ptrdiff_t>(i * stride), stride,
+                    out.sh_rest.begin() + static_cast<std::ptrdiff_t>(j * stride));
+        out.lod_level[j] = lod_level[i];
+        out.coverage_min[j] = coverage_min[i];
+        out.coverage_max[j] = coverage_max[i];
+        for (std::size_t e = 0; e < extras.size(); ++e) out.extras[e].values[j] = extras[e].values[i];
+    }
+    return out;
+}
+
 std::size_t sanitise(SplatCloud& cloud, LoadReport* report) {
     cloud.check_consistent();
     const std::size_t n = cloud.size();

@@ -95,6 +95,9 @@ struct SplatCloud {
 
     // Keeps the Gaussians whose flag is non-zero, in order. keep.size() must equal size().
     void keep_only(const std::vector<std::uint8_t>& keep);
+    // The Gaussians in `order` (indices into this cloud; every array, SH rest and extras included).
+    // Throws engine::Error for an index out of range.
+    SplatCloud permuted(const std::vector<std::uint32_t>& order) const;
 };
 
 // Drops every Gaussian with a NaN or Inf in any attribute or a zero quaternion, normalises the

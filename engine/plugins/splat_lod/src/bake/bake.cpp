@@ -59,30 +59,6 @@ private:
     std::chrono::steady_clock::time_point begin_;
 };
 
-// The Gaussians of `cloud` in `order` (every array, SH rest and extras included).
-SplatCloud permuted(const SplatCloud& cloud, const std::vector<std::uint32_t>& order) {
-    SplatCloud out;
-    out.sh_degree = cloud.sh_degree;
-    for (const auto& extra : cloud.extras) out.extras.push_back({extra.name, {}});
-    out.resize(order.size());
-    const std::size_t stride = cloud.sh_rest_stride();
-    for (std::size_t j = 0; j < order.size(); ++j) {
-        const std::size_t i = order[j];
-        out.positions[j] = cloud.positions[i];
-        out.rotations[j] = cloud.rotations[i];
-        out.log_scales[j] = cloud.log_scales[i];
-        out.opacity_logits[j] = cloud.opacity_logits[i];
-        out.sh_dc[j] = cloud.sh_dc[i];
-        std::copy_n(cloud.sh_rest.begin() + static_cast<std::ptrdiff_t>(i * stride), stride,
-                    out.sh_rest.begin() + static_cast<std::ptrdiff_t>(j * stride));
-        out.lod_level[j] = cloud.lod_level[i];
-        out.coverage_min[j] = cloud.coverage_min[i];
-        out.coverage_max[j] = cloud.coverage_max[i];
-        for (std::size_t e = 0; e < cloud.extras.size(); ++e) out.extras[e].values[j] = cloud.extras[e].values[i];
-    }
-    return out;
-}
-
 // Steps 1–5 for one level: pools the Gaussians of finer levels that are small at its scale into
 // one new Gaussian per grid cell, enlarged towards S_T, and appends them (and their coverage).
 void build_level(SplatCloud& cloud, detail::CoverageTable& table, int level, const detail::Normaliser& normaliser,
@@ -326,7 +302,7 @@ SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::Refere
     own_refiner.reset();
 
     clock.start("order");
-    SplatCloud result = permuted(cloud, detail::output_order(cloud, normaliser));
+    SplatCloud result = cloud.permuted(detail::output_order(cloud, normaliser));
     clock.stop();
 
     summary.output_gaussians = result.size();

@@ -10,34 +10,30 @@
 namespace splat_lod::world {
 namespace {
 
-// prefix_count[l − 1] = Gaussians with level ≥ l; the levels must come 4, 3, 2, 1 so that each of
-// those sets is a prefix of the file.
-std::array<std::uint64_t, kLevels> level_prefixes(const SplatCloud& baked, const std::string& name) {
+// prefix_count[l − 1] = Gaussians with stream level ≥ l; the stream levels must come 4, 3, 2, 1 so
+// that each of those sets is a prefix of the file.
+std::array<std::uint64_t, kLevels> level_prefixes(const std::vector<std::uint8_t>& stream, const std::string& name) {
     std::array<std::uint64_t, kLevels> counts{};
     int previous = kLevels;
-    for (std::size_t i = 0; i < baked.size(); ++i) {
-        const int level = baked.lod_level.empty() ? 1 : baked.lod_level[i];
-        if (level < 1 || level > kLevels)
-            engine::fail(name + ": Gaussian " + std::to_string(i) + " has level " + std::to_string(level) +
-                         ", expected 1..4");
+    for (std::size_t i = 0; i < stream.size(); ++i) {
+        const int level = stream[i];
         if (level > previous)
-            engine::fail(name + ": Gaussian " + std::to_string(i) + " has level " + std::to_string(level) +
-                         " after level " + std::to_string(previous) +
-                         ": a chunk must be ordered coarsest level (4) first so that levels are prefixes");
+            engine::fail(name + ": Gaussian " + std::to_string(i) + " has stream level " + std::to_string(level) +
+                         " after stream level " + std::to_string(previous) +
+                         ": a chunk must be in stream order (stream level 4 first) so that levels are prefixes");
         previous = level;
         for (int l = 1; l <= level; ++l) ++counts[static_cast<std::size_t>(l - 1)];
     }
     return counts;
 }
 
-// Per level: the largest extent and the largest extent / coverage_min (−1 when some Gaussian has
-// no coverage_min: the level can never be ruled out). Rounded up by a relative 1e−6 so that the
+// Per stream level: the largest extent and the largest extent / coverage_min (−1 when some Gaussian
+// has no coverage_min: the level can never be ruled out). Rounded up by a relative 1e−6 so that the
 // float bound is never below the double value, as build_clusters() does.
-std::array<ChunkLevel, kLevels> level_bounds(const SplatCloud& baked) {
+std::array<ChunkLevel, kLevels> level_bounds(const SplatCloud& baked, const std::vector<std::uint8_t>& stream) {
     std::array<ChunkLevel, kLevels> levels{};
     for (std::size_t i = 0; i < baked.size(); ++i) {
-        const int level = baked.lod_level.empty() ? 1 : baked.lod_level[i];
-        ChunkLevel& bound = levels[static_cast<std::size_t>(level - 1)];
+        ChunkLevel& bound = levels[static_cast<std::size_t>(stream[i] - 1)];
         const double extent = gaussian_extent(baked.log_scales[i], baked.opacity_logits[i]);
         bound.extent_max = std::max(bound.extent_max, static_cast<float>(extent * (1.0 + 1e-6)));
         const float coverage_min = baked.coverage_min.empty() ? -1.0f : baked.coverage_min[i];
@@ -53,7 +49,7 @@ std::array<ChunkLevel, kLevels> level_bounds(const SplatCloud& baked) {
 }  // namespace
 
 ChunkEntry describe_chunk(const SplatCloud& baked, const std::filesystem::path& folder,
-                          const std::filesystem::path& file, const glm::ivec2& cell) {
+                          const std::filesystem::path& file, const glm::ivec2& cell, const StreamLevelRule& rule) {
     const std::filesystem::path path = folder / file;
     const std::string name = path.string();
     baked.check_consistent();
@@ -61,8 +57,12 @@ ChunkEntry describe_chunk(const SplatCloud& baked, const std::filesystem::path& 
     entry.id = chunk_id(cell);
     entry.file = file;
     entry.cell = cell;
-    entry.prefix_count = level_prefixes(baked, name);
-    entry.levels = level_bounds(baked);
+    for (const std::uint8_t level : baked.lod_level)
+        if (level < 1 || level > kLevels)
+            engine::fail(name + ": a Gaussian has bake level " + std::to_string(level) + ", expected 1..4");
+    const std::vector<std::uint8_t> stream = stream_levels(baked, rule);
+    entry.prefix_count = level_prefixes(stream, name);
+    entry.levels = level_bounds(baked, stream);
     if (!baked.empty()) {
         entry.bounds_min = glm::vec3(std::numeric_limits<float>::max());
         entry.bounds_max = glm::vec3(std::numeric_limits<float>::lowest());

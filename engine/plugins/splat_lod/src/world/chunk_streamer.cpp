@@ -26,19 +26,21 @@ std::string part_label(std::uint32_t part, std::size_t count) {
     return count > 1 ? "part " + std::to_string(part + 1) + "/" + std::to_string(count) : std::string();
 }
 
-// Every Gaussian of a level's range must carry that level: the manifest and the file agree.
-std::string check_part(const SplatCloud& cloud, const ReadRequest& request) {
+// Every Gaussian of a level's range must have that stream level under the manifest's rule: the
+// manifest and the file agree (a file replaced by another one of the same size fails here).
+std::string check_part(const SplatCloud& cloud, const ReadRequest& request, const StreamLevelRule& rule) {
     const std::uint64_t expected = request.end - request.begin;
     if (cloud.size() != expected)
         return "records [" + std::to_string(request.begin) + ", " + std::to_string(request.end) + ") decoded to " +
                std::to_string(cloud.size()) + " Gaussians, expected " + std::to_string(expected);
     if (cloud.lod_level.size() != cloud.size()) return "the decoded Gaussians have no lod_level values";
-    for (std::size_t i = 0; i < cloud.size(); ++i)
-        if (cloud.lod_level[i] != request.level)
-            return "record " + std::to_string(request.begin + i) + " has lod_level " +
-                   std::to_string(cloud.lod_level[i]) + " but the manifest puts records [" +
-                   std::to_string(request.begin) + ", " + std::to_string(request.end) + ") in level " +
-                   std::to_string(request.level);
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        const int level = stream_level(gaussian_reach(cloud, i, rule), rule);
+        if (level != request.level)
+            return "record " + std::to_string(request.begin + i) + " has stream level " + std::to_string(level) +
+                   " but the manifest puts records [" + std::to_string(request.begin) + ", " +
+                   std::to_string(request.end) + ") in stream level " + std::to_string(request.level);
+    }
     return {};
 }
 
@@ -241,7 +243,7 @@ void ChunkStreamer::State::collect_reads() {
             ++stats.reads_discarded;
             continue;
         }
-        const std::string problem = result.error.empty() ? check_part(*result.gaussians, request) : result.error;
+        const std::string problem = result.error.empty() ? check_part(*result.gaussians, request, manifest.stream_levels) : result.error;
         if (!problem.empty()) {
             fail_chunk(request.chunk, request.level, problem);
             continue;

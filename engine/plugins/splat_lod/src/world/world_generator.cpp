@@ -58,6 +58,7 @@ struct ChunkResult {
     ContentCounts counts;
     std::vector<StageSeconds> stages;
     std::vector<bake::LevelSummary> levels;  // the bake's per-level report
+    std::array<std::uint64_t, kLevels> bake_level_counts{};  // Gaussians per bake level, [l − 1]
 };
 
 // Reports progress after each chunk, with an ETA from the mean time per chunk so far.
@@ -102,9 +103,12 @@ ChunkResult build_chunk(const WorldOptions& o, const ContentContext& context, co
     result.levels = summary.levels;
 
     start = Clock::now();
+    const StreamLevelRule rule = stream_level_rule(o);
+    const SplatCloud ordered = baked.permuted(stream_order(baked, rule));
+    for (const std::uint8_t level : ordered.lod_level) ++result.bake_level_counts[static_cast<std::size_t>(level - 1)];
     const fs::path file = chunk_file(slot.cell);
-    write_inria_ply(o.output / file, baked);
-    result.entry = describe_chunk(baked, o.output, file, slot.cell);
+    write_inria_ply(o.output / file, ordered);
+    result.entry = describe_chunk(ordered, o.output, file, slot.cell, rule);
     result.stages.push_back({"write", seconds_since(start)});
     return result;
 }
@@ -155,11 +159,10 @@ void summarise_manifest(const WorldManifest& m, const fs::path& folder, WorldSum
     for (const auto& c : m.chunks) {
         for (int l = 1; l <= kLevels; ++l) {
             const std::uint64_t next = l == kLevels ? 0 : c.prefix_count[static_cast<std::size_t>(l)];
-            s.gaussians_per_level[static_cast<std::size_t>(l - 1)] += c.prefix_count[static_cast<std::size_t>(l - 1)] - next;
+            s.gaussians_per_stream_level[static_cast<std::size_t>(l - 1)] += c.prefix_count[static_cast<std::size_t>(l - 1)] - next;
         }
         s.chunk_bytes += c.file_bytes;
     }
-    s.fine_gaussians = s.gaussians_per_level[0];
     std::set<fs::path> meshes;
     for (const auto& p : m.props) meshes.insert(p.mesh);
     if (!m.terrain_mesh.empty()) meshes.insert(m.terrain_mesh);
@@ -303,6 +306,7 @@ WorldResult generate_world(const WorldOptions& o) {
     m.chunk_size_m = o.chunk_size_m;
     m.density = o.density;
     m.generator = generator_settings(o);
+    m.stream_levels = stream_level_rule(o);
     m.props = layout.props;
     if (o.terrain_mesh) m.terrain_mesh = kTerrainMesh;
     average_psnr(chunks, s);
@@ -312,12 +316,14 @@ WorldResult generate_world(const WorldOptions& o) {
         m.chunks.push_back(std::move(chunk.entry));
         counts += chunk.counts;
         add_stages(s.chunk_stages, chunk.stages);
+        for (std::size_t l = 0; l < kLevels; ++l) s.gaussians_per_level[l] += chunk.bake_level_counts[l];
     }
     write_world_manifest(o.output / kManifestFileName, m);
     remove_stale_chunks(o.output, m.chunks);
     s.stages.push_back({"manifest", seconds_since(stage_start)});
 
     summarise_manifest(m, o.output, s);
+    s.fine_gaussians = s.gaussians_per_level[0];
     fill_counts(counts, s);
     s.seconds = seconds_since(start);
     return result;

@@ -1,6 +1,7 @@
 // world.json: reading with a check of every value, and the atomic writer (world/world_manifest.h).
-//   { "version": 1, "seed": 7, "size_m": 1024, "chunk_size_m": 64, "up": [0, 1, 0],
+//   { "version": 2, "seed": 7, "size_m": 1024, "chunk_size_m": 64, "up": [0, 1, 0],
 //     "gaussians": 10400000, "density": 1, "generator": "…",
+//     "stream_levels": { "size_threshold_px": 2, "rel_min": 0.5, "reach_min": [0.4, 0.12, 0.04] },
 //     "chunks": [ { "id": "chunk_-008_-008", "file": "chunks/chunk_-008_-008.lod.ply", "cell": [-8, -8],
 //                   "bounds_min": [x, y, z], "bounds_max": [x, y, z], "prefix_count": [n1, n2, n3, n4],
 //                   "levels": [ { "extent_max": e, "extent_per_min_coverage_max": r } × 4 ],
@@ -120,6 +121,7 @@ public:
 private:
     ChunkEntry chunk(const json& object, const std::string& key) const;
     ChunkLevel level(const json& object, const std::string& key) const;
+    StreamLevelRule stream_level_rule(const json& object, const std::string& key) const;
     Prop prop(const json& object, const std::string& key) const;
     void check_chunk_counts(const ChunkEntry& c, const std::string& key) const;
 
@@ -140,8 +142,8 @@ ChunkLevel ManifestReader::level(const json& object, const std::string& key) con
 void ManifestReader::check_chunk_counts(const ChunkEntry& c, const std::string& key) const {
     for (int l = 1; l < kLevels; ++l)
         if (c.prefix_count[static_cast<std::size_t>(l)] > c.prefix_count[static_cast<std::size_t>(l - 1)])
-            error(join(key, "prefix_count"), "counts must not increase with the level (Gaussians with level >= " +
-                                                 std::to_string(l + 1) + " are a prefix of those with level >= " +
+            error(join(key, "prefix_count"), "counts must not increase with the stream level (Gaussians with stream level >= " +
+                                                 std::to_string(l + 1) + " are a prefix of those with stream level >= " +
                                                  std::to_string(l) + ")");
     if (c.vertex_bytes == 0) error(join(key, "vertex_bytes"), "must be positive");
     // file_bytes = header_bytes + prefix_count[0] · vertex_bytes, checked without overflow.
@@ -195,6 +197,20 @@ Prop ManifestReader::prop(const json& object, const std::string& key) const {
     return p;
 }
 
+StreamLevelRule ManifestReader::stream_level_rule(const json& object, const std::string& key) const {
+    only_keys(object, key, {"size_threshold_px", "rel_min", "reach_min"});
+    StreamLevelRule rule;
+    rule.size_threshold_px = positive(member(object, key, "size_threshold_px"), join(key, "size_threshold_px"));
+    rule.rel_min = positive(member(object, key, "rel_min"), join(key, "rel_min"));
+    const json& reach = member(object, key, "reach_min");
+    if (!reach.is_array() || reach.size() != rule.reach_min.size())
+        error(join(key, "reach_min"), "expected an array of 3 reaches, got " + reach.dump());
+    for (std::size_t k = 0; k < rule.reach_min.size(); ++k)
+        rule.reach_min[k] = positive(reach[k], index(join(key, "reach_min"), k));
+    if (const std::string problem = check_stream_level_rule(rule); !problem.empty()) error(key, problem);
+    return rule;
+}
+
 WorldManifest ManifestReader::manifest(const json& document) const {
     if (!document.is_object()) error("", "expected a JSON object at the top level");
     WorldManifest m;
@@ -204,7 +220,7 @@ WorldManifest ManifestReader::manifest(const json& document) const {
         error("version", "expected " + std::to_string(kManifestVersion) + ", got " + std::to_string(version) +
                              " (written by another version of the generator: generate the world again)");
     only_keys(document, "", {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density", "generator",
-                             "chunks", "props", "terrain_mesh"});
+                             "stream_levels", "chunks", "props", "terrain_mesh"});
     m.seed = whole(member(document, "", "seed"), "seed");
     m.size_m = positive(member(document, "", "size_m"), "size_m");
     m.chunk_size_m = positive(member(document, "", "chunk_size_m"), "chunk_size_m");
@@ -214,6 +230,7 @@ WorldManifest ManifestReader::manifest(const json& document) const {
     m.gaussians = whole(member(document, "", "gaussians"), "gaussians");
     if (document.contains("density")) m.density = positive(document["density"], "density");
     if (document.contains("generator")) m.generator = text(document["generator"], "generator");
+    m.stream_levels = stream_level_rule(member(document, "", "stream_levels"), "stream_levels");
     if (document.contains("terrain_mesh")) m.terrain_mesh = relative_path(document["terrain_mesh"], "terrain_mesh", true);
 
     const json& chunks = member(document, "", "chunks");
@@ -269,6 +286,9 @@ json manifest_json(const WorldManifest& m) {
             {"size_m", m.size_m},         {"chunk_size_m", m.chunk_size_m},
             {"up", vec3_json(m.up)},      {"gaussians", m.gaussians},
             {"density", m.density},       {"generator", m.generator},
+            {"stream_levels", {{"size_threshold_px", m.stream_levels.size_threshold_px},
+                               {"rel_min", m.stream_levels.rel_min},
+                               {"reach_min", m.stream_levels.reach_min}}},
             {"chunks", chunks},           {"props", props},
             {"terrain_mesh", m.terrain_mesh.generic_string()}};
 }

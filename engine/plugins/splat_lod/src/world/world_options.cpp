@@ -12,7 +12,7 @@ namespace {
 
 // Bumped whenever the generated content changes for the same options, so that cached worlds made
 // by an older generator are regenerated rather than reused.
-constexpr int kContentVersion = 1;
+constexpr int kContentVersion = 2;
 
 std::string number(double v) {
     char text[32];
@@ -30,6 +30,7 @@ bake::BakeOptions default_world_bake_options() {
     options.refine_iterations = 60;
     options.refine_cameras = 8;
     options.threads = 1;
+    options.range_low_percentile = 75.0;
     return options;
 }
 
@@ -49,6 +50,16 @@ void validate(const WorldOptions& o) {
         bad("bake camera images must be 64..8192 pixels per side");
     if (o.output.empty()) bad("no output folder");
     bake::validate(o.bake);
+    if (const std::string problem = check_stream_level_rule(stream_level_rule(o)); !problem.empty())
+        bad("stream levels: " + problem);
+}
+
+StreamLevelRule stream_level_rule(const WorldOptions& o) {
+    StreamLevelRule rule;
+    rule.size_threshold_px = static_cast<float>(o.bake.size_threshold_px);
+    rule.rel_min = static_cast<float>(o.bake.rel_min);
+    rule.reach_min = o.stream_reach_min;
+    return rule;
 }
 
 std::string generator_settings(const WorldOptions& o) {
@@ -65,7 +76,8 @@ std::string generator_settings(const WorldOptions& o) {
       << b.refine_iterations << " x " << b.refine_cameras << " cameras, lr " << number(b.learning_rate_dc) << "/"
       << number(b.learning_rate_opacity) << ", clamp " << number(b.logit_clamp)
       << (b.ranges_after_refine ? ", ranges after" : "") << ", seed " << b.seed << "; terrain mesh "
-      << (o.terrain_mesh ? "yes" : "no");
+      << (o.terrain_mesh ? "yes" : "no") << "; stream reach " << number(o.stream_reach_min[0]) << "/"
+      << number(o.stream_reach_min[1]) << "/" << number(o.stream_reach_min[2]);
     return s.str();
 }
 
@@ -77,8 +89,14 @@ std::string format_summary(const WorldSummary& s) {
                   static_cast<unsigned long long>(s.fine_gaussians), s.props);
     out << line;
     for (int l = kLevels; l >= 1; --l) {
-        std::snprintf(line, sizeof line, "  level %d: %llu Gaussians\n", l,
-                      static_cast<unsigned long long>(s.gaussians_per_level[static_cast<std::size_t>(l - 1)]));
+        const auto i = static_cast<std::size_t>(l - 1);
+        if (s.cached)
+            std::snprintf(line, sizeof line, "  stream level %d: %llu Gaussians\n", l,
+                          static_cast<unsigned long long>(s.gaussians_per_stream_level[i]));
+        else
+            std::snprintf(line, sizeof line, "  level %d: %llu Gaussians; stream level %d: %llu\n", l,
+                          static_cast<unsigned long long>(s.gaussians_per_level[i]), l,
+                          static_cast<unsigned long long>(s.gaussians_per_stream_level[i]));
         out << line;
     }
     if (!s.cached) {

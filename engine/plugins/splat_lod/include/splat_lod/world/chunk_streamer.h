@@ -1,8 +1,12 @@
 #pragma once
-// Streams a chunked world (world_manifest.h) level prefix by level prefix, GL-free: a background
+// Streams a chunked world (world_manifest.h) prefix by prefix, GL-free: a background
 // reader decodes ranges of chunk files (ChunkSource), the main thread hands them to the GPU side
 // (ResidencySink) within a per-frame byte budget, and GPU memory stays within a memory budget.
 // Events and one residency report per frame go out as plugin_msgs on an engine::MessageBus.
+//
+// "Level" here is always a chunk's stream level (world/stream_levels.h): level 4 is what can be
+// selected from any distance and stays resident, levels 3, 2, 1 are what is needed only within
+// their load distances. The renderer selects by each Gaussian's bake level, independently.
 //
 // Per frame (update()):
 //  1. plan: per chunk, the nearest distance z from the camera to its bounds and, per finer level

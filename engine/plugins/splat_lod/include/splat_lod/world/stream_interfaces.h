@@ -15,7 +15,7 @@ namespace splat_lod::world {
 class ChunkSource {
 public:
     virtual ~ChunkSource() = default;
-    // The Gaussians [begin, end) of a chunk in file order (coarsest level first), exactly end − begin
+    // The Gaussians [begin, end) of a chunk in file order (stream level 4 first), exactly end − begin
     // of them. `file` is the manifest's folder / chunk.file. Throws (any std::exception) with a
     // message saying what is wrong when the file is missing, truncated or corrupt. Called on the
     // streamer's reader thread, one call at a time, so an implementation needs no locking of its own.
@@ -31,12 +31,12 @@ public:
                     std::uint64_t end) override;
 };
 
-// One upload: a run of consecutive Gaussians of one level of one chunk. A level larger than the
+// One upload: a run of consecutive Gaussians of one stream level of one chunk. A level larger than the
 // per-frame upload budget arrives as several parts (part 0 .. part_count − 1, in order, possibly
 // over several frames); a level is complete with its last part.
 struct LevelPart {
     std::string chunk_id;
-    int level = 4;           // 1 (finest) .. 4 (coarsest)
+    int level = 4;           // stream level: 1 (needed only close up) .. 4 (always resident)
     std::uint32_t part = 0;  // index of this part within the level
     std::uint32_t part_count = 1;
     std::uint64_t first = 0;                      // offset of the part's first Gaussian within the level

@@ -52,8 +52,8 @@ constexpr std::uint64_t max_gaussians_within(std::uint64_t budget, int sh_degree
 // Gaussian of the chunk is at least this far from the camera, which is what makes it a bound.
 float nearest_distance(const ChunkEntry& chunk, const glm::vec3& point);
 
-// The largest distance at which level `level` (1..3) of a chunk could be selected, from the
-// manifest's per-level bounds (world_manifest.h):
+// The largest distance at which some Gaussian of stream level `level` (1..3) of a chunk could be
+// selected, from the manifest's per-level bounds (world_manifest.h):
 //   f · max(2·extent_max / S_T, 2·extent_per_min_coverage_max / S_rel_min),
 // +∞ when extent_per_min_coverage_max < 0 (a Gaussian of the level has no coverage_min, so the
 // "not too small" test never rejects it), 0 for an empty level. Level 4 is not decided by distance

@@ -1,19 +1,23 @@
 #pragma once
-// A streamed world on disk: a grid of chunk files (baked LOD splat assets, coarse level first) and
+// A streamed world on disk: a grid of chunk files (baked LOD splat assets, ordered by stream level) and
 // the glTF props placed on it, described by one manifest, `world.json`, written last and
 // atomically by the generator (its presence means the world is complete). The streamer reads
-// only the manifest up front; chunk files are read later, a level prefix at a time.
+// only the manifest up front; chunk files are read later, a stream-level prefix at a time.
 //
-// Level prefixes: a chunk file holds its Gaussians ordered level 4 (coarsest) first, then 3, 2, 1
-// (finest). `prefix_count[l - 1]` is the number of Gaussians with level ≥ l, so the chunk drawn
-// down to level l is the file's first prefix_count[l - 1] Gaussians, and prefix_count[0] is the
-// whole file. Vertices are fixed-size records after the header: the bytes of a prefix are
-// header_bytes + count · vertex_bytes.
+// Stream levels (world/stream_levels.h): a chunk file holds its Gaussians ordered by stream level,
+// 4 first, then 3, 2, 1, where a Gaussian's stream level says from how far it could be selected:
+// stream level 4 is everything that can be drawn at any distance (the coarsest bake level, the
+// large ground Gaussians), level 1 only what is needed close up (leaves, grass). `prefix_count[l − 1]`
+// is the number of Gaussians with stream level ≥ l, so the chunk as needed from beyond the break
+// of level l is the file's first prefix_count[l − 1] Gaussians, and prefix_count[0] is the whole file.
+// Vertices are fixed-size records after the header: the bytes of a prefix are
+// header_bytes + count · vertex_bytes. (Each Gaussian keeps its bake level, lod_level, which the
+// renderer selects by; "level" in the streamer always means stream level.)
 //
-// Streaming decisions: level l < 4 of a chunk can be selected (ALGORITHMS §3, "not too small")
-// only while, at the chunk's nearest distance z, some Gaussian of the level has coverage ≥ S_T or
-// coverage / S_min ≥ S_rel_min. With coverage ≤ 2·e·f / z (e: the Gaussian's extent in world
-// units, f: focal length in pixels) the per-level maxima below bound both tests:
+// Streaming decisions: stream level l < 4 of a chunk is needed only while, at the chunk's nearest
+// distance z, some Gaussian of it could have coverage ≥ S_T or coverage / S_min ≥ S_rel_min. With
+// coverage ≤ 2·e·f / z (e: the Gaussian's extent in world units, f: focal length in pixels) the
+// per-level maxima below bound both tests, for any S_T and S_rel_min:
 //   needed(l) ⇔ 2·extent_max·f / z ≥ S_T  or  2·extent_per_min_coverage_max·f / z ≥ S_rel_min.
 #include <array>
 #include <cstdint>
@@ -24,16 +28,17 @@
 #include <glm/glm.hpp>
 
 #include "splat_lod/splat_cloud.h"
+#include "splat_lod/world/stream_levels.h"
 
 namespace splat_lod::world {
 
-inline constexpr int kManifestVersion = 1;
+inline constexpr int kManifestVersion = 2;
 inline constexpr int kLevels = 4;
 inline constexpr const char* kManifestFileName = "world.json";
 
 struct ChunkLevel {
-    // Largest extent sqrt(2·ln(255·o))·min(σ_max, √2·σ_mid) over the level's Gaussians (world
-    // units; 0 for an empty level) and the largest ratio of that extent to the Gaussian's
+    // Largest extent sqrt(2·ln(255·o))·min(σ_max, √2·σ_mid) over the stream level's Gaussians
+    // (world units; 0 for an empty level) and the largest ratio of that extent to the Gaussian's
     // coverage_min (−1 when some Gaussian of the level has none: always needed).
     float extent_max = 0.0f;
     float extent_per_min_coverage_max = 0.0f;
@@ -44,7 +49,7 @@ struct ChunkEntry {
     std::filesystem::path file;            // relative to the manifest's folder
     glm::ivec2 cell{0};                    // grid column (x) and row (z)
     glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // of the Gaussians' means, world space
-    std::array<std::uint64_t, kLevels> prefix_count{};  // [l − 1]: Gaussians with level ≥ l
+    std::array<std::uint64_t, kLevels> prefix_count{};  // [l − 1]: Gaussians with stream level ≥ l
     std::array<ChunkLevel, kLevels> levels{};           // [l − 1]
     std::uint64_t header_bytes = 0;
     std::uint64_t vertex_bytes = 0;        // bytes per Gaussian record in the file
@@ -71,6 +76,7 @@ struct WorldManifest {
     // generator's content and bake settings. A cached world is reused only when both are equal.
     float density = 1.0f;
     std::string generator;
+    StreamLevelRule stream_levels;         // how the chunk files were split into stream levels
     std::vector<ChunkEntry> chunks;
     std::vector<Prop> props;
     std::filesystem::path terrain_mesh;    // optional glTF ground under the splats (may be empty)
@@ -91,11 +97,11 @@ WorldManifest read_world_manifest(const std::filesystem::path& path);
 void write_world_manifest(const std::filesystem::path& path, const WorldManifest& manifest);
 
 // The manifest entry of a baked chunk already written to `folder / file` (an INRIA PLY by
-// write_inria_ply): prefix counts (the cloud must be ordered level 4 first, levels 1..4), bounds of
-// the means, per-level extent bounds (world/gaussian_extent.h) and the byte layout read back from
-// the file's header. Throws engine::Error naming the file when the order is wrong or the file does
-// not hold the cloud's records.
+// write_inria_ply): prefix counts (the cloud must be in stream_order() of `rule`: stream level 4
+// first), bounds of the means, per-stream-level extent bounds (world/gaussian_extent.h) and the byte
+// layout read back from the file's header. Throws engine::Error naming the file when the order is
+// wrong or the file does not hold the cloud's records.
 ChunkEntry describe_chunk(const SplatCloud& baked, const std::filesystem::path& folder,
-                          const std::filesystem::path& file, const glm::ivec2& cell);
+                          const std::filesystem::path& file, const glm::ivec2& cell, const StreamLevelRule& rule);
 
 }  // namespace splat_lod::world
