@@ -28,7 +28,9 @@ void Buffer::upload(std::size_t offset, std::size_t bytes, const void* data) {
 
 bool Buffer::ensure_size(std::size_t bytes, std::string_view label, GLbitfield flags) {
     if (id_ != 0 && size_ >= bytes) return false;
-    const std::size_t grown = std::max(bytes, size_ + size_ / 2);
+    // Whole 16-byte units: glClearNamedBufferData refuses (GL_INVALID_VALUE, nothing cleared) a size
+    // that is not a multiple of its format's size, and a 1.5x step of a 4-byte multiple need not be one.
+    const std::size_t grown = (std::max(bytes, size_ + size_ / 2) + 15) / 16 * 16;
     reset();
     id_ = kinds::Buffer::create();
     set_label(label);

@@ -86,8 +86,8 @@ public:
     void storage(std::size_t bytes, const void* data = nullptr, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
     void upload(std::size_t offset, std::size_t bytes, const void* data);
     std::size_t size() const noexcept { return size_; }
-    // Recreates the buffer with at least `bytes` (grown by 1.5x steps) when it is too small.
-    // Returns true when it reallocated.
+    // Recreates the buffer with at least `bytes` (grown by 1.5x steps, rounded up to 16 bytes so
+    // that any clear format divides the size) when it is too small. Returns true when it reallocated.
     bool ensure_size(std::size_t bytes, std::string_view label, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
 
 private:

@@ -67,6 +67,8 @@ public:
     std::uint32_t key_capacity() const { return key_capacity_; }
     // The resident Gaussians (which clouds, where, what the last frame uploaded); for tools and tests.
     const gpu::GpuScene& scene() const { return scene_; }
+    // For reserve(): a streamed world sizes the scene for its memory budget up front (sample_game).
+    gpu::GpuScene& scene() { return scene_; }
     // The last frame's low-resolution splat image with its derivatives (rows top first) and its
     // front depths, read back blocking; empty at render scale 1. For tools and tests.
     upscale::GradientImage read_low_res_image() const;

@@ -84,9 +84,13 @@ std::string generator_settings(const WorldOptions& o) {
 std::string format_summary(const WorldSummary& s) {
     std::ostringstream out;
     char line[256];
-    std::snprintf(line, sizeof line, "%s: %zu chunks, %llu Gaussians on disk (%llu generated), %zu props\n",
-                  s.cached ? "cached world" : "generated world", s.chunks, static_cast<unsigned long long>(s.gaussians),
-                  static_cast<unsigned long long>(s.fine_gaussians), s.props);
+    if (s.cached)
+        std::snprintf(line, sizeof line, "cached world: %zu chunks, %llu Gaussians on disk, %zu props\n", s.chunks,
+                      static_cast<unsigned long long>(s.gaussians), s.props);
+    else
+        std::snprintf(line, sizeof line, "generated world: %zu chunks, %llu Gaussians on disk (%llu generated), %zu props\n",
+                      s.chunks, static_cast<unsigned long long>(s.gaussians),
+                      static_cast<unsigned long long>(s.fine_gaussians), s.props);
     out << line;
     for (int l = kLevels; l >= 1; --l) {
         const auto i = static_cast<std::size_t>(l - 1);

@@ -1,0 +1,25 @@
+#pragma once
+// Draws one frame of the game's world and measures it into a FrameRecord: the frame's wall time
+// (render() to glFinish(), so that the GPU work is inside it: on llvmpipe the GPU is the CPU),
+// the GPU timer spans of the mesh and splat passes and the splat steps, the splat statistics
+// (Gaussians drawn per level), the GPU scene's pages and uploads, and the streamer's counts.
+// Waits for the GPU after every frame: a profile wants each frame's own numbers, not a pipeline.
+#include "engine/render/render_target.h"
+#include "sample_game/game_world.h"
+
+namespace sample_game {
+
+// A frame whose key buffer overflowed (it needed more tile-splat pairs than the buffer held; the
+// buffer grows after such a frame) drew fewer splats than it should: it is drawn again, up to
+// this many times, and the complete draw is the one timed. The GPU upload is the first draw's.
+inline constexpr int kMaxRedraws = 8;
+
+// Draws `camera` into `target` (same size) and fills the record's timing, statistics, memory and
+// streaming fields (not its pose fields: GameWorld::camera() does those).
+void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::CameraView& camera,
+                      engine::RenderTarget& target, FrameRecord& record);
+
+// The streamer's side of the record: resident and uploaded bytes, chunk census, failures.
+void record_streaming(GameWorld& world, FrameRecord& record);
+
+}  // namespace sample_game

@@ -1,0 +1,81 @@
+#pragma once
+// One profiled frame of the walkthrough, and its CSV form. The columns are listed once
+// (frame_columns()) with what each means; the CSV writer puts that list in the file's comment
+// header, the README repeats it, and the reader used by the summary and the tests parses by name.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sample_game/camera_path.h"
+
+namespace sample_game {
+
+// How many chunks are in each state, a chunk's state being that of the least advanced level it
+// needs (ChunkStatus: finest_needed_level .. 4), so the five counts add up to the chunk count.
+struct ChunkCensus {
+    std::uint32_t absent = 0, requested = 0, loaded = 0, partial = 0, resident = 0;
+    std::array<std::uint32_t, 5> finest_resident{};  // [0]: not even level 4 resident; [l]: levels 4..l
+    std::uint32_t failed = 0;
+};
+
+struct FrameRecord {
+    std::string run = "lod";  // "lod" (streamed, LOD mode of the settings) or "baseline"
+    int frame = 0;            // index along the path
+    Segment segment = Segment::ground;
+    float t = 0.0f;
+    glm::vec3 eye{0.0f};
+    float height_above_ground_m = 0.0f;
+    float distance_to_centre_m = 0.0f;
+
+    double frame_ms = 0.0;          // render() until glFinish() returned: what the frame cost (CPU clock)
+    double stream_update_ms = 0.0;  // ChunkStreamer::update() on the main thread
+    double cpu_record_ms = 0.0;     // the renderer's CPU time recording the frame (FrameStatistics)
+    // GPU timer spans of the frame (GL_TIMESTAMP; on llvmpipe also CPU work), −1 when absent.
+    double gpu_mesh_ms = -1.0, gpu_splat_ms = -1.0, gpu_project_ms = -1.0, gpu_scan_ms = -1.0, gpu_bin_ms = -1.0,
+           gpu_sort_ms = -1.0, gpu_ranges_ms = -1.0, gpu_raster_ms = -1.0, gpu_upscale_ms = -1.0;
+    int redraws = 0;  // frames drawn again because the key buffer overflowed (it grows after each)
+
+    std::uint64_t considered = 0, visible = 0, skipped = 0, tile_splat_pairs = 0;
+    std::array<std::uint64_t, 4> drawn_per_level{};  // visible per LOD level 1..4
+
+    std::uint64_t resident_bytes = 0;   // the streamer's count of resident GPU bytes (pages)
+    std::uint64_t gpu_page_bytes = 0;   // the GPU scene's pages in use × bytes per page (must equal it)
+    std::uint64_t gpu_total_bytes = 0;  // everything the splat pass holds: scene buffers' capacity + frame buffers
+    std::uint64_t stream_upload_bytes =
+        0;                               // bytes the streamer handed to the GPU side this frame (the budgeted amount)
+    std::uint64_t gpu_upload_bytes = 0;  // bytes the GPU scene sent this frame (+32 per freed page's cluster record)
+    ChunkCensus chunks;
+    std::uint64_t failures_total = 0;  // chunk failures so far
+    // Baseline rows only: the LOD run's image of the same path frame against this one (every chunk
+    // resident, `baseline` mode) as the reference; −1 where not compared.
+    double psnr_lod_vs_baseline = -1.0, ssim_lod_vs_baseline = -1.0;
+};
+
+struct FrameColumn {
+    std::string name;
+    std::string meaning;
+    std::function<std::string(const FrameRecord&)> value;
+};
+const std::vector<FrameColumn>& frame_columns();
+
+// Writes the records as CSV: '#' comment lines naming every column and its meaning, then the
+// header row, then one row per record (atomically). Throws engine::Error naming the file.
+void write_frames_csv(const std::filesystem::path& path, const std::vector<FrameRecord>& records,
+                      const std::string& title);
+
+// A CSV read back as named columns of text (comment lines skipped). Throws engine::Error naming
+// the file and line when a row has the wrong number of fields.
+struct CsvTable {
+    std::filesystem::path source;
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+    // Index of a column; throws engine::Error naming the file's columns when absent.
+    std::size_t column(const std::string& name) const;
+    double number(std::size_t row, const std::string& name) const;
+};
+CsvTable read_csv(const std::filesystem::path& path);
+
+}  // namespace sample_game

@@ -1,0 +1,46 @@
+#pragma once
+// What the game runs with, in one place: the LOD settings the splat pass draws with AND the ones
+// the chunk streamer decides residency with come from the same GameSettings::lod, so they cannot
+// disagree (the streamer loads a finer level only from where the renderer could select it;
+// splat_lod/world/stream_policy.h). The budgets and the lens are here too.
+#include <cstdint>
+#include <string>
+
+#include <plugin_msgs/lod_settings.h>
+
+#include "splat_lod/world/chunk_streamer.h"
+
+namespace sample_game {
+
+inline constexpr std::uint64_t kMiB = 1024ull * 1024ull;
+
+struct GameSettings {
+    plugin_msgs::LodSettings lod;  // mode, S_T, S_rel_min/max, render scale, upscaler, level colouring
+    // GPU bytes of streamed Gaussians resident at the end of any frame, and uploaded in any frame.
+    // Chosen on the default world along the walkthrough at 640x360 (sample_game/README.md,
+    // "Budgets"): stream level 4 of every chunk alone takes ~280 MiB and the path asks for up to
+    // ~560 MiB without a limit, so 384 MiB keeps the whole world drawable and binds on the finer
+    // levels; 8 MiB per frame lets a chunk's fine level arrive within a frame or two.
+    std::uint64_t memory_budget_bytes = 384 * kMiB;
+    std::uint64_t upload_budget_bytes = 8 * kMiB;
+    int sh_degree = 0;  // SH degree the GPU stores (the generated world carries degree 0)
+    // Loads levels this much earlier than the on-axis bound (chunk_streamer.h: off axis a Gaussian
+    // covers up to ~1/cos²θ more pixels, 1.5–2.4 at the edges and corners of this lens).
+    float load_distance_scale = 1.5f;
+    bool sync_streaming = false;  // reads inside update() instead of on the background thread
+    float fov_y_deg = 60.0f;
+};
+
+// Throws engine::Error naming the first bad setting ("sample_game: lod_settings.rel_min: ...").
+void validate(const GameSettings& settings);
+
+// The streamer's settings: budgets, SH degree, load distances and the LOD thresholds of `lod`.
+splat_lod::world::StreamerSettings streamer_settings(const GameSettings& settings);
+
+// The near plane for an eye this high above the ground: 0.1 m on foot, growing with the height so
+// that the far overview keeps depth precision between the terrain mesh and the props on it.
+float near_plane_for(float height_above_ground_m);
+// The far plane: beyond the farthest corner of the world from any point of the walkthrough.
+float far_plane_for(float world_size_m);
+
+}  // namespace sample_game

@@ -1,0 +1,95 @@
+#pragma once
+// The game's world in a running engine: the manifest's props and terrain mesh as mesh nodes (drawn
+// by the mesh pass, composited with the splats by depth), a sun and a sky light, and the chunks
+// streamed by a ChunkStreamer through a SceneResidencySink under the node "chunks", where the splat
+// pass's incremental GPU scene picks them up (the wiring of tests/gpu/splat_streaming_test.cpp).
+// Needs a current GL context for rendering (not to be built); the engine must have the splat_lod
+// plugin started.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+
+#include "engine/engine.h"
+#include "engine/render/camera.h"
+#include "sample_game/camera_path.h"
+#include "sample_game/frame_record.h"
+#include "sample_game/game_settings.h"
+#include "splat_lod/world/chunk_streamer.h"
+#include "splat_lod/world/stream_scene_sink.h"
+#include "splat_lod/world/world_manifest.h"
+#include "splat_lod/world/world_terrain.h"
+
+namespace splat_lod {
+class SplatPass;
+}
+
+namespace sample_game {
+
+// Throws engine::Error when `folder` holds no world.json, saying how to make one (before a window
+// or GL context is made, so that the message comes first).
+void require_world_folder(const std::filesystem::path& folder);
+
+class GameWorld {
+public:
+    // Reads `folder`/world.json, loads the props and the terrain mesh, starts the streamer, reserves
+    // the GPU scene for the memory budget (so its buffers never grow mid-walk) and publishes the
+    // LOD settings. Throws engine::Error naming the file on a missing or bad world.
+    GameWorld(engine::Engine& engine, const std::filesystem::path& folder, const GameSettings& settings);
+    ~GameWorld();  // stops the streamer before the scene it feeds goes
+    GameWorld(const GameWorld&) = delete;
+    GameWorld& operator=(const GameWorld&) = delete;
+
+    const splat_lod::world::WorldManifest& manifest() const { return manifest_; }
+    const splat_lod::world::WorldTerrain& terrain() const { return terrain_; }
+    const std::filesystem::path& folder() const { return folder_; }
+    engine::Scene& scene() { return *scene_; }
+    splat_lod::world::ChunkStreamer& streamer() { return *streamer_; }
+    splat_lod::SplatPass& pass() { return *pass_; }
+    const GameSettings& settings() const { return settings_; }
+
+    // The game's camera at `eye` looking along `forward` (Y up), with near and far planes for its
+    // height above the ground (game_settings.h).
+    engine::CameraView camera(const glm::vec3& eye, const glm::vec3& forward, int width, int height) const;
+    // The pose's camera, also setting the record's position, height and centre distance fields.
+    engine::CameraView camera(const PathPose& pose, int width, int height, FrameRecord* record = nullptr) const;
+
+    // One streamer update for this camera; returns its wall time in milliseconds.
+    double update_streaming(const engine::CameraView& camera, std::uint64_t frame);
+    // New settings from the UI: LOD thresholds and budgets go to the streamer (the splat pass
+    // already took the LodSettings message). The SH degree and sync mode are fixed at start.
+    void set_settings(const GameSettings& settings);
+    // Publishes settings().lod on the bus (the splat pass and the LOD panel take it from there).
+    void publish_lod_settings();
+
+    ChunkCensus census() const;
+    // GPU bytes of every chunk fully resident (every level in whole pages), what the baseline holds.
+    std::uint64_t whole_world_gpu_bytes() const;
+
+    // Draws one frame with a few Gaussians of the first chunk so that every shader of the frame
+    // is compiled before anything is timed, then removes them (nothing stays resident).
+    void warm_up(int width, int height);
+
+    // Replaces the streamer by one that keeps every level of every chunk resident, and loads them
+    // all now (reads in this thread, no upload or memory limit): the baseline's "everything
+    // resident" state. Returns the seconds it took. Throws engine::Error when a chunk fails.
+    double load_whole_world(const std::function<void(std::size_t, std::size_t)>& progress);
+
+private:
+    void load_meshes();
+    void start_streamer(const splat_lod::world::StreamerSettings& settings);
+
+    engine::Engine& engine_;
+    GameSettings settings_;
+    std::filesystem::path folder_;
+    splat_lod::world::WorldManifest manifest_;
+    splat_lod::world::WorldTerrain terrain_;
+    std::unique_ptr<engine::Scene> scene_;
+    engine::Node* chunks_root_ = nullptr;
+    splat_lod::world::FileChunkSource source_;
+    std::unique_ptr<splat_lod::world::SceneResidencySink> sink_;
+    std::unique_ptr<splat_lod::world::ChunkStreamer> streamer_;
+    splat_lod::SplatPass* pass_ = nullptr;
+};
+
+}  // namespace sample_game

@@ -1,0 +1,52 @@
+#pragma once
+// The headless profile (`sample_game --profile`): walks the camera path once with LOD and
+// streaming, frame by frame, then (unless told not to) loads every chunk fully, switches to
+// `baseline` mode and draws the overview's frames (and every K-th frame elsewhere) again, and
+// writes what it measured:
+//   <out>/profile.csv       one row per path frame of the LOD run (columns: frame_record.h)
+//   <out>/baseline.csv      the baseline's frames, same columns
+//   <out>/summary.txt       per-segment frame times and the three checks (profile_summary.h)
+//   <out>/frame_time.png memory.png gaussians.png   (profile_plots.h; needs gnuplot)
+//   <out>/frames/*.png      every K-th frame (LOD and baseline), and frames_sheet.png of them
+// The first view is streamed completely before the walk starts (preload, like a loading screen;
+// its updates are drawn at a quarter of the size and not recorded), unless `preload` is off.
+// Needs a current GL context. Budget checks that fail are results, not errors.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "sample_game/game_settings.h"
+#include "sample_game/profile_summary.h"
+
+namespace sample_game {
+
+struct ProfileOptions {
+    std::filesystem::path world;  // folder holding world.json
+    std::filesystem::path out = "out/game";
+    int width = 640, height = 360;
+    int frames = 400;  // poses along the path
+    GameSettings settings;
+    int frames_png_every = 0;  // 0: no frame pictures
+    bool baseline = true;
+    int baseline_every = 10;          // baseline frames outside the overview (0: overview only)
+    int baseline_overview_every = 1;  // every K-th overview frame in the baseline (1: all of them)
+    // Before the first frame, stream the first view completely (as a game's loading screen would),
+    // so that the walk starts with what it needs rather than measuring a cold start.
+    bool preload = true;
+};
+
+struct ProfileOutcome {
+    ProfileSummary summary;
+    std::string summary_text;  // also in <out>/summary.txt
+    std::vector<std::filesystem::path> pictures;
+    std::string plot_problem;  // why there are no plots, if there are none
+};
+
+// Throws engine::Error naming the option ("sample_game: --frames must be at least 10") or file.
+void validate(const ProfileOptions& options);
+
+// Progress lines ("lod frame 120/400 (flyout), 0.31 s/frame, ETA 1m22s") go to `progress` (may be null).
+ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress);
+
+}  // namespace sample_game

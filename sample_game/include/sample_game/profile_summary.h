@@ -1,0 +1,72 @@
+#pragma once
+// The profile's verdict, computed from the measured frames (never asserted): per-segment frame
+// times, peak memory and largest upload against the budgets, and the overview's LOD/baseline
+// ratio, with a pass/fail line for each of the three conditions of the walkthrough:
+//   1. resident GPU memory stays within the memory budget on every frame of the LOD run (and the
+//      GPU scene's pages equal the streamer's count);
+//   2. no frame uploads more than the upload budget;
+//   3. the overview segment is at least kRequiredOverviewSpeedup× cheaper per frame with LOD and
+//      streaming than the same frames in `baseline` mode with every chunk resident.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sample_game/frame_record.h"
+
+namespace sample_game {
+
+inline constexpr double kRequiredOverviewSpeedup = 5.0;
+
+struct SegmentTimes {
+    int frames = 0;
+    double mean_ms = 0.0, median_ms = 0.0, max_ms = 0.0;
+    int baseline_frames = 0;          // frames of this segment also drawn in the baseline run
+    double baseline_median_ms = 0.0;  // over those frames
+    double lod_median_same_ms = 0.0;  // the LOD run's median over the same frames
+};
+
+struct Check {
+    bool measured = false;  // false: not measured (e.g. --no-baseline); neither pass nor fail
+    bool pass = false;
+    std::string text;  // "PASS  memory: peak 97.3 MiB <= budget 128 MiB on all 400 frames"
+};
+
+struct ProfileSummary {
+    int frames = 0;
+    std::array<SegmentTimes, kSegmentCount> segments{};
+    std::uint64_t memory_budget_bytes = 0, upload_budget_bytes = 0;
+    std::uint64_t peak_resident_bytes = 0, peak_gpu_total_bytes = 0;
+    std::uint64_t max_upload_bytes = 0, max_gpu_upload_bytes = 0, total_upload_bytes = 0;
+    int frames_over_memory = 0, frames_over_upload = 0, frames_pages_differ = 0;
+    std::uint64_t failures = 0;
+    // Overview, LOD against baseline over the frames both runs drew: ratio of the mean frame times
+    // (= of their sums), and the smallest per-frame ratio.
+    int overview_pairs = 0;
+    double overview_lod_mean_ms = 0.0, overview_baseline_mean_ms = 0.0;
+    std::optional<double> overview_speedup, overview_min_frame_speedup;
+    // What LOD and streaming cost in image quality over those frames: mean PSNR (dB) and SSIM of the
+    // LOD run's images against the baseline's (none when the images were not compared).
+    std::optional<double> overview_psnr, overview_ssim;
+    Check memory, upload, overview;
+};
+
+ProfileSummary summarize(const std::vector<FrameRecord>& lod, const std::vector<FrameRecord>& baseline,
+                         std::uint64_t memory_budget_bytes, std::uint64_t upload_budget_bytes);
+
+// Context lines the summary prints around the numbers.
+struct SummaryContext {
+    std::string world;     // folder and size
+    std::string settings;  // resolution, LOD mode and thresholds, budgets
+    double wall_seconds = 0.0;
+    std::string timing;                // where the wall time went
+    std::vector<std::string> outputs;  // "profile.csv: one row per frame", ...
+};
+
+std::string format_summary(const ProfileSummary& summary, const SummaryContext& context);
+
+// Median of a list (0 for none).
+double median_of(std::vector<double> values);
+
+}  // namespace sample_game

@@ -1,0 +1,87 @@
+#include "sample_game/frame_probe.h"
+
+#include <chrono>
+
+#include <plugin_msgs/frame_statistics.h>
+
+#include "engine/gl/gl.h"
+#include "gpu/gpu_scene.h"
+#include "passes/splat_pass.h"
+
+namespace sample_game {
+namespace {
+
+double draw(engine::Engine& engine, const engine::Scene& scene, const engine::CameraView& camera,
+            engine::RenderTarget& target) {
+    const auto start = std::chrono::steady_clock::now();
+    engine.renderer().render(scene, camera, target);
+    glFinish();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The GPU spans of the newest completed frame (after GpuTimers::wait_all(): this one).
+void record_spans(engine::Engine& engine, FrameRecord& r) {
+    const auto& spans = engine.renderer().timers().latest();
+    if (!spans) return;
+    for (const auto& span : *spans) {
+        double* field = span.name == "mesh"            ? &r.gpu_mesh_ms
+                        : span.name == "splat"         ? &r.gpu_splat_ms
+                        : span.name == "splat.project" ? &r.gpu_project_ms
+                        : span.name == "splat.scan"    ? &r.gpu_scan_ms
+                        : span.name == "splat.bin"     ? &r.gpu_bin_ms
+                        : span.name == "splat.sort"    ? &r.gpu_sort_ms
+                        : span.name == "splat.ranges"  ? &r.gpu_ranges_ms
+                        : span.name == "splat.raster"  ? &r.gpu_raster_ms
+                        : span.name == "splat.upscale" ? &r.gpu_upscale_ms
+                                                       : nullptr;
+        if (field) *field = span.milliseconds;
+    }
+}
+
+}  // namespace
+
+void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::CameraView& camera,
+                      engine::RenderTarget& target, FrameRecord& record) {
+    splat_lod::SplatPass& pass = world.pass();
+    // The splat pass publishes no statistics for a frame without Gaussians: only numbers of the
+    // frame just drawn count (the renderer's index was that frame's during render()).
+    auto this_frames_statistics = [&]() -> const plugin_msgs::SplatStatistics* {
+        const auto& s = pass.latest_statistics();
+        return s && s->frame_index + 1 == engine.renderer().frame_index() ? &*s : nullptr;
+    };
+    record.frame_ms = draw(engine, world.scene(), camera, target);
+    record.gpu_upload_bytes = pass.scene().last_upload_bytes();
+    engine.renderer().timers().wait_all();
+    pass.wait_for_statistics(engine.bus());
+    record.redraws = 0;
+    while (this_frames_statistics() && this_frames_statistics()->overflowed && record.redraws < kMaxRedraws) {
+        ++record.redraws;
+        record.frame_ms = draw(engine, world.scene(), camera, target);
+        engine.renderer().timers().wait_all();
+        pass.wait_for_statistics(engine.bus());
+    }
+    record_spans(engine, record);
+    if (const auto frame = engine.bus().latest<plugin_msgs::FrameStatistics>())
+        record.cpu_record_ms = frame->cpu_frame_ms;
+    record.considered = pass.scene().live_gaussians();
+    if (const plugin_msgs::SplatStatistics* s = this_frames_statistics()) {
+        record.considered = s->considered;
+        record.visible = s->visible;
+        record.skipped = s->skipped;
+        record.tile_splat_pairs = s->tile_splat_pairs;
+        record.drawn_per_level = s->per_level;
+        record.gpu_total_bytes = s->resident_bytes;
+    }
+    record.gpu_page_bytes = std::uint64_t(pass.scene().pages_in_use()) * pass.scene().page_bytes();
+    record_streaming(world, record);
+}
+
+void record_streaming(GameWorld& world, FrameRecord& record) {
+    const auto& streamer = world.streamer();
+    record.resident_bytes = streamer.resident_bytes();
+    record.stream_upload_bytes = streamer.stats().uploaded_bytes_last_update;
+    record.failures_total = streamer.stats().failures;
+    record.chunks = world.census();
+}
+
+}  // namespace sample_game

@@ -1,0 +1,165 @@
+#include "sample_game/profile_summary.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+#include "formatted.h"
+#include "sample_game/game_settings.h"
+
+namespace sample_game {
+namespace {
+
+double mib(std::uint64_t bytes) {
+    return static_cast<double>(bytes) / static_cast<double>(kMiB);
+}
+
+void segment_times(const std::vector<FrameRecord>& lod, const std::vector<FrameRecord>& baseline, ProfileSummary& s) {
+    std::map<int, double> lod_ms;
+    for (const auto& r : lod) lod_ms[r.frame] = r.frame_ms;
+    for (std::size_t k = 0; k < kSegmentCount; ++k) {
+        std::vector<double> times, base, lod_same;
+        for (const auto& r : lod)
+            if (static_cast<std::size_t>(r.segment) == k) times.push_back(r.frame_ms);
+        for (const auto& r : baseline)
+            if (static_cast<std::size_t>(r.segment) == k && lod_ms.count(r.frame)) {
+                base.push_back(r.frame_ms);
+                lod_same.push_back(lod_ms[r.frame]);
+            }
+        SegmentTimes& t = s.segments[k];
+        t.frames = static_cast<int>(times.size());
+        if (!times.empty()) {
+            double sum = 0.0;
+            for (double v : times) sum += v;
+            t.mean_ms = sum / static_cast<double>(times.size());
+            t.max_ms = *std::max_element(times.begin(), times.end());
+        }
+        t.median_ms = median_of(times);
+        t.baseline_frames = static_cast<int>(base.size());
+        t.baseline_median_ms = median_of(base);
+        t.lod_median_same_ms = median_of(lod_same);
+    }
+}
+
+void budget_checks(const std::vector<FrameRecord>& lod, ProfileSummary& s) {
+    for (const auto& r : lod) {
+        s.peak_resident_bytes = std::max(s.peak_resident_bytes, r.resident_bytes);
+        s.peak_gpu_total_bytes = std::max(s.peak_gpu_total_bytes, r.gpu_total_bytes);
+        s.max_upload_bytes = std::max(s.max_upload_bytes, r.stream_upload_bytes);
+        s.max_gpu_upload_bytes = std::max(s.max_gpu_upload_bytes, r.gpu_upload_bytes);
+        s.total_upload_bytes += r.stream_upload_bytes;
+        s.frames_over_memory += r.resident_bytes > s.memory_budget_bytes ? 1 : 0;
+        s.frames_over_upload += r.stream_upload_bytes > s.upload_budget_bytes ? 1 : 0;
+        s.frames_pages_differ += r.gpu_page_bytes != r.resident_bytes ? 1 : 0;
+        s.failures = std::max(s.failures, r.failures_total);
+    }
+    s.memory.measured = !lod.empty();
+    s.memory.pass = s.memory.measured && s.frames_over_memory == 0 && s.frames_pages_differ == 0;
+    s.memory.text = formatted("memory: peak resident %.1f MiB, budget %.1f MiB; over budget on %d of %d frames",
+                              mib(s.peak_resident_bytes), mib(s.memory_budget_bytes), s.frames_over_memory, s.frames);
+    if (s.frames_pages_differ > 0)
+        s.memory.text +=
+            formatted("; the GPU's pages differ from the streamer's count on %d frames", s.frames_pages_differ);
+    s.upload.measured = !lod.empty();
+    s.upload.pass = s.upload.measured && s.frames_over_upload == 0;
+    s.upload.text = formatted("upload: largest %.2f MiB in one frame, budget %.2f MiB; over budget on %d frames",
+                              mib(s.max_upload_bytes), mib(s.upload_budget_bytes), s.frames_over_upload);
+}
+
+void overview_check(const std::vector<FrameRecord>& lod, const std::vector<FrameRecord>& baseline, ProfileSummary& s) {
+    std::map<int, double> lod_ms;
+    for (const auto& r : lod) lod_ms[r.frame] = r.frame_ms;
+    double lod_sum = 0.0, base_sum = 0.0, psnr_sum = 0.0, ssim_sum = 0.0;
+    int compared = 0;
+    for (const auto& r : baseline) {
+        if (r.segment != Segment::overview || !lod_ms.count(r.frame)) continue;
+        ++s.overview_pairs;
+        if (r.psnr_lod_vs_baseline >= 0.0 && r.ssim_lod_vs_baseline >= 0.0) {
+            ++compared;
+            psnr_sum += r.psnr_lod_vs_baseline;
+            ssim_sum += r.ssim_lod_vs_baseline;
+        }
+        lod_sum += lod_ms[r.frame];
+        base_sum += r.frame_ms;
+        if (lod_ms[r.frame] > 0.0) {
+            const double ratio = r.frame_ms / lod_ms[r.frame];
+            s.overview_min_frame_speedup = std::min(s.overview_min_frame_speedup.value_or(ratio), ratio);
+        }
+    }
+    s.overview.measured = s.overview_pairs > 0 && lod_sum > 0.0;
+    if (!s.overview.measured) {
+        s.overview.text = "overview: not measured (no baseline frames of the overview; run without --no-baseline)";
+        return;
+    }
+    s.overview_lod_mean_ms = lod_sum / s.overview_pairs;
+    s.overview_baseline_mean_ms = base_sum / s.overview_pairs;
+    s.overview_speedup = base_sum / lod_sum;
+    s.overview.pass = *s.overview_speedup >= kRequiredOverviewSpeedup;
+    s.overview.text = formatted(
+        "overview: LOD+streaming %.1f ms vs baseline (all resident) %.1f ms per frame over %d frames: "
+        "%.2fx cheaper (required %.0fx; worst frame %.2fx)",
+        s.overview_lod_mean_ms, s.overview_baseline_mean_ms, s.overview_pairs, *s.overview_speedup,
+        kRequiredOverviewSpeedup, s.overview_min_frame_speedup.value_or(0.0));
+    if (compared > 0) {
+        s.overview_psnr = psnr_sum / compared;
+        s.overview_ssim = ssim_sum / compared;
+        s.overview.text += formatted("; image against the baseline's: PSNR %.2f dB, SSIM %.4f (mean of %d frames)",
+                                     *s.overview_psnr, *s.overview_ssim, compared);
+    }
+}
+
+std::string verdict(const Check& check) {
+    return std::string(!check.measured ? "n/a " : check.pass ? "PASS" : "FAIL") + "  " + check.text + "\n";
+}
+
+}  // namespace
+
+double median_of(std::vector<double> values) {
+    if (values.empty()) return 0.0;
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+ProfileSummary summarize(const std::vector<FrameRecord>& lod, const std::vector<FrameRecord>& baseline,
+                         std::uint64_t memory_budget_bytes, std::uint64_t upload_budget_bytes) {
+    ProfileSummary s;
+    s.frames = static_cast<int>(lod.size());
+    s.memory_budget_bytes = memory_budget_bytes;
+    s.upload_budget_bytes = upload_budget_bytes;
+    segment_times(lod, baseline, s);
+    budget_checks(lod, s);
+    overview_check(lod, baseline, s);
+    return s;
+}
+
+std::string format_summary(const ProfileSummary& s, const SummaryContext& context) {
+    std::string out = "sample_game profile\n";
+    out += "  world:    " + context.world + "\n  settings: " + context.settings + "\n\n";
+    out += "frame time (ms; render to glFinish, CPU clock - compare as ratios)\n";
+    out += "  segment    frames     mean   median      max | baseline frames  median  (LOD same frames)\n";
+    for (std::size_t k = 0; k < kSegmentCount; ++k) {
+        const SegmentTimes& t = s.segments[k];
+        if (t.frames == 0) continue;
+        out += formatted("  %-9s %7d %8.1f %8.1f %8.1f |", std::string(kSegmentNames[k]).c_str(), t.frames, t.mean_ms,
+                         t.median_ms, t.max_ms);
+        out += t.baseline_frames > 0
+                   ? formatted(" %15d %7.1f  (%.1f)\n", t.baseline_frames, t.baseline_median_ms, t.lod_median_same_ms)
+                   : std::string("               -\n");
+    }
+    out += formatted(
+        "\nstreaming: %.1f MiB uploaded in all, peak GPU memory of the splat pass %.1f MiB (scene + frame buffers), "
+        "%llu chunk failures\n",
+        mib(s.total_upload_bytes), mib(s.peak_gpu_total_bytes), static_cast<unsigned long long>(s.failures));
+    out += "\nchecks (computed from the measurements)\n";
+    out += "  " + verdict(s.memory) + "  " + verdict(s.upload) + "  " + verdict(s.overview);
+    out += formatted("\nwall time: %.0f s", context.wall_seconds);
+    out += context.timing.empty() ? std::string("\n") : " (" + context.timing + ")\n";
+    if (!context.outputs.empty()) {
+        out += "outputs:\n";
+        for (const auto& line : context.outputs) out += "  " + line + "\n";
+    }
+    return out;
+}
+
+}  // namespace sample_game

@@ -1,0 +1,172 @@
+// sample_game: the streamed outdoor walkthrough (sample_game/README.md).
+//   sample_game [--world DIR]                                  a window: fly or follow the path
+//   sample_game --profile [--world DIR] [--out DIR] [--width W --height H] [--frames N]
+//               [--memory-budget-mib M] [--upload-budget-mib U] [--frames-png K]
+//               [--no-baseline] [--baseline-every K] [--baseline-overview-every K] [--no-preload]
+//               [--sync-streaming] [LOD options]
+// The profile runs headless (EGL): the path with LOD and streaming, then the baseline, and writes
+// profile.csv, baseline.csv, summary.txt, plots and frames to --out; it prints the summary. Exit
+// code 1 on an error (bad option, missing or broken world, no GL); a budget check that fails is a
+// result, printed in the summary, not an error.
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "engine/core/error.h"
+#include "engine/platform/gl_context.h"
+#include "sample_game/game_window.h"
+#include "sample_game/profile_run.h"
+
+namespace {
+
+struct CommandLine {
+    bool profile = false;
+    std::string world = "out/world/default", out = "out/game";
+    int width = 0, height = 0, frames = -1;
+    double memory_budget_mib = -1.0, upload_budget_mib = -1.0;
+    std::string mode, upscaler;
+    sample_game::GameSettings settings;
+    int frames_png = 0, baseline_every = 10, baseline_overview_every = 1, path_frames = 1800;
+    bool no_baseline = false, no_preload = false, no_ui = false;
+    std::string screenshot, offscreen;
+};
+
+template <typename E, std::size_t N>
+E enum_named(const std::array<std::string_view, N>& names, const std::string& text) {
+    for (std::size_t i = 0; i < N; ++i)
+        if (names[i] == text) return static_cast<E>(i);
+    return static_cast<E>(0);  // unreachable: CLI::IsMember checked the name
+}
+
+void add_options(CLI::App& app, CommandLine& c) {
+    auto& lod = c.settings.lod;
+    app.add_flag("--profile", c.profile,
+                 "Run headless: the path with LOD + streaming, then the baseline; write CSV, plots, summary");
+    app.add_option("--world", c.world, "The world's folder (world.json; made by splat_world)")->capture_default_str();
+    app.add_option("--out", c.out, "Profile output folder")->capture_default_str();
+    app.add_option("--width", c.width, "Image width (profile default 640, window 1280)")->check(CLI::Range(16, 16384));
+    app.add_option("--height", c.height, "Image height (profile default 360, window 720)")
+        ->check(CLI::Range(16, 16384));
+    app.add_option("--frames", c.frames, "Profile: poses along the path (default 400); window: quit after N frames")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--memory-budget-mib", c.memory_budget_mib, "Streamed GPU memory budget (default 384)")
+        ->check(CLI::Range(0.01, 1e6));
+    app.add_option("--upload-budget-mib", c.upload_budget_mib, "Upload budget per frame (default 8)")
+        ->check(CLI::Range(0.01, 1e5));
+    app.add_option("--frames-png", c.frames_png,
+                   "Profile: write every K-th frame as PNG, and a contact sheet (0: none)")
+        ->check(CLI::NonNegativeNumber);
+    app.add_flag("--no-baseline", c.no_baseline, "Profile: skip the baseline run (no overview ratio)");
+    app.add_option("--baseline-every", c.baseline_every,
+                   "Profile: baseline frames outside the overview, every K-th (0: none)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    app.add_option("--baseline-overview-every", c.baseline_overview_every,
+                   "Profile: baseline on every K-th overview frame")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_flag("--no-preload", c.no_preload,
+                 "Profile: start the walk cold instead of streaming the first view first");
+    app.add_flag("--sync-streaming", c.settings.sync_streaming,
+                 "Read chunks inside each update (deterministic; tests)");
+    app.add_option("--lod-mode", c.mode, "baseline, filter_small, insert_large or full (default)")
+        ->check(CLI::IsMember({"baseline", "filter_small", "insert_large", "full"}));
+    app.add_option("--lod-size-threshold", lod.size_threshold_px, "S_T in pixels")->capture_default_str();
+    app.add_option("--lod-rel-min", lod.rel_min, "S_rel_min")->capture_default_str();
+    app.add_option("--lod-rel-max", lod.rel_max, "S_rel_max")->capture_default_str();
+    app.add_option("--render-scale", lod.render_scale, "Splat raster resolution relative to the output, (0, 1]")
+        ->capture_default_str();
+    app.add_option("--upscaler", c.upscaler, "spline (default), bicubic, bilinear or lanczos3")
+        ->check(CLI::IsMember({"spline", "bicubic", "bilinear", "lanczos3"}));
+    app.add_flag("--level-colouring", lod.level_colouring, "Tint each Gaussian by its LOD level");
+    app.add_option("--load-distance-scale", c.settings.load_distance_scale,
+                   "Load levels this much earlier than the on-axis bound")
+        ->capture_default_str();
+    app.add_option("--sh-degree", c.settings.sh_degree, "SH degree stored on the GPU (the generated world has 0)")
+        ->check(CLI::Range(0, 3))
+        ->capture_default_str();
+    app.add_option("--fov-y", c.settings.fov_y_deg, "Vertical field of view in degrees")->capture_default_str();
+    app.add_option("--path-frames", c.path_frames, "Window: poses of the looping path")
+        ->check(CLI::Range(10, 1000000))
+        ->capture_default_str();
+    app.add_option("--screenshot", c.screenshot, "Window: after the last --frames frame, write the window as PNG");
+    app.add_option("--offscreen", c.offscreen, "Window: also write the frame without overlay as PNG");
+    app.add_flag("--no-ui", c.no_ui, "Window: start with the overlay hidden (F1 toggles it)");
+}
+
+void apply_common(CommandLine& c) {
+    if (!c.mode.empty()) c.settings.lod.mode = enum_named<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, c.mode);
+    if (!c.upscaler.empty())
+        c.settings.lod.upscaler = enum_named<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, c.upscaler);
+    if (c.memory_budget_mib > 0.0)
+        c.settings.memory_budget_bytes =
+            static_cast<std::uint64_t>(c.memory_budget_mib * static_cast<double>(sample_game::kMiB));
+    if (c.upload_budget_mib > 0.0)
+        c.settings.upload_budget_bytes =
+            static_cast<std::uint64_t>(c.upload_budget_mib * static_cast<double>(sample_game::kMiB));
+}
+
+int run_profile(const CommandLine& c) {
+    sample_game::ProfileOptions o;
+    o.world = c.world;
+    o.out = c.out;
+    o.width = c.width > 0 ? c.width : 640;
+    o.height = c.height > 0 ? c.height : 360;
+    o.frames = c.frames > 0 ? c.frames : 400;
+    o.settings = c.settings;
+    o.frames_png_every = c.frames_png;
+    o.baseline = !c.no_baseline;
+    o.baseline_every = c.baseline_every;
+    o.baseline_overview_every = c.baseline_overview_every;
+    o.preload = !c.no_preload;
+    sample_game::validate(o);  // before making a GL context: option errors come first
+    const auto context = engine::HeadlessGlContext::create();
+    std::fprintf(stderr, "sample_game: %s on %s\n", context->info().renderer.c_str(), context->info().platform.c_str());
+    const sample_game::ProfileOutcome outcome = sample_game::run_profile(o, stderr);
+    std::printf("%s", outcome.summary_text.c_str());
+    if (!outcome.plot_problem.empty()) std::fprintf(stderr, "sample_game: %s\n", outcome.plot_problem.c_str());
+    return 0;
+}
+
+int run_window(const CommandLine& c) {
+    sample_game::WindowOptions o;
+    o.world = c.world;
+    o.width = c.width > 0 ? c.width : 1280;
+    o.height = c.height > 0 ? c.height : 720;
+    o.settings = c.settings;
+    o.path_frames = c.path_frames;
+    o.frames = c.frames > 0 ? c.frames : 0;
+    o.screenshot = c.screenshot;
+    o.offscreen = c.offscreen;
+    o.no_ui = c.no_ui;
+    if ((!o.screenshot.empty() || !o.offscreen.empty()) && o.frames == 0)
+        engine::fail("sample_game: --screenshot and --offscreen need --frames N");
+    sample_game::run_window(o);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"The streamed outdoor walkthrough: a window on the world, or --profile headless"};
+    CommandLine c;
+    add_options(app, c);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help
+        std::fprintf(stderr, "sample_game: %s\n", e.what());
+        return 1;
+    }
+    try {
+        apply_common(c);
+        return c.profile ? run_profile(c) : run_window(c);
+    } catch (const std::exception& e) {
+        // The game's own messages already start with "sample_game: "; the engine's name their file.
+        const std::string message = e.what();
+        std::fprintf(stderr, "%s%s\n", message.rfind("sample_game: ", 0) == 0 ? "" : "sample_game: ", message.c_str());
+        return 1;
+    }
+}

@@ -1,0 +1,164 @@
+// The profile's records without GL: the CSV's columns and round trip, the summary's checks computed
+// from the numbers (pass and fail), the streaming panel's history and failures, and the game
+// settings handing the renderer's thresholds to the streamer.
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "engine/core/error.h"
+#include "engine/core/file_io.h"
+#include "engine/core/message_bus.h"
+#include "sample_game/frame_record.h"
+#include "sample_game/game_settings.h"
+#include "sample_game/profile_summary.h"
+#include "sample_game/streaming_panel.h"
+#include "test_support.h"
+
+using namespace sample_game;
+
+namespace {
+
+// A path of 20 frames: 4 per segment, the overview (frames 12..15) 10 ms per frame with LOD.
+std::vector<FrameRecord> lod_run(std::uint64_t resident_peak, std::uint64_t upload_peak) {
+    std::vector<FrameRecord> records;
+    for (int i = 0; i < 20; ++i) {
+        FrameRecord r;
+        r.frame = i;
+        r.segment = static_cast<Segment>(i / 4);
+        r.frame_ms = r.segment == Segment::overview ? 10.0 : 5.0 + i;
+        r.resident_bytes = r.gpu_page_bytes = i == 13 ? resident_peak : resident_peak / 2;
+        r.stream_upload_bytes = i == 3 ? upload_peak : upload_peak / 4;
+        r.drawn_per_level = {100u + static_cast<unsigned>(i), 10, 5, 1};
+        records.push_back(r);
+    }
+    return records;
+}
+
+std::vector<FrameRecord> baseline_run(double overview_ms) {
+    std::vector<FrameRecord> records;
+    for (int i : {0, 12, 13, 14, 15}) {
+        FrameRecord r;
+        r.run = "baseline";
+        r.frame = i;
+        r.segment = static_cast<Segment>(i / 4);
+        r.frame_ms = r.segment == Segment::overview ? overview_ms : 50.0;
+        records.push_back(r);
+    }
+    return records;
+}
+
+}  // namespace
+
+TEST(ProfileRecords, CsvHasOneRowPerRecordUnderTheDocumentedColumns) {
+    const auto folder = engine::test::output_dir("sample_game");
+    const std::vector<FrameRecord> records = lod_run(100 * kMiB, 4 * kMiB);
+    write_frames_csv(folder / "profile.csv", records, "test");
+    const CsvTable table = read_csv(folder / "profile.csv");
+    ASSERT_EQ(table.header.size(), frame_columns().size());
+    for (std::size_t i = 0; i < frame_columns().size(); ++i) EXPECT_EQ(table.header[i], frame_columns()[i].name);
+    ASSERT_EQ(table.rows.size(), records.size());
+    EXPECT_EQ(table.rows[13][table.column("segment")], "overview");
+    EXPECT_EQ(table.number(13, "resident_bytes"), static_cast<double>(100 * kMiB));
+    EXPECT_EQ(table.number(5, "drawn_l1"), 105.0);
+    EXPECT_EQ(table.rows[0][table.column("gpu_sort_ms")], "") << "a GPU span not measured stays empty";
+    // Every column is explained in the file's comment header.
+    const std::string text = engine::read_text_file(folder / "profile.csv");
+    for (const auto& column : frame_columns())
+        EXPECT_NE(text.find("#   " + column.name + ": "), std::string::npos) << column.name;
+    EXPECT_THROW(table.column("no_such_column"), engine::Error);
+}
+
+TEST(ProfileSummary, PassesWhenTheMeasurementsAreWithinBudgetAndTheOverviewIsCheaper) {
+    const ProfileSummary s = summarize(lod_run(100 * kMiB, 4 * kMiB), baseline_run(60.0), 128 * kMiB, 4 * kMiB);
+    EXPECT_EQ(s.frames, 20);
+    EXPECT_TRUE(s.memory.pass) << s.memory.text;
+    EXPECT_TRUE(s.upload.pass) << s.upload.text;
+    ASSERT_TRUE(s.overview_speedup.has_value());
+    EXPECT_DOUBLE_EQ(*s.overview_speedup, 6.0);
+    EXPECT_EQ(s.overview_pairs, 4);
+    EXPECT_TRUE(s.overview.pass);
+    EXPECT_EQ(s.peak_resident_bytes, 100 * kMiB);
+    EXPECT_EQ(s.segments[static_cast<std::size_t>(Segment::overview)].frames, 4);
+    EXPECT_DOUBLE_EQ(s.segments[static_cast<std::size_t>(Segment::overview)].median_ms, 10.0);
+    EXPECT_EQ(s.segments[static_cast<std::size_t>(Segment::ground)].baseline_frames, 1);
+    const std::string text = format_summary(s, {"a world", "settings", 12.0, "", {"out/profile.csv"}});
+    EXPECT_NE(text.find("PASS  memory"), std::string::npos) << text;
+    EXPECT_NE(text.find("PASS  upload"), std::string::npos) << text;
+    EXPECT_NE(text.find("PASS  overview"), std::string::npos) << text;
+    EXPECT_NE(text.find("6.00x cheaper"), std::string::npos) << text;
+}
+
+TEST(ProfileSummary, FailsEachCheckFromTheNumbersAlone) {
+    const ProfileSummary s = summarize(lod_run(200 * kMiB, 5 * kMiB), baseline_run(30.0), 128 * kMiB, 4 * kMiB);
+    EXPECT_FALSE(s.memory.pass);
+    EXPECT_EQ(s.frames_over_memory, 1);
+    EXPECT_FALSE(s.upload.pass);
+    EXPECT_EQ(s.frames_over_upload, 1);
+    EXPECT_FALSE(s.overview.pass);
+    EXPECT_DOUBLE_EQ(*s.overview_speedup, 3.0);
+    const std::string text = format_summary(s, {});
+    EXPECT_NE(text.find("FAIL  memory"), std::string::npos) << text;
+    EXPECT_NE(text.find("FAIL  upload"), std::string::npos) << text;
+    EXPECT_NE(text.find("FAIL  overview"), std::string::npos) << text;
+
+    // GPU pages that disagree with the streamer's count fail the memory check too.
+    std::vector<FrameRecord> lod = lod_run(100 * kMiB, 4 * kMiB);
+    lod[7].gpu_page_bytes += 1;
+    EXPECT_FALSE(summarize(lod, {}, 128 * kMiB, 4 * kMiB).memory.pass);
+    // Without baseline frames the overview is not measured: neither pass nor fail.
+    const ProfileSummary no_baseline = summarize(lod_run(100 * kMiB, 4 * kMiB), {}, 128 * kMiB, 4 * kMiB);
+    EXPECT_FALSE(no_baseline.overview.measured);
+    EXPECT_NE(format_summary(no_baseline, {}).find("n/a   overview"), std::string::npos);
+}
+
+TEST(StreamingPanel, KeepsTheLastFramesAndTheFailures) {
+    engine::MessageBus bus;
+    StreamingPanel panel(bus);
+    for (int i = 0; i < 300; ++i) {
+        StreamingSnapshot s;
+        s.frame_ms = i;
+        s.resident_bytes = static_cast<std::uint64_t>(i);
+        panel.record(s);
+    }
+    ASSERT_EQ(panel.frame_ms().size(), StreamingPanel::kHistory);
+    EXPECT_FLOAT_EQ(panel.frame_ms().front(), 60.0f);
+    EXPECT_FLOAT_EQ(panel.frame_ms().back(), 299.0f);
+    EXPECT_EQ(panel.latest().resident_bytes, 299u);
+    bus.publish(plugin_msgs::StreamEvent{"chunk_+001_+000", plugin_msgs::StreamEventType::uploaded, 4, 1000, ""});
+    for (int i = 0; i < 10; ++i)
+        bus.publish(plugin_msgs::StreamEvent{"chunk_+00" + std::to_string(i) + "_+000",
+                                             plugin_msgs::StreamEventType::failed, 0, 0,
+                                             "chunks/x.lod.ply: truncated at byte " + std::to_string(i)});
+    EXPECT_EQ(panel.failures_seen(), 10u);
+    ASSERT_EQ(panel.failures().size(), StreamingPanel::kFailuresKept);
+    EXPECT_EQ(panel.failures().back().chunk_id, "chunk_+009_+000");
+    EXPECT_NE(panel.failures().back().message.find("byte 9"), std::string::npos);
+}
+
+TEST(GameSettings, TheStreamerUsesTheRenderersThresholds) {
+    GameSettings s;
+    s.lod.size_threshold_px = 3.5f;
+    s.lod.rel_min = 0.7f;
+    s.memory_budget_bytes = 64 * kMiB;
+    s.upload_budget_bytes = 2 * kMiB;
+    s.sync_streaming = true;
+    const auto streamer = streamer_settings(s);
+    EXPECT_EQ(streamer.lod.size_threshold_px, 3.5f);
+    EXPECT_EQ(streamer.lod.rel_min, 0.7f);
+    EXPECT_EQ(streamer.memory_budget_bytes, 64 * kMiB);
+    EXPECT_EQ(streamer.upload_budget_bytes_per_frame, 2 * kMiB);
+    EXPECT_FALSE(streamer.background_thread);
+    EXPECT_EQ(streamer.gpu_sh_degree, 0);
+    EXPECT_NO_THROW(validate(s));
+
+    s.lod.rel_min = 2.0f;  // above rel_max
+    try {
+        validate(s);
+        FAIL() << "rel_min above rel_max was accepted";
+    } catch (const engine::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("lod_settings.rel_min"), std::string::npos) << e.what();
+    }
+    s.lod.rel_min = 0.5f;
+    s.upload_budget_bytes = 100;  // below one GPU page
+    EXPECT_THROW(validate(s), engine::Error);
+}

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# sample_game on bad input: each case must fail with exit code 1 and a message naming the problem,
+# before any window or GL context is made (so this runs without a GPU or display).
+#   sample_game_cli_test.sh SAMPLE_GAME OUTPUT_DIR
+set -uo pipefail
+game=$1
+dir=$2
+rm -rf "$dir"
+mkdir -p "$dir"
+failures=0
+
+expect_failure() {  # expect_failure NAME EXPECTED_TEXT ARGS...
+  local name=$1 text=$2
+  shift 2
+  local log="$dir/$name.log"
+  "$game" "$@" >"$log" 2>&1
+  local code=$?
+  if [ "$code" -ne 1 ]; then
+    echo "FAIL $name: exit code $code, expected 1"; cat "$log"; failures=$((failures + 1)); return
+  fi
+  if ! grep -q -- "$text" "$log"; then
+    echo "FAIL $name: message lacks \"$text\":"; cat "$log"; failures=$((failures + 1)); return
+  fi
+  echo "ok   $name: $(tail -n 1 "$log")"
+}
+
+expect_failure missing_world "$dir/nowhere/world.json: not found" --profile --world "$dir/nowhere" --out "$dir/out"
+expect_failure missing_world_window "splat_world --out" --world "$dir/nowhere"
+expect_failure too_few_frames "--frames must be at least 10" --profile --world "$dir/nowhere" --frames 5
+expect_failure rel_min_above_rel_max "lod_settings.rel_min" --profile --world "$dir/nowhere" --lod-rel-min 3
+expect_failure upload_below_a_page "upload_budget_bytes_per_frame" --profile --world "$dir/nowhere" --upload-budget-mib 0.01
+expect_failure unknown_upscaler "upscaler" --profile --upscaler sharpest
+expect_failure unknown_option "--teleport" --profile --teleport
+expect_failure screenshot_without_frames "need --frames" --world "$dir/nowhere" --screenshot "$dir/shot.png"
+
+if ! "$game" --help > "$dir/help.log" 2>&1 || ! grep -q -- "--memory-budget-mib" "$dir/help.log"; then
+  echo "FAIL help: --help did not list the options"; failures=$((failures + 1))
+fi
+if [ -e "$dir/out" ]; then
+  echo "FAIL: a failed run created its output folder"; failures=$((failures + 1))
+fi
+
+if [ "$failures" -ne 0 ]; then
+  echo "sample_game cli test: $failures failures"
+  exit 1
+fi
+echo "sample_game cli test: passed"

@@ -1,0 +1,183 @@
+// sample_game on a tiny generated world through the real engine (headless EGL): the profile walks
+// the whole path with binding budgets and writes one CSV row per frame with the documented
+// columns, budgets respected on every frame, the baseline's frames, plots, frames and summary;
+// the world's props and terrain mesh become mesh nodes; loading the whole world holds exactly its
+// bytes on the GPU.
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "engine/core/error.h"
+#include "engine/core/file_io.h"
+#include "engine/engine.h"
+#include "engine/render/render_target.h"
+#include "engine/scene/builtin_components.h"
+#include "gpu/gpu_scene.h"
+#include "gpu_fixture.h"
+#include "passes/splat_pass.h"
+#include "sample_game/frame_record.h"
+#include "sample_game/game_world.h"
+#include "sample_game/profile_run.h"
+#include "splat_lod/splat_lod_plugin.h"
+#include "splat_lod/world/stream_policy.h"
+#include "splat_lod/world/world_generator.h"
+#include "test_support.h"
+
+namespace sw = splat_lod::world;
+using namespace sample_game;
+
+namespace {
+
+class SampleGameTest : public engine::test::GpuTest {};
+
+// 3 × 3 chunks of 32 m at low density with a terrain mesh and props; cached between runs.
+std::filesystem::path tiny_world() {
+    sw::WorldOptions o;
+    o.seed = 11;
+    o.size_m = 96.0f;
+    o.chunk_size_m = 32.0f;
+    o.density = 0.1f;
+    o.threads = 2;
+    o.bake.refine_iterations = 3;
+    o.bake.refine_cameras = 4;
+    o.bake_width = 128;
+    o.bake_height = 128;
+    o.output = std::filesystem::path(TEST_OUTPUT_DIR) / "sample_game" / "tiny_world";
+    sw::generate_world(o);
+    return o.output;
+}
+
+// GPU bytes of the whole world at SH degree 0, every stream level in whole pages.
+std::uint64_t whole_world_bytes(const sw::WorldManifest& m) {
+    std::uint64_t total = 0;
+    for (const auto& c : m.chunks)
+        for (int l = 1; l <= sw::kLevels; ++l) {
+            const std::uint64_t count = c.prefix_count[static_cast<std::size_t>(l - 1)] -
+                                        (l < sw::kLevels ? c.prefix_count[static_cast<std::size_t>(l)] : 0);
+            total += sw::gpu_bytes(count, 0, sw::PageLayout{});
+        }
+    return total;
+}
+
+}  // namespace
+
+TEST_F(SampleGameTest, ProfileWalksThePathWithinItsBudgetsAndWritesEveryOutput) {
+    const auto world = tiny_world();
+    const sw::WorldManifest manifest = sw::read_world_manifest(world / sw::kManifestFileName);
+    const std::uint64_t page = sw::gpu_bytes(256, 0, sw::PageLayout{});
+    ProfileOptions o;
+    o.world = world;
+    o.out = engine::test::output_dir("sample_game") / "profile";
+    std::filesystem::remove_all(o.out);
+    o.width = 160;
+    o.height = 90;
+    o.frames = 24;
+    o.frames_png_every = 8;
+    o.baseline_every = 6;
+    o.settings.sync_streaming = true;
+    // Binding budgets: less than the whole world may be resident, two pages per frame uploaded.
+    o.settings.memory_budget_bytes = whole_world_bytes(manifest) * 6 / 10 / page * page;
+    o.settings.upload_budget_bytes = 2 * page;
+    ASSERT_GT(o.settings.memory_budget_bytes, 4 * page);
+    const ProfileOutcome outcome = run_profile(o, nullptr);
+
+    const CsvTable lod = read_csv(o.out / "profile.csv");
+    ASSERT_EQ(lod.rows.size(), 24u) << "one row per path frame";
+    ASSERT_EQ(lod.header.size(), frame_columns().size());
+    for (std::size_t i = 0; i < frame_columns().size(); ++i) EXPECT_EQ(lod.header[i], frame_columns()[i].name);
+    std::set<std::string> segments;
+    double peak = 0.0, drawn = 0.0;
+    for (std::size_t r = 0; r < lod.rows.size(); ++r) {
+        SCOPED_TRACE("profile.csv row " + std::to_string(r));
+        EXPECT_EQ(lod.number(r, "frame"), static_cast<double>(r));
+        segments.insert(lod.rows[r][lod.column("segment")]);
+        EXPECT_LE(lod.number(r, "resident_bytes"), static_cast<double>(o.settings.memory_budget_bytes));
+        EXPECT_EQ(lod.number(r, "gpu_page_bytes"), lod.number(r, "resident_bytes"));
+        EXPECT_LE(lod.number(r, "upload_bytes"), static_cast<double>(o.settings.upload_budget_bytes));
+        EXPECT_EQ(lod.number(r, "failures_total"), 0.0);
+        EXPECT_GT(lod.number(r, "frame_ms"), 0.0);
+        EXPECT_GE(lod.number(r, "height_m"), 1.0);
+        const double states = lod.number(r, "chunks_absent") + lod.number(r, "chunks_requested") +
+                              lod.number(r, "chunks_loaded") + lod.number(r, "chunks_partial") +
+                              lod.number(r, "chunks_resident");
+        EXPECT_EQ(states, static_cast<double>(manifest.chunks.size()));
+        peak = std::max(peak, lod.number(r, "resident_bytes"));
+        drawn = std::max(drawn, lod.number(r, "visible"));
+    }
+    EXPECT_EQ(segments, (std::set<std::string>{"ground", "canopy", "flyout", "overview", "return"}));
+    EXPECT_GT(peak, 0.5 * static_cast<double>(o.settings.memory_budget_bytes)) << "the view filled in up to the budget";
+    EXPECT_GT(drawn, 1000.0);
+
+    const CsvTable baseline = read_csv(o.out / "baseline.csv");
+    int overview_frames = 0;
+    for (std::size_t r = 0; r < lod.rows.size(); ++r)
+        overview_frames += lod.rows[r][lod.column("segment")] == "overview" ? 1 : 0;
+    EXPECT_GE(static_cast<int>(baseline.rows.size()), overview_frames + 2);
+    for (std::size_t r = 0; r < baseline.rows.size(); ++r) {
+        SCOPED_TRACE("baseline.csv row " + std::to_string(r));
+        EXPECT_EQ(baseline.rows[r][baseline.column("run")], "baseline");
+        EXPECT_EQ(baseline.number(r, "resident_bytes"), static_cast<double>(whole_world_bytes(manifest)));
+        EXPECT_EQ(baseline.number(r, "drawn_l2") + baseline.number(r, "drawn_l3") + baseline.number(r, "drawn_l4"), 0.0)
+            << "baseline mode draws level 1 only";
+        // Every baseline frame is one the LOD run drew too: its image was compared (a PSNR in dB and an
+        // SSIM in (0, 1], not a placeholder).
+        const double psnr = baseline.number(r, "psnr_lod_vs_baseline"), ssim = baseline.number(r, "ssim_lod_vs_baseline");
+        EXPECT_TRUE(std::isfinite(psnr) && psnr > 5.0) << psnr;
+        EXPECT_TRUE(ssim > 0.0 && ssim <= 1.0) << ssim;
+    }
+
+    EXPECT_TRUE(outcome.plot_problem.empty()) << outcome.plot_problem << " (scripts/setup installs gnuplot-nox)";
+    for (const char* name :
+         {"frame_time.png", "memory.png", "gaussians.png", "frames_sheet.png", "frames/lod_0000_ground.png"})
+        EXPECT_TRUE(std::filesystem::exists(o.out / name)) << name;
+    int lod_pictures = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(o.out / "frames"))
+        lod_pictures += entry.path().filename().string().rfind("lod_", 0) == 0 ? 1 : 0;
+    EXPECT_EQ(lod_pictures, 3) << "frames 0, 8 and 16 of 24";
+    const engine::Image sheet = engine::read_png(o.out / "frames_sheet.png");
+    EXPECT_GT(sheet.width, 160);
+    const std::string summary = engine::read_text_file(o.out / "summary.txt");
+    EXPECT_EQ(summary, outcome.summary_text);
+    EXPECT_NE(summary.find("PASS  memory"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("PASS  upload"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("overview: LOD+streaming"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("first view preloaded in"), std::string::npos) << summary;
+}
+
+TEST_F(SampleGameTest, WorldPutsPropsAndTerrainInTheSceneAndCanHoldAllOfIt) {
+    const auto world_folder = tiny_world();
+    engine::Engine engine;
+    engine.plugins().add_static(splat_lod::make_plugin());
+    GameSettings settings;
+    settings.sync_streaming = true;
+    GameWorld world(engine, world_folder, settings);
+    const auto& m = world.manifest();
+    ASSERT_FALSE(m.props.empty());
+    ASSERT_FALSE(m.terrain_mesh.empty());
+    EXPECT_EQ(world.scene().components<engine::MeshComponent>().size(), m.props.size() + 1);
+    const ChunkCensus before = world.census();
+    EXPECT_EQ(before.finest_resident[0], m.chunks.size()) << "nothing resident before the first update";
+    EXPECT_EQ(world.whole_world_gpu_bytes(), whole_world_bytes(m));
+
+    world.load_whole_world({});
+    EXPECT_EQ(world.streamer().resident_bytes(), whole_world_bytes(m));
+    EXPECT_EQ(world.census().finest_resident[1], m.chunks.size());
+    engine::RenderTarget target(96, 64);
+    splat_lod::render_complete(engine, world.scene(), world.camera({0.0f, 60.0f, 60.0f}, {0.0f, -1.0f, -1.0f}, 96, 64),
+                               target);
+    EXPECT_EQ(std::uint64_t(world.pass().scene().pages_in_use()) * world.pass().scene().page_bytes(),
+              whole_world_bytes(m));
+}
+
+TEST(SampleGameWorld, AMissingWorldSaysHowToMakeIt) {
+    const auto folder = engine::test::output_dir("sample_game") / "no_world_here";
+    try {
+        require_world_folder(folder);
+        FAIL() << "no error";
+    } catch (const engine::Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find((folder / "world.json").string() + ": not found"), std::string::npos) << message;
+        EXPECT_NE(message.find("splat_world --out"), std::string::npos) << message;
+    }
+}
