@@ -30,6 +30,7 @@
 #include "engine/render/scene_camera.h"
 #include "engine/scene/builtin_components.h"
 #include "engine/ui/fly_camera.h"
+#include "engine/ui/fly_camera_input.h"
 #include "engine/ui/overlay.h"
 
 namespace {
@@ -77,26 +78,6 @@ struct ViewerCamera {
     engine::FlyCamera fly;
     bool moved = false;
 };
-
-engine::FlyCameraInput read_input(const engine::Window& window, bool ui_has_mouse, bool ui_has_keyboard) {
-    using engine::Key;
-    engine::FlyCameraInput input;
-    if (!ui_has_keyboard) {
-        input.forward = window.key_down(Key::w);
-        input.back = window.key_down(Key::s);
-        input.left = window.key_down(Key::a);
-        input.right = window.key_down(Key::d);
-        input.up = window.key_down(Key::e);
-        input.down = window.key_down(Key::q);
-        input.fast = window.key_down(Key::left_shift);
-    }
-    if (!ui_has_mouse) {
-        input.look = window.mouse_down(engine::MouseButton::right);
-        input.mouse_delta = window.mouse_delta();
-        input.scroll = window.scroll_delta();
-    }
-    return input;
-}
 
 bool changes_view(const engine::FlyCameraInput& in) {
     return in.forward || in.back || in.left || in.right || in.up || in.down ||
@@ -174,7 +155,7 @@ void Viewer::update_camera(float seconds) {
     f1_was_down_ = f1;
     if (window_->key_down(engine::Key::escape)) window_->request_close();
     const engine::FlyCameraInput input =
-        read_input(*window_, show_ui_ && overlay_->wants_mouse(), show_ui_ && overlay_->wants_keyboard());
+        engine::read_fly_camera_input(*window_, show_ui_ && overlay_->wants_mouse(), show_ui_ && overlay_->wants_keyboard());
     camera_->fly.update(input, seconds);
     camera_->moved = camera_->moved || changes_view(input);
 }

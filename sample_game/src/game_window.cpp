@@ -16,6 +16,7 @@
 #include "engine/render/image.h"
 #include "engine/render/render_target.h"
 #include "engine/ui/fly_camera.h"
+#include "engine/ui/fly_camera_input.h"
 #include "engine/ui/overlay.h"
 #include "sample_game/game_world.h"
 #include "sample_game/streaming_panel.h"
@@ -54,26 +55,6 @@ engine::Image read_window(glm::ivec2 size) {
                     stride, image.rgba.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * stride));
     for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
     return image;
-}
-
-engine::FlyCameraInput read_input(const engine::Window& window, bool ui_has_mouse, bool ui_has_keyboard) {
-    using engine::Key;
-    engine::FlyCameraInput input;
-    if (!ui_has_keyboard) {
-        input.forward = window.key_down(Key::w);
-        input.back = window.key_down(Key::s);
-        input.left = window.key_down(Key::a);
-        input.right = window.key_down(Key::d);
-        input.up = window.key_down(Key::e);
-        input.down = window.key_down(Key::q);
-        input.fast = window.key_down(Key::left_shift);
-    }
-    if (!ui_has_mouse) {
-        input.look = window.mouse_down(engine::MouseButton::right);
-        input.mouse_delta = window.mouse_delta();
-        input.scroll = window.scroll_delta();
-    }
-    return input;
 }
 
 // Moves and sizes the current ImGui window the first time it is drawn (the overlay has already
@@ -211,7 +192,7 @@ void Game::update_camera(float seconds) {
     space_was_down_ = space;
     if (window_->key_down(engine::Key::escape)) window_->request_close();
     const engine::FlyCameraInput input =
-        read_input(*window_, show_ui_ && overlay_->wants_mouse(), show_ui_ && overlay_->wants_keyboard());
+        engine::read_fly_camera_input(*window_, show_ui_ && overlay_->wants_mouse(), show_ui_ && overlay_->wants_keyboard());
     if (moves_camera(input)) follow_ = false;  // the user flies: leave the path where it was
     if (follow_) {
         if (playing_) {

@@ -7,6 +7,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
+#include "engine/core/gnuplot.h"
 #include "sample_game/game_settings.h"
 
 namespace sample_game {
@@ -14,20 +15,6 @@ namespace {
 
 // Light fills for the segments, in kSegmentNames order.
 constexpr const char* kSegmentFill[kSegmentCount] = {"#dff0d8", "#c8e6c9", "#dbe9f6", "#fdebd0", "#ece2f0"};
-
-// The PNG terminal this gnuplot has: pngcairo (antialiased) when built in, else libgd's png; empty
-// when gnuplot cannot be run. The size is given per plot.
-std::string png_terminal() {
-    FILE* pipe = popen("gnuplot -e 'set terminal' 2>&1", "r");
-    if (!pipe) return {};
-    std::string text;
-    char buffer[4096];
-    while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
-    if (pclose(pipe) != 0) return {};
-    if (text.find("pngcairo") != std::string::npos) return "pngcairo font 'sans,10'";
-    if (text.find(" png ") != std::string::npos) return "png";
-    return {};
-}
 
 std::string mib(std::uint64_t bytes) {
     return std::to_string(static_cast<double>(bytes) / static_cast<double>(kMiB));
@@ -149,12 +136,6 @@ std::string script(const std::string& terminal, const std::vector<FrameRecord>& 
     return s;
 }
 
-std::string quoted(const std::filesystem::path& path) {
-    std::string out = "'";
-    for (char c : path.string()) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
 }  // namespace
 
 PlotResult write_profile_plots(const std::filesystem::path& folder, const std::vector<FrameRecord>& lod,
@@ -165,7 +146,7 @@ PlotResult write_profile_plots(const std::filesystem::path& folder, const std::v
         result.problem = "no frames to plot";
         return result;
     }
-    const std::string terminal = png_terminal();
+    const std::string terminal = engine::gnuplot_png_terminal();
     if (terminal.empty()) {
         result.problem =
             "gnuplot with a PNG terminal was not found, so no plots were drawn (install the Debian package "
@@ -177,10 +158,7 @@ PlotResult write_profile_plots(const std::filesystem::path& folder, const std::v
                                                                memory_budget_bytes, upload_budget_bytes));
     if (terminal.empty()) return result;
     // gnuplot's warnings (a level never drawn has no points on a log axis) go to plots.log.
-    const std::string command = "cd " + quoted(folder) + " && gnuplot plots.gp > plots.log 2>&1";
-    if (std::system(command.c_str()) != 0)
-        engine::fail((folder / "plots.gp").string() + ": gnuplot failed; its messages are in " +
-                     (folder / "plots.log").string());
+    engine::run_gnuplot(folder);
     for (const char* name : {"frame_time.png", "memory.png", "gaussians.png"}) result.pictures.push_back(folder / name);
     return result;
 }

@@ -8,26 +8,12 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
+#include "engine/core/gnuplot.h"
 #include "engine/core/log.h"
 #include "splat_lod/eval/eval_report.h"
 
 namespace splat_lod::eval {
 namespace {
-
-// The PNG terminal this gnuplot has: pngcairo (antialiased) when built in, else libgd's png
-// (Debian's gnuplot-nox may lack cairo); empty when gnuplot cannot be run.
-std::string png_terminal() {
-    FILE* pipe = popen("gnuplot -e 'set terminal' 2>&1", "r");
-    if (!pipe) return {};
-    std::string text;
-    char buffer[4096];
-    while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
-    const int status = pclose(pipe);
-    if (status != 0) return {};
-    if (text.find("pngcairo") != std::string::npos) return "pngcairo size 720,480 font 'sans,10'";
-    if (text.find(" png ") != std::string::npos) return "png size 720,480";
-    return {};
-}
 
 // gnuplot skips "NaN" points, which is what a missing or infinite PSNR should be on a plot.
 std::string dat_value(const std::optional<double>& value) {
@@ -106,20 +92,15 @@ bool has(const EvalResults& results, Sweep sweep) {
     return false;
 }
 
-std::string quoted(const std::filesystem::path& path) {
-    std::string out = "'";
-    for (char c : path.string()) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
 }  // namespace
 
 std::vector<std::filesystem::path> write_plots(const EvalResults& results, const std::filesystem::path& folder) {
-    const std::string terminal = png_terminal();
+    std::string terminal = engine::gnuplot_png_terminal();
     if (terminal.empty()) {
         engine::log_warning("splat_eval: gnuplot with a PNG terminal was not found; no plots written");
         return {};
     }
+    terminal += " size 720,480";
     std::string script = "set terminal " + terminal +
                          "\nset termoption noenhanced\nset grid\nset key below\nset datafile missing 'NaN'\n";
     std::vector<std::filesystem::path> plots;
@@ -138,9 +119,7 @@ std::vector<std::filesystem::path> write_plots(const EvalResults& results, const
         plots.push_back(folder / "gaussians_vs_distance.png");
     }
     engine::write_text_file_atomic(folder / "plots.gp", script);
-    const std::string command = "cd " + quoted(folder) + " && gnuplot plots.gp";
-    if (std::system(command.c_str()) != 0)
-        engine::fail(folder.string() + "/plots.gp: gnuplot failed (run `gnuplot plots.gp` there to see why)");
+    engine::run_gnuplot(folder);
     return plots;
 }
 
