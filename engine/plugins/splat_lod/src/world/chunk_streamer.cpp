@@ -119,8 +119,12 @@ ChunkStreamer::State::State(WorldManifest world, std::filesystem::path root, Str
         layout_levels(slot);
     }
     report.budget_bytes = settings.memory_budget_bytes;
+    // Decoded parts are checked on the reader's thread, off the frame.
     reader = std::make_unique<StreamReader>(
-        src, settings.background_thread ? StreamReader::Mode::background_thread : StreamReader::Mode::synchronous);
+        src, settings.background_thread ? StreamReader::Mode::background_thread : StreamReader::Mode::synchronous,
+        [rule = manifest.stream_levels](const SplatCloud& cloud, const ReadRequest& request) {
+            return check_part(cloud, request, rule);
+        });
 }
 
 // Splits each inactive level into parts of at most one frame's upload budget.
@@ -243,9 +247,8 @@ void ChunkStreamer::State::collect_reads() {
             ++stats.reads_discarded;
             continue;
         }
-        const std::string problem = result.error.empty() ? check_part(*result.gaussians, request, manifest.stream_levels) : result.error;
-        if (!problem.empty()) {
-            fail_chunk(request.chunk, request.level, problem);
+        if (!result.error.empty()) {
+            fail_chunk(request.chunk, request.level, result.error);
             continue;
         }
         PartSlot& part = s.parts[request.part];

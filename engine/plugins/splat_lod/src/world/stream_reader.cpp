@@ -14,7 +14,8 @@ SplatCloud FileChunkSource::read(const std::filesystem::path& file, const ChunkE
     return read_chunk_range(file, chunk, begin, end);
 }
 
-StreamReader::StreamReader(ChunkSource& source, Mode mode) : source_(source), mode_(mode) {
+StreamReader::StreamReader(ChunkSource& source, Mode mode, Check check)
+    : source_(source), mode_(mode), check_(std::move(check)) {
     if (mode_ == Mode::background_thread) thread_ = std::thread([this] { run(); });
 }
 
@@ -92,6 +93,8 @@ ReadResult StreamReader::execute(const ReadRequest& request) {
     try {
         result.gaussians =
             std::make_shared<SplatCloud>(source_.read(request.file, *request.entry, request.begin, request.end));
+        if (check_) result.error = check_(*result.gaussians, request);
+        if (!result.error.empty()) result.gaussians.reset();
     } catch (const std::exception& e) {
         result.error = e.what();
     } catch (...) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -37,7 +38,10 @@ class StreamReader {
 public:
     enum class Mode { background_thread, synchronous };
 
-    StreamReader(ChunkSource& source, Mode mode);
+    // `check` (may be empty) runs on the reader's thread after each successful read and returns what
+    // is wrong with the decoded Gaussians, or an empty string; a problem becomes the result's error.
+    using Check = std::function<std::string(const SplatCloud&, const ReadRequest&)>;
+    StreamReader(ChunkSource& source, Mode mode, Check check = {});
     // Drops the queued reads, lets the one in progress finish, joins the thread.
     ~StreamReader();
     StreamReader(const StreamReader&) = delete;
@@ -58,6 +62,7 @@ private:
 
     ChunkSource& source_;
     Mode mode_;
+    Check check_;
     std::mutex mutex_;
     std::condition_variable wake_;  // work queued or stop requested
     std::condition_variable idle_;  // the queue ran empty and nothing is being read
