@@ -23,6 +23,7 @@
 #include "splat_lod/world/stream_policy.h"
 #include "splat_lod/world/world_generator.h"
 #include "test_support.h"
+#include "tiny_world.h"
 
 namespace sw = splat_lod::world;
 using namespace sample_game;
@@ -31,21 +32,11 @@ namespace {
 
 class SampleGameTest : public engine::test::GpuTest {};
 
-// 3 × 3 chunks of 32 m at low density with a terrain mesh and props; cached between runs.
+// The tests' tiny world (tiny_world.h) with its terrain mesh and props; cached between runs.
 std::filesystem::path tiny_world() {
-    sw::WorldOptions o;
-    o.seed = 11;
-    o.size_m = 96.0f;
-    o.chunk_size_m = 32.0f;
-    o.density = 0.1f;
-    o.threads = 2;
-    o.bake.refine_iterations = 3;
-    o.bake.refine_cameras = 4;
-    o.bake_width = 128;
-    o.bake_height = 128;
-    o.output = std::filesystem::path(TEST_OUTPUT_DIR) / "sample_game" / "tiny_world";
-    sw::generate_world(o);
-    return o.output;
+    const auto folder = std::filesystem::path(TEST_OUTPUT_DIR) / "sample_game" / "tiny_world";
+    sw::generate_world(engine::test::tiny_world_options(folder));
+    return folder;
 }
 
 // GPU bytes of the whole world at SH degree 0, every stream level in whole pages.

@@ -14,6 +14,7 @@
 #include "splat_lod/world/stream_scene_sink.h"
 #include "splat_lod/world/world_generator.h"
 #include "test_support.h"
+#include "tiny_world.h"
 
 namespace sw = splat_lod::world;
 
@@ -21,20 +22,10 @@ namespace {
 
 class SplatStreamingTest : public engine::test::GpuTest {};
 
-// 3 × 3 chunks of 32 m at low density, as world_test's tiny world.
+// The tests' tiny world (tiny_world.h) without its terrain mesh: only splats are drawn here.
 sw::WorldResult tiny_world(const std::filesystem::path& folder) {
-    sw::WorldOptions o;
-    o.seed = 11;
-    o.size_m = 96.0f;
-    o.chunk_size_m = 32.0f;
-    o.density = 0.1f;
-    o.threads = 2;
-    o.bake.refine_iterations = 3;
-    o.bake.refine_cameras = 4;
-    o.bake_width = 128;
-    o.bake_height = 128;
+    sw::WorldOptions o = engine::test::tiny_world_options(folder);
     o.terrain_mesh = false;
-    o.output = folder;
     return sw::generate_world(o);
 }
 

@@ -24,6 +24,7 @@
 #include "splat_lod/world/world_manifest.h"
 #include "splat_lod/world/world_terrain.h"
 #include "test_support.h"
+#include "tiny_world.h"
 #include "world/chunk_content.h"
 #include "world/world_layout.h"
 #include "world/world_meshes.h"
@@ -66,20 +67,8 @@ WorldManifest sample_manifest() {
     return m;
 }
 
-// A tiny world: 3 × 3 chunks of 32 m, about 15,000 Gaussians, a short refinement; a second or so.
 WorldOptions tiny_options(const fs::path& folder, std::uint64_t seed, int threads) {
-    WorldOptions o;
-    o.seed = seed;
-    o.size_m = 96.0f;
-    o.chunk_size_m = 32.0f;
-    o.density = 0.1f;
-    o.threads = threads;
-    o.bake.refine_iterations = 3;
-    o.bake.refine_cameras = 4;
-    o.bake_width = 128;
-    o.bake_height = 128;
-    o.output = folder;
-    return o;
+    return engine::test::tiny_world_options(folder, seed, threads);
 }
 
 // Every file below `folder` by relative path, with its bytes.
