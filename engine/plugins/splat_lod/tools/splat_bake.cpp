@@ -3,8 +3,10 @@
 //   splat_bake --input scene.ply --output scene.lod.ply [--cameras auto|rings:RxA|orbit:N|cameras.json|path.json]
 //              [--up X,Y,Z] [--width 512 --height 384] [--levels 4] [--size-threshold 2]
 //              [--refine-iterations 200] [--refine-cameras 16] [--threads N] [--seed N]
-// The output is written only when the whole bake succeeded, through a temporary file and a rename,
-// so a failed or interrupted bake leaves any previous output untouched.
+// The output is written only when the whole bake succeeded, through a temporary file in the same
+// folder ("<output>.tmp-<pid>-<n>", synced to disk) and a rename (engine::write_file_atomic), so a
+// failed or killed bake leaves any previous output byte for byte. A bake killed during that write
+// leaves its temporary behind; the next successful bake to the same output removes it.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +18,7 @@
 
 #include "engine/core/cli_values.h"
 #include "engine/core/error.h"
+#include "engine/core/file_io.h"
 #include "splat_lod/bake/bake.h"
 #include "splat_lod/bake/bake_cameras.h"
 #include "splat_lod/splat_io.h"
@@ -85,6 +88,9 @@ int run(Options& o) {
         engine::fail(o.input + ": " + e.what());
     }
     splat_lod::write_inria_ply(o.output, baked);
+    if (const std::size_t stale = engine::remove_stale_temporaries(o.output); stale > 0)
+        std::fprintf(stderr, "splat_bake: removed %zu temporary file(s) of killed bakes beside %s\n", stale,
+                     o.output.c_str());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::fprintf(stdout, "%s", bake::format_summary(summary).c_str());
     std::fprintf(stdout, "wrote %s (%zu Gaussians) in %.1f s\n", o.output.c_str(), baked.size(), seconds);

@@ -4,8 +4,16 @@
 //               [--refine-iterations N] [--bake-width W --bake-height H] [--no-terrain-mesh] [--force]
 //               [--count-only]
 // Progress (chunks done, Gaussians, elapsed, ETA) goes to stderr, the summary (chunks, Gaussians per
-// level, bytes, stage times) to stdout. Exit code 1 on any error; the manifest is written last, so a
-// failed run leaves no world.json.
+// level, bytes, stage times) to stdout. Exit code 1 on any error.
+//
+// Output safety (world/world_generator.h): a run never touches the world already in --out until the
+// new one is complete. It writes every file into a new folder --out/gen-<n>/ (chunks/, meshes/),
+// each synced to disk, then replaces world.json atomically (the commit: world.json names the files
+// by relative path), and only then removes the previous generation and leftovers of killed runs.
+// Killed (Ctrl-C, SIGKILL, power loss) or failing at any point, it leaves the previous world.json
+// and every file it names byte for byte, or the new world complete; the next run cleans up. Only
+// one run at a time may write into a folder (a second fails with a message). Disk space: up to two
+// worlds while a run replaces one.
 #include <charconv>
 #include <chrono>
 #include <cstdio>
@@ -53,7 +61,8 @@ int main(int argc, char** argv) {
     std::string out, seed_text = "1";
     bool no_terrain_mesh = false, count_only = false;
     CLI::App app{"Generate and bake the sample world of LOD splat chunks and glTF props (cached in --out)"};
-    app.add_option("--out", out, "the world's folder (world.json, chunks/, meshes/)")->required();
+    app.add_option("--out", out, "the world's folder (world.json, gen-<n>/chunks/, gen-<n>/meshes/)")
+        ->required();
     app.add_option("--seed", seed_text, "random seed, 0 to 2^64 - 1 (the same seed gives the same bytes)");
     app.add_option("--size", options.size_m, "world size in metres (a multiple of --chunk); 1024 by default")
         ->check(CLI::Range(4.0, 65536.0));

@@ -1,16 +1,27 @@
 // generate_world() and the cache check (world/world_generator.h): layout and meshes first, then the
-// chunks in parallel (generate, bake, write, describe), then the manifest.
+// chunks in parallel (generate, bake, write, describe), all into a new generation folder, then the
+// manifest (the commit), then the removal of what it does not name.
 #include "splat_lod/world/world_generator.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <set>
+#include <string_view>
 #include <system_error>
+#include <utility>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include "engine/core/error.h"
+#include "engine/core/file_io.h"
 #include "reference/parallel_for.h"
 #include "splat_lod/bake/bake_cameras.h"
 #include "splat_lod/splat_io.h"
@@ -50,7 +61,9 @@ std::vector<ChunkSlot> chunk_slots(const WorldOptions& o) {
     return slots;
 }
 
-fs::path chunk_file(const glm::ivec2& cell) { return fs::path("chunks") / (chunk_id(cell) + ".lod.ply"); }
+fs::path chunk_file(const fs::path& generation, const glm::ivec2& cell) {
+    return generation / "chunks" / (chunk_id(cell) + ".lod.ply");
+}
 
 // What one worker produced for one chunk.
 struct ChunkResult {
@@ -86,7 +99,8 @@ private:
     std::mutex mutex_;
 };
 
-ChunkResult build_chunk(const WorldOptions& o, const ContentContext& context, const ChunkSlot& slot) {
+ChunkResult build_chunk(const WorldOptions& o, const ContentContext& context, const fs::path& generation,
+                        const ChunkSlot& slot) {
     ChunkResult result;
     auto start = Clock::now();
     const SplatCloud fine = make_chunk_content(context, slot.square, &result.counts);
@@ -106,23 +120,139 @@ ChunkResult build_chunk(const WorldOptions& o, const ContentContext& context, co
     const StreamLevelRule rule = stream_level_rule(o);
     const SplatCloud ordered = baked.permuted(stream_order(baked, rule));
     for (const std::uint8_t level : ordered.lod_level) ++result.bake_level_counts[static_cast<std::size_t>(level - 1)];
-    const fs::path file = chunk_file(slot.cell);
+    const fs::path file = chunk_file(generation, slot.cell);
     write_inria_ply(o.output / file, ordered);
     result.entry = describe_chunk(ordered, o.output, file, slot.cell, rule);
     result.stages.push_back({"write", seconds_since(start)});
     return result;
 }
 
-// Removes chunk files (and temporaries of killed runs) that the new manifest does not name.
-void remove_stale_chunks(const fs::path& folder, const std::vector<ChunkEntry>& chunks) {
-    std::set<fs::path> kept;
-    for (const auto& c : chunks) kept.insert((folder / c.file).lexically_normal());
+// Output safety. world.json is the world's single commit point. A run writes every file it makes
+// into a new generation folder, gen-<n>/ with n one above every gen-<n> already there, so no file
+// that the current manifest names is ever replaced or removed; each file is synced to disk before
+// it is renamed into place (engine::write_file_atomic). The manifest naming the new files is
+// written last, atomically; only then does the run remove what the new manifest does not name: the
+// previous generation, leftovers of killed runs and the flat chunks/ and meshes/ files of worlds
+// made before generation folders. Killed at any moment, a run leaves either the previous world.json
+// with every file it names untouched, or the new one complete (plus files the next run removes).
+// Chunk files keep their bytes: only the folder they are in changes with the generation.
+constexpr std::string_view kGenerationPrefix = "gen-";
+
+// n of a folder named "gen-<n>" (n >= 1, as std::to_string writes it); 0 for any other name.
+std::uint64_t generation_number(const std::string& name) {
+    if (name.size() <= kGenerationPrefix.size() || name.compare(0, kGenerationPrefix.size(), kGenerationPrefix) != 0)
+        return 0;
+    std::uint64_t n = 0;
+    const char* const last = name.data() + name.size();
+    const auto [end, error] = std::from_chars(name.data() + kGenerationPrefix.size(), last, n);
+    if (error != std::errc() || end != last) return 0;
+    return name.substr(kGenerationPrefix.size()) == std::to_string(n) ? n : 0;  // "gen-01" is not one of ours
+}
+
+// The folder of a new run: one above every generation in `output` (the current one and those of
+// killed runs), so a fresh folder always gets gen-1 and the same options the same bytes.
+fs::path new_generation(const fs::path& output) {
+    std::uint64_t highest = 0;
     std::error_code ec;
-    for (const auto& item : fs::directory_iterator(folder / "chunks", ec)) {
-        const std::string name = item.path().filename().string();
-        const bool ours = name.rfind("chunk_", 0) == 0 && name.find(".lod.ply") != std::string::npos;
-        if (ours && !kept.count(item.path().lexically_normal())) fs::remove(item.path(), ec);
+    for (fs::directory_iterator it(output, ec), end; !ec && it != end; it.increment(ec))
+        highest = std::max(highest, generation_number(it->path().filename().string()));
+    if (ec) engine::fail(output.string() + ": cannot list the world's folder: " + ec.message());
+    return std::string(kGenerationPrefix) + std::to_string(highest + 1);
+}
+
+// An exclusive flock() on the world's folder, held while a run writes or removes files there: a
+// second run into the same folder would otherwise take the first one's generation for a leftover.
+// The kernel releases it when the process dies, so a killed run never leaves the folder locked.
+class FolderLock {
+public:
+    explicit FolderLock(const fs::path& folder) : fd_(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
+        if (fd_ < 0) {
+            problem_ = "cannot open the world's folder: " + std::string(std::strerror(errno));
+        } else if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+            problem_ = errno == EWOULDBLOCK ? "another run of the world generator is writing into this folder (it "
+                                              "holds the folder's lock); wait for it or choose another folder"
+                                            : "cannot lock the world's folder: " + std::string(std::strerror(errno));
+            ::close(std::exchange(fd_, -1));
+        }
     }
+    ~FolderLock() {
+        if (fd_ >= 0) ::close(fd_);  // releases the lock
+    }
+    FolderLock(const FolderLock&) = delete;
+    FolderLock& operator=(const FolderLock&) = delete;
+
+    bool held() const { return fd_ >= 0; }
+    const std::string& problem() const { return problem_; }
+
+private:
+    int fd_;
+    std::string problem_;
+};
+
+// The names in `folder`, listed before anything is removed from it (none when it cannot be read).
+std::vector<std::string> entry_names(const fs::path& folder) {
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+        names.push_back(it->path().filename().string());
+    return names;
+}
+
+// A file of the flat layout of worlds made before generation folders: chunks/chunk_*.lod.ply,
+// meshes/{house,fence,post,terrain}.glb, or a temporary of one.
+bool flat_layout_file(const std::string& folder, const std::string& name) {
+    if (folder == "chunks") return name.rfind("chunk_", 0) == 0 && name.find(".lod.ply") != std::string::npos;
+    for (const char* mesh : {"house.glb", "fence.glb", "post.glb", "terrain.glb"})
+        if (name == mesh || name.rfind(std::string(mesh) + ".tmp-", 0) == 0) return true;
+    return false;
+}
+
+// Removes what the world generator made in `folder` that `m` does not name: other generation
+// folders, flat-layout files (when `m` is not such a world) and manifest temporaries. Nothing else
+// in the folder is touched, nor the folder of `m`'s own files. Only
+// with the folder's lock held, after `m` was committed. Errors are ignored: a leftover only costs
+// space, and the next run tries again.
+void remove_unnamed_files(const fs::path& folder, const WorldManifest& m) {
+    std::set<fs::path> named;
+    for (const auto& c : m.chunks) named.insert(c.file.lexically_normal());
+    for (const auto& p : m.props) named.insert(p.mesh.lexically_normal());
+    if (!m.terrain_mesh.empty()) named.insert(m.terrain_mesh.lexically_normal());
+    std::set<std::string> named_tops;
+    for (const auto& path : named) named_tops.insert(path.begin()->string());
+
+    // A world of the flat layout keeps its folders as they are (with meshes it did not place).
+    const bool flat_world = named_tops.count("chunks") > 0 || named_tops.count("meshes") > 0;
+    const std::string manifest_temporary = std::string(kManifestFileName) + ".tmp-";
+    std::error_code ignored;
+    for (const std::string& name : entry_names(folder)) {
+        const fs::path path = folder / name;
+        if (generation_number(name) > 0 && !named_tops.count(name)) {
+            fs::remove_all(path, ignored);
+        } else if (!flat_world && (name == "chunks" || name == "meshes") && fs::is_directory(path, ignored)) {
+            for (const std::string& file : entry_names(path)) {
+                if (flat_layout_file(name, file) && !named.count(fs::path(name) / file))
+                    fs::remove(path / file, ignored);
+            }
+            fs::remove(path, ignored);  // only when empty
+        } else if (name.rfind(manifest_temporary, 0) == 0) {
+            fs::remove(path, ignored);
+        }
+    }
+}
+
+// After a failed manifest write: removes the new generation unless the manifest names it (the
+// rename may have happened before the error, e.g. when syncing the folder failed).
+void remove_generation_unless_committed(const fs::path& output, const fs::path& generation) {
+    std::error_code ec;
+    try {
+        if (fs::exists(output / kManifestFileName, ec)) {
+            const WorldManifest current = read_world_manifest(output / kManifestFileName);
+            if (!current.chunks.empty() && *current.chunks.front().file.begin() == generation) return;
+        }
+    } catch (const engine::Error&) {
+        return;  // unreadable: keep the files, the next run removes them if they are not named
+    }
+    fs::remove_all(output / generation, ec);
 }
 
 void add_stages(std::vector<StageSeconds>& total, const std::vector<StageSeconds>& more) {
@@ -171,14 +301,15 @@ void summarise_manifest(const WorldManifest& m, const fs::path& folder, WorldSum
 }
 
 // Layout and meshes, then every chunk over `threads` workers; returns the chunk results in grid order.
-std::vector<ChunkResult> build_chunks(const WorldOptions& o, const ContentContext& context, Clock::time_point start) {
+std::vector<ChunkResult> build_chunks(const WorldOptions& o, const ContentContext& context, const fs::path& generation,
+                                      Clock::time_point start) {
     const std::vector<ChunkSlot> slots = chunk_slots(o);
     std::vector<ChunkResult> results(slots.size());
     ProgressReporter progress(o, start, slots.size());
     if (o.progress) o.progress({"chunks", 0, slots.size(), 0, seconds_since(start), -1.0});
     reference::detail::parallel_for(slots.size(), reference::detail::resolve_thread_count(o.threads), [&](std::size_t k) {
         try {
-            results[k] = build_chunk(o, context, slots[k]);
+            results[k] = build_chunk(o, context, generation, slots[k]);
         } catch (const std::exception& e) {
             engine::fail(chunk_id(slots[k].cell) + ": " + e.what());
         }
@@ -264,43 +395,25 @@ WorldSummary count_world_content(const WorldOptions& o) {
     return s;
 }
 
-WorldResult generate_world(const WorldOptions& o) {
-    validate(o);
-    const auto start = Clock::now();
-    WorldResult result;
-    WorldSummary& s = result.summary;
-    if (!o.force) {
-        if (auto cached = find_cached_world(o, &s.cache_note)) {
-            result.manifest = std::move(*cached);
-            s.cached = true;
-            summarise_manifest(result.manifest, o.output, s);
-            s.seconds = seconds_since(start);
-            if (o.progress) o.progress({"cached", s.chunks, s.chunks, s.gaussians, s.seconds, 0.0});
-            return result;
-        }
-    }
-    // No manifest may name files while they are being replaced: it goes first and comes back last.
-    std::error_code ec;
-    fs::create_directories(o.output / "chunks", ec);
-    if (ec) engine::fail(o.output.string() + ": cannot create the world's folders: " + ec.message());
-    fs::remove(o.output / kManifestFileName, ec);
-    if (ec) engine::fail((o.output / kManifestFileName).string() + ": cannot remove the old manifest: " + ec.message());
+namespace {
 
+// Everything of a new world but the manifest's commit: layout and meshes, then the chunks, all
+// below `generation`; returns the manifest that names them.
+WorldManifest build_world(const WorldOptions& o, const fs::path& generation, Clock::time_point start, WorldSummary& s) {
     auto stage_start = Clock::now();
     if (o.progress) o.progress({"meshes", 0, 0, 0, seconds_since(start), -1.0});
     const WorldTerrain terrain(o.seed, o.size_m);
     const WorldLayout layout = make_world_layout(terrain, o.seed);
-    write_prop_meshes(o.output);
-    if (o.terrain_mesh) write_terrain_mesh(o.output, terrain);
+    write_prop_meshes(o.output / generation);
+    if (o.terrain_mesh) write_terrain_mesh(o.output / generation, terrain);
     s.stages.push_back({"layout and meshes", seconds_since(stage_start)});
 
     stage_start = Clock::now();
-    std::vector<ChunkResult> chunks = build_chunks(o, content_context(o, terrain, layout), start);
+    std::vector<ChunkResult> chunks = build_chunks(o, content_context(o, terrain, layout), generation, start);
     s.stages.push_back({"chunks (content, bake, write)", seconds_since(stage_start)});
 
-    stage_start = Clock::now();
     if (o.progress) o.progress({"manifest", chunks.size(), chunks.size(), 0, seconds_since(start), 0.0});
-    WorldManifest& m = result.manifest;
+    WorldManifest m;
     m.seed = o.seed;
     m.size_m = o.size_m;
     m.chunk_size_m = o.chunk_size_m;
@@ -308,7 +421,8 @@ WorldResult generate_world(const WorldOptions& o) {
     m.generator = generator_settings(o);
     m.stream_levels = stream_level_rule(o);
     m.props = layout.props;
-    if (o.terrain_mesh) m.terrain_mesh = kTerrainMesh;
+    for (Prop& p : m.props) p.mesh = generation / p.mesh;
+    if (o.terrain_mesh) m.terrain_mesh = generation / kTerrainMesh;
     average_psnr(chunks, s);
     ContentCounts counts;
     for (auto& chunk : chunks) {
@@ -318,13 +432,57 @@ WorldResult generate_world(const WorldOptions& o) {
         add_stages(s.chunk_stages, chunk.stages);
         for (std::size_t l = 0; l < kLevels; ++l) s.gaussians_per_level[l] += chunk.bake_level_counts[l];
     }
-    write_world_manifest(o.output / kManifestFileName, m);
-    remove_stale_chunks(o.output, m.chunks);
-    s.stages.push_back({"manifest", seconds_since(stage_start)});
-
-    summarise_manifest(m, o.output, s);
-    s.fine_gaussians = s.gaussians_per_level[0];
     fill_counts(counts, s);
+    return m;
+}
+
+}  // namespace
+
+WorldResult generate_world(const WorldOptions& o) {
+    validate(o);
+    const auto start = Clock::now();
+    WorldResult result;
+    WorldSummary& s = result.summary;
+    std::error_code ec;
+    fs::create_directories(o.output, ec);
+    if (ec) engine::fail(o.output.string() + ": cannot create the world's folder: " + ec.message());
+    const FolderLock lock(o.output);
+    if (!o.force) {
+        if (auto cached = find_cached_world(o, &s.cache_note)) {
+            // What a run killed between its commit and its clean-up left (unless a run is busy here).
+            if (lock.held()) remove_unnamed_files(o.output, *cached);
+            result.manifest = std::move(*cached);
+            s.cached = true;
+            summarise_manifest(result.manifest, o.output, s);
+            s.seconds = seconds_since(start);
+            if (o.progress) o.progress({"cached", s.chunks, s.chunks, s.gaussians, s.seconds, 0.0});
+            return result;
+        }
+    }
+    if (!lock.held()) engine::fail(o.output.string() + ": " + lock.problem());
+
+    // Every file goes into a generation folder that no manifest names (see remove_unnamed_files).
+    const fs::path generation = new_generation(o.output);
+    try {
+        result.manifest = build_world(o, generation, start, s);
+    } catch (...) {
+        fs::remove_all(o.output / generation, ec);
+        throw;
+    }
+    const auto stage_start = Clock::now();
+    try {
+        write_world_manifest(o.output / kManifestFileName, result.manifest);  // the commit
+    } catch (...) {
+        remove_generation_unless_committed(o.output, generation);
+        throw;
+    }
+    const std::size_t count = result.manifest.chunks.size();
+    if (o.progress) o.progress({"clean-up", count, count, 0, seconds_since(start), 0.0});
+    remove_unnamed_files(o.output, result.manifest);
+    s.stages.push_back({"manifest and clean-up", seconds_since(stage_start)});
+
+    summarise_manifest(result.manifest, o.output, s);
+    s.fine_gaussians = s.gaussians_per_level[0];
     s.seconds = seconds_since(start);
     return result;
 }

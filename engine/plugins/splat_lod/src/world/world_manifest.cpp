@@ -2,15 +2,18 @@
 //   { "version": 2, "seed": 7, "size_m": 1024, "chunk_size_m": 64, "up": [0, 1, 0],
 //     "gaussians": 10400000, "density": 1, "generator": "…",
 //     "stream_levels": { "size_threshold_px": 2, "rel_min": 0.5, "reach_min": [0.4, 0.12, 0.04] },
-//     "chunks": [ { "id": "chunk_-008_-008", "file": "chunks/chunk_-008_-008.lod.ply", "cell": [-8, -8],
+//     "chunks": [ { "id": "chunk_-008_-008", "file": "gen-1/chunks/chunk_-008_-008.lod.ply", "cell": [-8, -8],
 //                   "bounds_min": [x, y, z], "bounds_max": [x, y, z], "prefix_count": [n1, n2, n3, n4],
 //                   "levels": [ { "extent_max": e, "extent_per_min_coverage_max": r } × 4 ],
 //                   "header_bytes": h, "vertex_bytes": v, "file_bytes": f } … ],
-//     "props": [ { "mesh": "meshes/house.glb", "translation": [x, y, z], "rotation_euler_deg": [0, yaw, 0],
+//     "props": [ { "mesh": "gen-1/meshes/house.glb", "translation": [x, y, z], "rotation_euler_deg": [0, yaw, 0],
 //                  "scale": [1, 1, 1] } … ],
-//     "terrain_mesh": "meshes/terrain.glb" }
-// The reader is strict (unknown keys are errors, so a typo never passes as a default); "up",
-// "density", "generator", "props" and "terrain_mesh" may be left out.
+//     "terrain_mesh": "gen-1/meshes/terrain.glb" }
+// File paths are relative to the manifest's folder; the generator puts each run's files in its own
+// gen-<n>/ folder (world_generator.h: output safety), worlds of earlier versions have chunks/ and
+// meshes/ beside world.json. Both read the same way. The reader is strict (unknown keys are errors,
+// so a typo never passes as a default); "up", "density", "generator", "props" and "terrain_mesh"
+// may be left out.
 #include "splat_lod/world/world_manifest.h"
 
 #include <cmath>
@@ -302,8 +305,11 @@ std::string chunk_id(const glm::ivec2& cell) {
 }
 
 WorldManifest read_world_manifest(const std::filesystem::path& path) {
-    const std::string text = engine::read_text_file(path);
-    const ManifestReader reader(path.string());
+    return parse_world_manifest(engine::read_text_file(path), path.string());
+}
+
+WorldManifest parse_world_manifest(const std::string& text, const std::string& name) {
+    const ManifestReader reader(name);
     json document;
     try {
         document = json::parse(text);

@@ -2,9 +2,24 @@
 // The sample world: generated from a seed, split into a grid of chunks, each chunk baked into a
 // LOD asset (coarse levels first) and described in a manifest (world_manifest.h), written into a
 // folder that later runs reuse as a cache:
-//   <output>/world.json                      the manifest, written last (its presence = complete)
-//   <output>/chunks/chunk_+003_-002.lod.ply  one baked chunk per grid cell
-//   <output>/meshes/{house,fence,post,terrain}.glb   the props and the ground mesh
+//   <output>/world.json                            the manifest, written last (its presence = complete)
+//   <output>/gen-<n>/chunks/chunk_+003_-002.lod.ply  one baked chunk per grid cell
+//   <output>/gen-<n>/meshes/{house,fence,post,terrain}.glb   the props and the ground mesh
+// The manifest names its files by paths relative to <output>, so readers need not know the layout.
+//
+// Output safety: users never lose a world they had. world.json is the single commit point: a run
+// writes all its files into a new generation folder gen-<n> (n one above every gen-<n> present; a
+// fresh folder gets gen-1), which no manifest names, each file synced to disk before its rename
+// into place; then it replaces world.json atomically (temporary file, fsync, rename, fsync of the
+// folder); only after that does it remove what the new manifest does not name (the previous
+// generation, folders of killed runs, and chunks/ and meshes/ files of worlds made before
+// generation folders; nothing else in <output>). A run killed or failing at any moment therefore
+// leaves the previous world.json and every file it names untouched, or the new world complete; a
+// failed run removes its own generation folder, a killed run's is removed by the next run (a cached
+// one too). One run at a time per folder: a run holds an flock() on <output> while it writes or
+// removes files there (released by the kernel if it dies); a second one fails saying so. A program
+// streaming the old world while a new one is committed loses its files: restart it. The manifest
+// format is unchanged (version 2): worlds in the flat layout (chunks/, meshes/) read as before.
 //
 // Content (world_terrain.h for the ground): hills with a river valley winding along z and a path
 // winding along x; ground Gaussians over all of it (meadow, forest floor, the path's dirt, banks),
@@ -18,7 +33,9 @@
 // Determinism: the files depend only on the options (seed, sizes, density, bake settings), not on
 // the thread count or the order chunks finish in: every object draws from its own random stream,
 // each chunk is baked single-threaded (bake_lod is deterministic anyway) and the manifest lists
-// chunks in grid order.
+// chunks in grid order. The generation number n is the one thing that depends on what the folder
+// held: it is part of the manifest's paths, never of a chunk's or mesh's bytes (a fresh folder:
+// gen-1, so the same options give the same folder byte for byte).
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -33,7 +50,7 @@
 namespace splat_lod::world {
 
 struct WorldProgress {
-    std::string stage;               // "meshes", "chunks", "manifest", "cached"
+    std::string stage;               // "meshes", "chunks", "manifest", "clean-up" (after the commit), "cached"
     std::size_t chunks_done = 0;
     std::size_t chunks_total = 0;
     std::uint64_t gaussians = 0;     // in the chunks baked so far
@@ -122,9 +139,10 @@ struct WorldResult {
 };
 
 // Generates and bakes the world into options.output, or reuses the cached one there (see
-// find_cached_world). Regenerating first removes the old manifest, then overwrites chunk and mesh
-// files (each atomically) and writes the manifest last, so an interrupted or failed run leaves no
-// manifest that names missing or partial files. Errors throw engine::Error naming the chunk or file.
+// find_cached_world). A new world is written as described at the top of this file: a new generation
+// folder, then world.json (the commit), then the removal of the files it does not name, so an
+// interrupted or failed run leaves the previous world intact. Errors throw engine::Error naming the
+// chunk or file; another run holding the folder's lock is an error too (unless the cache is used).
 WorldResult generate_world(const WorldOptions& options);
 
 // Only the first step: generates every chunk's fine Gaussians (in parallel, nothing written, no

@@ -91,6 +91,8 @@ std::string chunk_id(const glm::ivec2& cell);
 // or non-finite number, prefix counts that grow with the level or disagree with the byte counts,
 // and paths (chunk files, meshes) that are absolute or leave the manifest's folder.
 WorldManifest read_world_manifest(const std::filesystem::path& path);
+// The same from text already in memory; `name` is the file named in error messages.
+WorldManifest parse_world_manifest(const std::string& text, const std::string& name);
 
 // Writes the manifest through a temporary file and a rename (engine::write_file_atomic): a reader
 // sees the old manifest or the new one, never a part. Checks the same rules as the reader first.

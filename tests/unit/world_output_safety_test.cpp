@@ -1,0 +1,251 @@
+// Output safety (world/world_generator.h, engine/core/file_io.h), in process: a failed world run
+// leaves the previous world byte for byte; after a commit only the new world's files remain
+// (previous generation, leftovers of killed runs and flat-layout files removed, other files kept); a
+// cached run removes what a run killed after its commit left; worlds of the flat layout still read;
+// a second run into a locked folder fails. Atomic writes keep permissions, use unique temporaries
+// and remove them on failure; temporaries of dead writers are found. The kill tests with real
+// processes: tests/tools/output_safety_kill_test.cpp.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <regex>
+#include <set>
+#include <thread>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "engine/core/error.h"
+#include "engine/core/file_io.h"
+#include "splat_io_test_helpers.h"
+#include "splat_lod/world/world_generator.h"
+#include "splat_lod/world/world_manifest.h"
+#include "test_support.h"
+#include "tiny_world.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace splat_lod::world;
+using splat_io_test::error_of;
+
+std::map<std::string, std::string> folder_bytes(const fs::path& folder) {
+    std::map<std::string, std::string> files;
+    for (const auto& item : fs::recursive_directory_iterator(folder))
+        if (item.is_regular_file()) {
+            std::ifstream in(item.path(), std::ios::binary);
+            files[fs::relative(item.path(), folder).generic_string()] =
+                std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        }
+    return files;
+}
+
+// The files with "gen-<n>/" taken out of their paths and of world.json.
+std::map<std::string, std::string> without_generation(const std::map<std::string, std::string>& files) {
+    const std::regex generation("gen-[0-9]+/");
+    std::map<std::string, std::string> result;
+    for (const auto& [name, bytes] : files) {
+        const bool manifest = name == kManifestFileName;
+        result[std::regex_replace(name, generation, "")] = manifest ? std::regex_replace(bytes, generation, "") : bytes;
+    }
+    return result;
+}
+
+void touch(const fs::path& path, const std::string& text = "left over") {
+    fs::create_directories(path.parent_path());
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+std::set<std::string> names(const std::map<std::string, std::string>& files) {
+    std::set<std::string> result;
+    for (const auto& item : files) result.insert(item.first);
+    return result;
+}
+
+bool has_temporary(const fs::path& folder) {
+    for (const auto& item : fs::recursive_directory_iterator(folder))
+        if (item.path().filename().string().find(".tmp-") != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST(WorldOutputSafety, AFailedRunLeavesThePreviousWorldByteForByte) {
+    const fs::path dir = engine::test::output_dir("world_safety");
+    fs::remove_all(dir);
+    WorldOptions options = engine::test::tiny_world_options(dir, 4, 1);
+    generate_world(options);
+    const auto before = folder_bytes(dir);
+    ASSERT_TRUE(before.count("gen-1/chunks/chunk_+000_+000.lod.ply"));
+    options.seed = 8;
+
+    // A chunk write that fails after the meshes and four chunks of the run were written: the next
+    // run writes into gen-2, and a folder stands where its chunk (0, 0) must go.
+    options.progress = [&](const WorldProgress& p) {
+        if (p.stage == "meshes")
+            fs::create_directories(dir / "gen-2" / "chunks" / (chunk_id({0, 0}) + ".lod.ply") / "x");
+    };
+    const std::string message = error_of([&] { generate_world(options); });
+    EXPECT_NE(message.find(chunk_id({0, 0})), std::string::npos) << message;
+    EXPECT_TRUE(folder_bytes(dir) == before) << "the failed run changed or left files";
+    EXPECT_FALSE(fs::exists(dir / "gen-2"));
+
+    // A failure after every chunk was written, just before the commit.
+    options.progress = [](const WorldProgress& p) {
+        if (p.stage == "manifest") engine::fail("interrupted before the commit");
+    };
+    EXPECT_NE(error_of([&] { generate_world(options); }).find("interrupted"), std::string::npos);
+    EXPECT_TRUE(folder_bytes(dir) == before) << "the failed run changed or left files";
+    EXPECT_EQ(read_world_manifest(dir / kManifestFileName).seed, 4u);
+}
+
+TEST(WorldOutputSafety, ACommittedRunRemovesThePreviousGenerationAndLeftoversButNothingElse) {
+    const fs::path dir = engine::test::output_dir("world_safety");
+    fs::remove_all(dir);
+    WorldOptions options = engine::test::tiny_world_options(dir, 4, 2);
+    generate_world(options);
+    touch(dir / "gen-5/chunks/chunk_+000_+000.lod.ply");  // a killed run's
+    touch(dir / "gen-5/meshes/house.glb.tmp-123-0");
+    touch(dir / "world.json.tmp-99999-0");
+    touch(dir / "chunks/chunk_+001_+000.lod.ply");  // the flat layout of earlier versions
+    touch(dir / "chunks/chunk_+001_+000.lod.ply.tmp-77");
+    touch(dir / "meshes/terrain.glb");
+    touch(dir / "notes.txt");  // not the generator's
+    touch(dir / "chunks/readme.txt");
+    touch(dir / "gen-x/keep.txt");
+
+    options.seed = 8;
+    const WorldResult world = generate_world(options);
+    EXPECT_FALSE(world.summary.cached);
+    const auto after = folder_bytes(dir);
+    std::set<std::string> expected = {"world.json", "notes.txt", "chunks/readme.txt", "gen-x/keep.txt"};
+    for (const ChunkEntry& c : world.manifest.chunks) expected.insert(c.file.generic_string());
+    for (const char* mesh : {"house", "fence", "post", "terrain"})  // all written, placed or not
+        expected.insert("gen-6/meshes/" + std::string(mesh) + ".glb");
+    EXPECT_EQ(names(after), expected);
+    EXPECT_EQ(expected.size(), 4u + 9u + 4u);
+    EXPECT_EQ(world.manifest.chunks[0].file.begin()->string(), "gen-6");
+    EXPECT_FALSE(fs::exists(dir / "meshes")) << "emptied, so removed";
+}
+
+TEST(WorldOutputSafety, ACachedRunRemovesWhatARunKilledAfterItsCommitLeft) {
+    const fs::path dir = engine::test::output_dir("world_safety");
+    fs::remove_all(dir);
+    const WorldOptions options = engine::test::tiny_world_options(dir, 4, 2);
+    generate_world(options);
+    const auto bytes = folder_bytes(dir);
+    std::map<std::string, fs::file_time_type> times;
+    for (const auto& [name, content] : bytes) times[name] = fs::last_write_time(dir / name);
+    touch(dir / "gen-7/chunks/chunk_+000_+000.lod.ply");
+    touch(dir / "world.json.tmp-99999-0");
+
+    EXPECT_TRUE(generate_world(options).summary.cached);
+    EXPECT_TRUE(folder_bytes(dir) == bytes);
+    for (const auto& [name, time] : times) EXPECT_EQ(fs::last_write_time(dir / name), time) << name << " was rewritten";
+}
+
+TEST(WorldOutputSafety, WorldsOfTheFlatLayoutStillReadAndAreReplaced) {
+    const fs::path dir = engine::test::output_dir("world_safety");
+    fs::remove_all(dir);
+    WorldOptions options = engine::test::tiny_world_options(dir, 4, 2);
+    generate_world(options);
+    // What earlier versions wrote: chunks/ and meshes/ beside world.json, the manifest naming them.
+    fs::rename(dir / "gen-1/chunks", dir / "chunks");
+    fs::rename(dir / "gen-1/meshes", dir / "meshes");
+    fs::remove(dir / "gen-1");
+    WorldManifest m = read_world_manifest(dir / kManifestFileName);
+    for (ChunkEntry& c : m.chunks) c.file = c.file.lexically_relative("gen-1");
+    for (Prop& p : m.props) p.mesh = p.mesh.lexically_relative("gen-1");
+    m.terrain_mesh = m.terrain_mesh.lexically_relative("gen-1");
+    write_world_manifest(dir / kManifestFileName, m);
+    const auto flat = folder_bytes(dir);
+    ASSERT_TRUE(flat.count("chunks/chunk_+000_+000.lod.ply"));
+
+    EXPECT_TRUE(generate_world(options).summary.cached);
+    EXPECT_TRUE(folder_bytes(dir) == flat);
+    options.force = true;
+    EXPECT_FALSE(generate_world(options).summary.cached);
+    EXPECT_TRUE(fs::is_directory(dir / "gen-1"));
+    EXPECT_FALSE(fs::exists(dir / "chunks"));
+    EXPECT_FALSE(fs::exists(dir / "meshes"));
+    EXPECT_TRUE(without_generation(folder_bytes(dir)) == flat) << "the same world, moved into gen-1";
+}
+
+TEST(WorldOutputSafety, ASecondRunIntoALockedFolderFailsAndTheCacheStillServes) {
+    const fs::path dir = engine::test::output_dir("world_safety");
+    fs::remove_all(dir);
+    const WorldOptions options = engine::test::tiny_world_options(dir, 4, 2);
+    generate_world(options);
+    touch(dir / "gen-9/chunks/chunk_+000_+000.lod.ply");  // as if another run were writing it
+    const auto bytes = folder_bytes(dir);
+
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+    WorldOptions other = options;
+    other.seed = 8;
+    const std::string message = error_of([&] { generate_world(other); });
+    EXPECT_NE(message.find("another run"), std::string::npos) << message;
+    EXPECT_TRUE(generate_world(options).summary.cached);
+    EXPECT_TRUE(folder_bytes(dir) == bytes) << "nothing may be written or removed without the lock";
+    ::close(fd);
+
+    EXPECT_TRUE(generate_world(options).summary.cached);
+    EXPECT_FALSE(fs::exists(dir / "gen-9"));
+}
+
+TEST(OutputSafety, AtomicWritesKeepPermissionsUseUniqueTemporariesAndCleanUpOnFailure) {
+    const fs::path dir = engine::test::output_dir("output_safety");
+    fs::remove_all(dir);
+    const fs::path file = dir / "new/folder/file.txt";  // missing folders are made
+    engine::write_text_file_atomic(file, "one");
+    ASSERT_EQ(::chmod(file.c_str(), 0640), 0);
+    engine::write_text_file_atomic(file, "two");
+    struct stat info {};
+    ASSERT_EQ(::stat(file.c_str(), &info), 0);
+    EXPECT_EQ(info.st_mode & 0777, 0640u);
+    EXPECT_EQ(engine::read_text_file(file), "two");
+
+    // Threads writing the same files at once: each write is whole, whichever comes last.
+    std::vector<std::thread> writers;
+    for (int t = 0; t < 6; ++t)
+        writers.emplace_back([&dir, t] {
+            for (int i = 0; i < 30; ++i)
+                engine::write_text_file_atomic(dir / ("shared_" + std::to_string(i % 5)),
+                                               std::string(1000 + t, 'a' + t));
+        });
+    for (auto& writer : writers) writer.join();
+    for (int i = 0; i < 5; ++i) {
+        const std::string text = engine::read_text_file(dir / ("shared_" + std::to_string(i)));
+        ASSERT_GE(text.size(), 1000u);
+        EXPECT_EQ(text, std::string(text.size(), static_cast<char>('a' + (text.size() - 1000)))) << i;
+    }
+
+    fs::create_directories(dir / "a_folder/inside");
+    EXPECT_NE(error_of([&] { engine::write_text_file_atomic(dir / "a_folder", "x"); }).find("a_folder"),
+              std::string::npos);
+    EXPECT_FALSE(has_temporary(dir));
+}
+
+TEST(OutputSafety, TemporariesOfDeadWritersAreRemovedAndLiveOnesKept) {
+    const fs::path dir = engine::test::output_dir("output_safety");
+    fs::remove_all(dir);
+    const pid_t dead = ::fork();
+    if (dead == 0) ::_exit(0);
+    ASSERT_GT(dead, 0);
+    ASSERT_EQ(::waitpid(dead, nullptr, 0), dead);
+    const std::string d = std::to_string(dead), live = std::to_string(::getpid());
+    const std::vector<std::string> files = {
+        "out.ply.tmp-" + d + "-0",   "out.ply.tmp-" + d, "out.ply.tmp-" + live + "-5",
+        "other.ply.tmp-" + d + "-0", "out.ply.tmp-abc",  "out.ply"};
+    for (const std::string& name : files) touch(dir / name);
+    EXPECT_EQ(engine::remove_stale_temporaries(dir / "out.ply"), 2u);
+    EXPECT_EQ(names(folder_bytes(dir)),
+              (std::set<std::string>{"out.ply.tmp-" + live + "-5", "other.ply.tmp-" + d + "-0", "out.ply.tmp-abc",
+                                     "out.ply"}));
+}
