@@ -4,10 +4,13 @@
 //               [--memory-budget-mib M] [--upload-budget-mib U] [--frames-png K]
 //               [--no-baseline] [--baseline-every K] [--baseline-overview-every K] [--no-preload]
 //               [--sync-streaming] [LOD options]
+//   sample_game --soak [--world DIR] [--out DIR] [--laps N] [--frames N] [--no-faults] [--retry-after-frames N]
 // The profile runs headless (EGL): the path with LOD and streaming, then the baseline, and writes
 // profile.csv, baseline.csv, summary.txt, plots and frames to --out; it prints the summary. Exit
 // code 1 on an error (bad option, missing or broken world, no GL); a budget check that fails is a
-// result, printed in the summary, not an error.
+// result, printed in the summary, not an error. The soak (soak_run.h) walks the path --laps times
+// (--frames poses per lap), damaging chunk files of a linked copy of the world on the middle laps,
+// and exits 1 when a check fails (a leak, a chunk that does not come back).
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -18,11 +21,13 @@
 #include "engine/platform/gl_context.h"
 #include "sample_game/game_window.h"
 #include "sample_game/profile_run.h"
+#include "sample_game/soak_run.h"
 
 namespace {
 
 struct CommandLine {
-    bool profile = false;
+    bool profile = false, soak = false, no_faults = false;
+    int laps = 10;
     std::string world = "out/world/default", out = "out/game";
     int width = 0, height = 0, frames = -1;
     double memory_budget_mib = -1.0, upload_budget_mib = -1.0;
@@ -44,12 +49,21 @@ void add_options(CLI::App& app, CommandLine& c) {
     auto& lod = c.settings.lod;
     app.add_flag("--profile", c.profile,
                  "Run headless: the path with LOD + streaming, then the baseline; write CSV, plots, summary");
+    app.add_flag("--soak", c.soak,
+                 "Run headless: walk the path --laps times, damaging chunk files of a copy of the world; check "
+                 "that memory and GL objects stay flat and streaming recovers");
+    app.add_option("--laps", c.laps, "Soak: laps of the path (default 10)")->check(CLI::Range(2, 100000));
+    app.add_flag("--no-faults", c.no_faults, "Soak: leave the chunk files alone (stream the world itself)");
+    app.add_option("--retry-after-frames", c.settings.retry_failed_after_frames,
+                   "Try a chunk that failed to load again after N frames (0: never)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     app.add_option("--world", c.world, "The world's folder (world.json; made by splat_world)")->capture_default_str();
-    app.add_option("--out", c.out, "Profile output folder")->capture_default_str();
+    app.add_option("--out", c.out, "Profile output folder (the soak's default is out/soak)")->capture_default_str();
     app.add_option("--width", c.width, "Image width (profile default 640, window 1280)")->check(CLI::Range(16, 16384));
     app.add_option("--height", c.height, "Image height (profile default 360, window 720)")
         ->check(CLI::Range(16, 16384));
-    app.add_option("--frames", c.frames, "Profile: poses along the path (default 400); window: quit after N frames")
+    app.add_option("--frames", c.frames, "Profile: poses along the path (default 400); soak: per lap (default 200); window: quit after N frames")
         ->check(CLI::PositiveNumber);
     app.add_option("--memory-budget-mib", c.memory_budget_mib, "Streamed GPU memory budget (default 384)")
         ->check(CLI::Range(0.01, 1e6));
@@ -130,6 +144,24 @@ int run_profile(const CommandLine& c) {
     return 0;
 }
 
+int run_soak(const CommandLine& c) {
+    sample_game::SoakOptions o;
+    o.world = c.world;
+    o.out = c.out == "out/game" ? "out/soak" : c.out;
+    o.width = c.width > 0 ? c.width : 320;
+    o.height = c.height > 0 ? c.height : 180;
+    o.frames_per_lap = c.frames > 0 ? c.frames : 200;
+    o.laps = c.laps;
+    o.faults = !c.no_faults;
+    o.settings = c.settings;
+    sample_game::validate(o);
+    const auto context = engine::HeadlessGlContext::create();
+    std::fprintf(stderr, "sample_game: %s on %s\n", context->info().renderer.c_str(), context->info().platform.c_str());
+    const sample_game::SoakOutcome outcome = sample_game::run_soak(o, stderr);
+    std::printf("%s", outcome.summary_text.c_str());
+    return outcome.passed ? 0 : 1;
+}
+
 int run_window(const CommandLine& c) {
     sample_game::WindowOptions o;
     o.world = c.world;
@@ -162,7 +194,8 @@ int main(int argc, char** argv) {
     }
     try {
         apply_common(c);
-        return c.profile ? run_profile(c) : run_window(c);
+        if (c.profile && c.soak) engine::fail("sample_game: --profile and --soak are different runs; give one");
+        return c.soak ? run_soak(c) : c.profile ? run_profile(c) : run_window(c);
     } catch (const std::exception& e) {
         // The game's own messages already start with "sample_game: "; the engine's name their file.
         const std::string message = e.what();
