@@ -86,7 +86,7 @@ std::string write_plots(const std::filesystem::path& out, const std::vector<Samp
                                                                                     : samples[j].frame));
     }
     std::ostringstream gp;
-    gp << "set datafile separator ','\nset key top left box opaque\nset grid\nset xlabel 'frame'\n" << shading
+    gp << "set datafile separator ','\nset key below\nset grid\nset xlabel 'frame'\n" << shading
        << "set terminal " << terminal << " size 1000,420\nset output 'soak_memory.png'\n"
        << "set title 'Soak: memory at every sample (red: chunk files damaged; points: lap ends)'\n"
        << "set ylabel 'MiB'\n"
