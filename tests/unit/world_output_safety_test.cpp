@@ -32,29 +32,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace splat_lod::world;
+using engine::test::folder_bytes;
+using engine::test::without_generation;
 using splat_io_test::error_of;
-
-std::map<std::string, std::string> folder_bytes(const fs::path& folder) {
-    std::map<std::string, std::string> files;
-    for (const auto& item : fs::recursive_directory_iterator(folder))
-        if (item.is_regular_file()) {
-            std::ifstream in(item.path(), std::ios::binary);
-            files[fs::relative(item.path(), folder).generic_string()] =
-                std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-        }
-    return files;
-}
-
-// The files with "gen-<n>/" taken out of their paths and of world.json.
-std::map<std::string, std::string> without_generation(const std::map<std::string, std::string>& files) {
-    const std::regex generation("gen-[0-9]+/");
-    std::map<std::string, std::string> result;
-    for (const auto& [name, bytes] : files) {
-        const bool manifest = name == kManifestFileName;
-        result[std::regex_replace(name, generation, "")] = manifest ? std::regex_replace(bytes, generation, "") : bytes;
-    }
-    return result;
-}
 
 void touch(const fs::path& path, const std::string& text = "left over") {
     fs::create_directories(path.parent_path());

@@ -35,6 +35,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace splat_lod;
 using namespace splat_lod::world;
+using engine::test::folder_bytes;
+using engine::test::without_generation;
 using nlohmann::json;
 
 using splat_io_test::error_of;  // the engine::Error message, "" when none
@@ -70,30 +72,6 @@ WorldManifest sample_manifest() {
 
 WorldOptions tiny_options(const fs::path& folder, std::uint64_t seed, int threads) {
     return engine::test::tiny_world_options(folder, seed, threads);
-}
-
-// Every file below `folder` by relative path, with its bytes.
-std::map<std::string, std::string> folder_bytes(const fs::path& folder) {
-    std::map<std::string, std::string> files;
-    for (const auto& item : fs::recursive_directory_iterator(folder))
-        if (item.is_regular_file()) {
-            std::ifstream in(item.path(), std::ios::binary);
-            files[fs::relative(item.path(), folder).generic_string()] =
-                std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-        }
-    return files;
-}
-
-// The files of a world with the generation folder taken out of their paths ("gen-2/chunks/x" →
-// "chunks/x", and so in world.json): what regenerating the same world into the same folder keeps.
-std::map<std::string, std::string> without_generation(const std::map<std::string, std::string>& files) {
-    const std::regex generation("gen-[0-9]+/");
-    std::map<std::string, std::string> result;
-    for (const auto& [name, bytes] : files) {
-        const bool manifest = name == kManifestFileName;
-        result[std::regex_replace(name, generation, "")] = manifest ? std::regex_replace(bytes, generation, "") : bytes;
-    }
-    return result;
 }
 
 void expect_same_gaussian(const SplatCloud& a, std::size_t i, const SplatCloud& b, std::size_t j) {
