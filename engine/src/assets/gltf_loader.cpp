@@ -6,10 +6,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <stb_image.h>
 #include <tiny_gltf.h>
 
 #include "engine/assets/mesh_asset.h"
 #include "engine/core/error.h"
+#include "engine/core/file_io.h"
 #include "engine/core/log.h"
 
 namespace engine {
@@ -48,6 +50,15 @@ float decode(const std::uint8_t* p, int type, bool normalized) {
     }
 }
 
+// Values beyond float range in the file's JSON (doubles) become inf when converted.
+template <int N>
+bool finite(const glm::vec<N, float>& v) {
+    for (int i = 0; i < N; ++i)
+        if (!std::isfinite(v[i])) return false;
+    return true;
+}
+bool finite(const glm::mat4& m) { return finite(m[0]) && finite(m[1]) && finite(m[2]) && finite(m[3]); }
+
 struct Loader {
     const std::filesystem::path& path;
     const tinygltf::Model& model;
@@ -64,9 +75,11 @@ struct Loader {
         const auto& a = model.accessors[static_cast<std::size_t>(accessor_index)];
         const int have = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
         if (have != components) error(where + ": expected " + std::to_string(components) + " components, found " + std::to_string(have));
+        // Without a buffer view the specification says all zeros (or sparse values, not supported),
+        // in any count the file claims: nothing backs it, so it is refused rather than allocated.
+        if (a.bufferView < 0) error(where + ": no buffer view (sparse or zero-filled accessors are not supported)");
+        const auto [base, stride, size] = view_span(a, components, where);  // checks the count first
         std::vector<float> values(a.count * static_cast<std::size_t>(components), 0.0f);
-        if (a.bufferView < 0) return values;  // all zeros per the specification (no sparse support)
-        const auto [base, stride, size] = view_span(a, components, where);
         const auto& bytes = buffer_of(a).data;
         for (std::size_t i = 0; i < a.count; ++i)
             for (int c = 0; c < components; ++c)
@@ -170,6 +183,10 @@ struct Loader {
                 error(what + ": non-finite vertex position at index " + std::to_string(i));
             v.normal = normals.empty() ? glm::vec3(0) : glm::vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
             v.uv = uvs.empty() ? glm::vec2(0) : glm::vec2(uvs[2 * i], uvs[2 * i + 1]);
+            if (!std::isfinite(v.normal.x) || !std::isfinite(v.normal.y) || !std::isfinite(v.normal.z))
+                error(what + ": non-finite NORMAL at index " + std::to_string(i));
+            if (!std::isfinite(v.uv.x) || !std::isfinite(v.uv.y))
+                error(what + ": non-finite TEXCOORD_0 at index " + std::to_string(i));
         }
         if (p.indices >= 0) {
             prim.indices = read_indices(p.indices);
@@ -184,20 +201,21 @@ struct Loader {
         out.primitives.push_back(std::move(prim));
     }
 
-    // Area-weighted vertex normals for meshes that come without them.
+    // Area-weighted vertex normals for meshes that come without them, summed in double: products of
+    // float coordinates overflow float long before they overflow double.
     static void compute_normals(MeshPrimitive& prim) {
+        std::vector<glm::dvec3> sums(prim.vertices.size(), glm::dvec3(0.0));
         for (std::size_t t = 0; t + 2 < prim.indices.size(); t += 3) {
-            auto& a = prim.vertices[prim.indices[t]];
-            auto& b = prim.vertices[prim.indices[t + 1]];
-            auto& c = prim.vertices[prim.indices[t + 2]];
-            const glm::vec3 n = glm::cross(b.position - a.position, c.position - a.position);
-            a.normal += n;
-            b.normal += n;
-            c.normal += n;
+            const std::uint32_t ia = prim.indices[t], ib = prim.indices[t + 1], ic = prim.indices[t + 2];
+            const glm::dvec3 a(prim.vertices[ia].position), b(prim.vertices[ib].position), c(prim.vertices[ic].position);
+            const glm::dvec3 n = glm::cross(b - a, c - a);
+            sums[ia] += n;
+            sums[ib] += n;
+            sums[ic] += n;
         }
-        for (auto& v : prim.vertices) {
-            const float len = glm::length(v.normal);
-            v.normal = len > 0.0f ? v.normal / len : glm::vec3(0, 1, 0);
+        for (std::size_t i = 0; i < prim.vertices.size(); ++i) {
+            const double len = glm::length(sums[i]);
+            prim.vertices[i].normal = len > 0.0 ? glm::vec3(sums[i] / len) : glm::vec3(0, 1, 0);
         }
     }
 
@@ -206,6 +224,8 @@ struct Loader {
         if (depth > 256) error("node hierarchy deeper than 256 (a cycle?)");
         const auto& node = model.nodes[static_cast<std::size_t>(node_index)];
         const glm::mat4 world = parent * node_matrix(node);
+        if (!finite(world))
+            error("node " + std::to_string(node_index) + ": transform is not finite (values beyond float range?)");
         if (node.mesh >= 0) {
             if (static_cast<std::size_t>(node.mesh) >= model.meshes.size()) error("mesh index out of range: " + std::to_string(node.mesh));
             const auto& mesh = model.meshes[static_cast<std::size_t>(node.mesh)];
@@ -220,6 +240,8 @@ struct Loader {
             mat.name = m.name;
             const auto& f = m.pbrMetallicRoughness.baseColorFactor;
             if (f.size() == 4) mat.base_color_factor = glm::vec4(f[0], f[1], f[2], f[3]);
+            if (!finite(mat.base_color_factor))
+                error("material '" + m.name + "': baseColorFactor is not finite (values beyond float range?)");
             mat.double_sided = m.doubleSided;
             const int texture = m.pbrMetallicRoughness.baseColorTexture.index;
             if (texture >= 0) {
@@ -255,6 +277,88 @@ struct Loader {
     }
 };
 
+// External files of a model: regular files in its folder or below (ExternalFiles::allows), read
+// through tinygltf's file-system callbacks. tinygltf would otherwise also try the working
+// directory and follow ".." and absolute URIs anywhere, devices and FIFOs included.
+struct ExternalFiles {
+    std::filesystem::path folder;  // absolute, normalised
+
+    bool allows(const std::string& file) const {
+        std::error_code ec;
+        const auto absolute = std::filesystem::absolute(std::filesystem::path(file), ec).lexically_normal();
+        if (ec) return false;
+        const auto relative = absolute.lexically_relative(folder);
+        if (relative.empty() || *relative.begin() == "..") return false;
+        return std::filesystem::is_regular_file(absolute, ec);
+    }
+
+    static bool exists(const std::string& file, void* self) {
+        return static_cast<const ExternalFiles*>(self)->allows(file);
+    }
+    static std::string expand(const std::string& file, void*) { return file; }
+    static bool read(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* self) {
+        if (!static_cast<const ExternalFiles*>(self)->allows(file)) {
+            if (err) *err += "not a file in the model's folder: " + file + "\n";
+            return false;
+        }
+        try {
+            *out = read_binary_file(file);
+        } catch (const Error& e) {
+            if (err) *err += std::string(e.what()) + "\n";
+            return false;
+        }
+        return true;
+    }
+    static bool write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+        if (err) *err += "the loader writes no files\n";
+        return false;
+    }
+};
+
+// Images go through tinygltf's stb decoder after size checks: stb allocates for the sizes an image
+// claims (texels, PNG chunk lengths) before decoding it, so a few kilobytes could claim gigabytes.
+// Real textures stay far below the texel bound (deflate expands at most 1032:1, so even a flat
+// 4096x4096 PNG takes tens of kilobytes).
+constexpr std::uint64_t kMaxPixelsPerByte = 2048;
+constexpr std::uint64_t kAlwaysAllowedPixels = 1 << 20;
+
+// The offset of the first PNG chunk whose length runs past the end of the data, or 0 when every
+// chunk fits (or the data are not PNG). stb allocates for a chunk's claimed length before reading it.
+std::size_t png_chunk_past_end(const unsigned char* bytes, std::size_t size) {
+    constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (size < 8 || std::memcmp(bytes, kSignature, 8) != 0) return 0;
+    std::size_t offset = 8;
+    while (offset + 8 <= size) {
+        const std::uint64_t length = static_cast<std::uint64_t>(bytes[offset]) << 24 | bytes[offset + 1] << 16 |
+                                     bytes[offset + 2] << 8 | bytes[offset + 3];
+        if (length + 12 > size - offset) return offset;  // length, type, data, CRC
+        offset += static_cast<std::size_t>(length) + 12;
+    }
+    return 0;
+}
+
+bool load_image_checked(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int req_width,
+                        int req_height, const unsigned char* bytes, int size, void* user_data) {
+    const std::size_t bad_chunk = size > 0 ? png_chunk_past_end(bytes, static_cast<std::size_t>(size)) : 0;
+    if (bad_chunk != 0) {
+        if (err)
+            *err += "image " + std::to_string(index) + ": PNG chunk at offset " + std::to_string(bad_chunk) +
+                    " runs past the image's " + std::to_string(size) + " bytes (truncated?)\n";
+        return false;
+    }
+    int width = 0, height = 0, channels = 0;
+    if (size > 0 && stbi_info_from_memory(bytes, size, &width, &height, &channels)) {
+        const std::uint64_t pixels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+        if (pixels > kAlwaysAllowedPixels + kMaxPixelsPerByte * static_cast<std::uint64_t>(size)) {
+            if (err)
+                *err += "image " + std::to_string(index) + " claims " + std::to_string(width) + "x" +
+                        std::to_string(height) + " texels, implausible for " + std::to_string(size) + " bytes\n";
+            return false;
+        }
+    }
+    return tinygltf::LoadImageData(image, index, err, warn, req_width, req_height, bytes, size, user_data);
+}
+
 void check_required_extensions(const std::filesystem::path& path, const tinygltf::Model& model) {
     for (const auto& ext : model.extensionsRequired) {
         const bool ok = std::any_of(std::begin(supported_required_extensions), std::end(supported_required_extensions),
@@ -274,14 +378,30 @@ std::size_t MeshAsset::triangle_count() const {
 MeshAsset load_gltf(const std::filesystem::path& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) fail(path.string() + ": file not found");
+    const std::string ext = path.extension().string();
+    if (ext != ".glb" && ext != ".gltf") fail(path.string() + ": not a glTF file (expected .gltf or .glb)");
+    return load_gltf(read_binary_file(path), path);
+}
+
+MeshAsset load_gltf(std::span<const std::uint8_t> bytes, const std::filesystem::path& path) {
+    const std::string ext = path.extension().string();
+    if (ext != ".glb" && ext != ".gltf") fail(path.string() + ": not a glTF file (expected .gltf or .glb)");
+    if (bytes.empty()) fail(path.string() + ": the file is empty");
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) fail(path.string() + ": larger than 4 GiB");
+    std::error_code ec;
+    ExternalFiles files{std::filesystem::absolute(path, ec).parent_path().lexically_normal()};
+    if (ec) fail(path.string() + ": cannot resolve its folder: " + ec.message());
     tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks(
+        {&ExternalFiles::exists, &ExternalFiles::expand, &ExternalFiles::read, &ExternalFiles::write, &files});
+    loader.SetImageLoader(&load_image_checked, nullptr);
     tinygltf::Model model;
     std::string err, warn;
-    const std::string ext = path.extension().string();
-    bool ok = false;
-    if (ext == ".glb") ok = loader.LoadBinaryFromFile(&model, &err, &warn, path.string());
-    else if (ext == ".gltf") ok = loader.LoadASCIIFromFile(&model, &err, &warn, path.string());
-    else fail(path.string() + ": not a glTF file (expected .gltf or .glb)");
+    const auto size = static_cast<unsigned int>(bytes.size());
+    const std::string base_dir = files.folder.string();
+    const auto* text = reinterpret_cast<const char*>(bytes.data());
+    const bool ok = ext == ".glb" ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, base_dir)
+                                  : loader.LoadASCIIFromString(&model, &err, &warn, text, size, base_dir);
     // Check required extensions first: a Draco file fails here with the real reason.
     if (!model.extensionsRequired.empty()) check_required_extensions(path, model);
     if (!ok) {
@@ -312,6 +432,8 @@ MeshAsset load_gltf(const std::filesystem::path& path) {
             lo = glm::min(lo, w);
             hi = glm::max(hi, w);
         }
+    if (!finite(lo) || !finite(hi))
+        fail(path.string() + ": the model's bounds are not finite (coordinates beyond float range)");
     asset.bounds_min = lo;
     asset.bounds_max = hi;
     return asset;

@@ -1,6 +1,8 @@
 #include "engine/scene/json_fields.h"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 namespace engine::json_fields {
 namespace {
@@ -14,6 +16,7 @@ float finite_number(const nlohmann::json& value, const std::string& key, const C
     if (!value.is_number()) ctx.error(key, "expected a number, got " + value.dump());
     const double v = value.get<double>();
     if (!std::isfinite(v)) ctx.error(key, "expected a finite number");
+    if (std::abs(v) > std::numeric_limits<float>::max()) ctx.error(key, "beyond float range: " + value.dump());
     return static_cast<float>(v);
 }
 
@@ -41,6 +44,12 @@ int integer(const nlohmann::json& object, const char* key, int fallback, const C
     const auto* value = find(object, key);
     if (!value) return fallback;
     if (!value->is_number_integer()) ctx.error(key, "expected an integer, got " + value->dump());
+    // get<int>() would wrap larger values silently (4294967296 would read as 0).
+    const bool fits = value->is_number_unsigned()
+                          ? value->get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max())
+                          : value->get<std::int64_t>() >= std::numeric_limits<int>::min() &&
+                                value->get<std::int64_t>() <= std::numeric_limits<int>::max();
+    if (!fits) ctx.error(key, "out of range: " + value->dump());
     return value->get<int>();
 }
 

@@ -1,5 +1,7 @@
 #include "engine/scene/scene_loader.h"
 
+#include <cmath>
+
 #include <glm/gtc/quaternion.hpp>
 
 #include "engine/core/error.h"
@@ -28,9 +30,12 @@ void read_transform(const nlohmann::json& spec, Node& node, const ComponentLoadC
     if (spec.contains("rotation") && spec.contains("rotation_euler_deg"))
         ctx.error("rotation", "give either rotation or rotation_euler_deg, not both");
     if (spec.contains("rotation")) {
-        const glm::vec4 q = jf::vec4(spec, "rotation", glm::vec4(0, 0, 0, 1), ctx);  // glTF order x, y, z, w
-        if (glm::length(q) < 1e-8f) ctx.error("rotation", "zero quaternion");
-        t.rotation = glm::normalize(glm::quat(q.w, q.x, q.y, q.z));
+        // glTF order x, y, z, w; normalised in double, where the length of large values cannot overflow.
+        const glm::dvec4 q(jf::vec4(spec, "rotation", glm::vec4(0, 0, 0, 1), ctx));
+        const double length = glm::length(q);
+        if (length < 1e-8) ctx.error("rotation", "zero quaternion");
+        t.rotation = glm::quat(static_cast<float>(q.w / length), static_cast<float>(q.x / length),
+                               static_cast<float>(q.y / length), static_cast<float>(q.z / length));
     }
     if (spec.contains("rotation_euler_deg"))
         t.rotation = glm::quat(glm::radians(jf::vec3(spec, "rotation_euler_deg", glm::vec3(0), ctx)));
@@ -42,7 +47,9 @@ void read_transform(const nlohmann::json& spec, Node& node, const ComponentLoadC
         if (spec.contains("rotation") || spec.contains("rotation_euler_deg"))
             ctx.error("look_at", "give either a rotation or look_at, not both");
         const glm::vec3 target = jf::vec3(spec, "look_at", glm::vec3(0), ctx);
-        if (glm::length(target - t.translation) < 1e-8f) ctx.error("look_at", "target equals the node's translation");
+        const float distance = glm::length(target - t.translation);
+        if (distance < 1e-8f) ctx.error("look_at", "target equals the node's translation");
+        if (!std::isfinite(distance)) ctx.error("look_at", "target too far from the node's translation");
         t.rotation = Transform::look_rotation(t.translation, target, glm::vec3(0, 1, 0));
     }
 }

@@ -3,6 +3,7 @@
 // transform of its node, materials (base colour factor and texture) and decoded images.
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -47,7 +48,12 @@ struct MeshAsset {
 };
 
 // Loads .gltf (external or embedded buffers) and .glb. Errors name the file and the element
-// (e.g. "Box.gltf: unsupported required extension KHR_draco_mesh_compression").
+// (e.g. "Box.gltf: unsupported required extension KHR_draco_mesh_compression"). External files
+// (buffers, images) must be regular files in the model's folder or below it: a URI that is
+// absolute or leaves the folder with ".." is an error, so a model cannot make us read elsewhere.
 MeshAsset load_gltf(const std::filesystem::path& path);
+// The same from the file's bytes; `path` names the model in messages, its extension (.gltf or
+// .glb) says how to parse it and its folder is where external files are looked up.
+MeshAsset load_gltf(std::span<const std::uint8_t> bytes, const std::filesystem::path& path);
 
 }  // namespace engine

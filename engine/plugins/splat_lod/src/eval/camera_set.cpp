@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -17,12 +18,11 @@ using nlohmann::json;
     engine::fail(path.string() + ": camera " + std::to_string(index) + ": " + problem);
 }
 
-json parse_camera_array(const std::filesystem::path& path) {
-    const std::string text = engine::read_text_file(path);
+json parse_camera_array(const std::string& text, const std::filesystem::path& path) {
     json doc;
     try {
         doc = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for numbers beyond double
         engine::fail(path.string() + ": not valid JSON: " + e.what());
     }
     if (!doc.is_array()) engine::fail(path.string() + ": expected a JSON array of cameras");
@@ -34,6 +34,8 @@ double number(const json& value, const std::filesystem::path& path, std::size_t 
     if (!value.is_number()) camera_error(path, index, "\"" + key + "\" must be a number");
     const double v = value.get<double>();
     if (!std::isfinite(v)) camera_error(path, index, "\"" + key + "\" is not finite");
+    if (std::abs(v) > std::numeric_limits<float>::max())
+        camera_error(path, index, "\"" + key + "\" is beyond float range");
     return v;
 }
 
@@ -63,7 +65,13 @@ glm::mat3 rotation_field(const json& camera, const std::filesystem::path& path, 
         for (int col = 0; col < 3; ++col)
             m[col][row] = static_cast<float>(number(values[static_cast<std::size_t>(col)], path, index, "rotation"));
     }
-    if (std::abs(glm::determinant(m) - 1.0f) > 1e-2f) camera_error(path, index, "\"rotation\" is not a rotation matrix");
+    // det = 1 alone admits shears: a rotation's columns are also orthonormal (mᵀm = I).
+    const glm::mat3 gram = glm::transpose(m) * m;
+    bool orthonormal = true;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) orthonormal = orthonormal && std::abs(gram[i][j] - (i == j ? 1.0f : 0.0f)) <= 1e-2f;
+    if (!orthonormal || std::abs(glm::determinant(m) - 1.0f) > 1e-2f)
+        camera_error(path, index, "\"rotation\" is not a rotation matrix");
     return m;
 }
 
@@ -75,12 +83,17 @@ CameraPose inria_camera(const json& camera, const std::filesystem::path& path, s
     positive_field(camera, "fx", path, index);
     const double fy = positive_field(camera, "fy", path, index);
     CameraPose pose;
+    if (camera.contains("img_name") && !camera["img_name"].is_string())
+        camera_error(path, index, "\"img_name\" must be a string");
     pose.name = camera.value("img_name", "camera " + std::to_string(index));
     pose.eye = vec3_field(camera, "position", path, index);
     // OpenCV camera axes (x right, y down, z forward) to the engine's (x right, y up, −z forward).
     pose.forward = glm::normalize(rotation[2]);
-    pose.up = glm::normalize(-rotation[1]);
+    // Made exactly orthogonal to forward: the file's matrix is orthonormal only to its precision.
+    pose.up = glm::normalize(-rotation[1] + glm::dot(rotation[1], pose.forward) * pose.forward);
     pose.fov_y = static_cast<float>(2.0 * std::atan(height / (2.0 * fy)));
+    if (!(pose.fov_y < glm::radians(179.0f)))
+        camera_error(path, index, "\"height\" / \"fy\" give a field of view of 179 degrees or more");
     return pose;
 }
 
@@ -92,12 +105,15 @@ CameraPose path_camera(const json& camera, const std::filesystem::path& path, st
     if (fov <= 0.0 || fov >= 180.0) camera_error(path, index, "\"fov_y_deg\" must be in (0, 180)");
     const float distance = glm::length(target - eye);
     if (!(distance > 0.0f)) camera_error(path, index, "\"eye\" and \"target\" coincide");
+    if (!std::isfinite(distance)) camera_error(path, index, "\"eye\" and \"target\" are too far apart");
     CameraPose pose;
     pose.name = camera.contains("name") && camera["name"].is_string() ? camera["name"].get<std::string>()
                                                                        : "camera " + std::to_string(index);
     pose.eye = eye;
     pose.forward = (target - eye) / distance;
-    const glm::vec3 right = glm::cross(pose.forward, up);
+    // `up` scaled to its largest component first, so that large values cannot overflow the product.
+    const float up_scale = std::max({std::abs(up.x), std::abs(up.y), std::abs(up.z)});
+    const glm::vec3 right = up_scale > 0.0f ? glm::cross(pose.forward, up / up_scale) : glm::vec3(0.0f);
     if (glm::length(right) < 1e-6f) camera_error(path, index, "\"up\" is parallel to the view direction");
     pose.up = glm::normalize(glm::cross(glm::normalize(right), pose.forward));
     pose.fov_y = glm::radians(static_cast<float>(fov));
@@ -127,18 +143,28 @@ engine::CameraView make_view(const CameraPose& pose, int width, int height) {
                                        0.01f * pose.focus_distance, 1000.0f * pose.focus_distance);
 }
 
-std::vector<CameraPose> read_inria_cameras(const std::filesystem::path& path) {
-    const json doc = parse_camera_array(path);
+std::vector<CameraPose> parse_inria_cameras(const std::string& text, const std::string& name) {
+    const std::filesystem::path path(name);
+    const json doc = parse_camera_array(text, path);
     std::vector<CameraPose> poses;
     for (std::size_t i = 0; i < doc.size(); ++i) poses.push_back(inria_camera(doc[i], path, i));
     return poses;
 }
 
-std::vector<CameraPose> read_camera_path(const std::filesystem::path& path) {
-    const json doc = parse_camera_array(path);
+std::vector<CameraPose> parse_camera_path(const std::string& text, const std::string& name) {
+    const std::filesystem::path path(name);
+    const json doc = parse_camera_array(text, path);
     std::vector<CameraPose> poses;
     for (std::size_t i = 0; i < doc.size(); ++i) poses.push_back(path_camera(doc[i], path, i));
     return poses;
+}
+
+std::vector<CameraPose> read_inria_cameras(const std::filesystem::path& path) {
+    return parse_inria_cameras(engine::read_text_file(path), path.string());
+}
+
+std::vector<CameraPose> read_camera_path(const std::filesystem::path& path) {
+    return parse_camera_path(engine::read_text_file(path), path.string());
 }
 
 SceneExtent robust_extent(const std::vector<glm::vec3>& points) {
@@ -193,9 +219,10 @@ std::vector<CameraPose> load_camera_set(const std::string& spec, const SceneExte
         if (count < 1 || count > 1000) engine::fail("--cameras " + spec + ": expected orbit:N with N in 1..1000");
         return orbit_poses(extent, up, count);
     }
-    const json doc = parse_camera_array(spec);
+    const std::string text = engine::read_text_file(spec);
+    const json doc = parse_camera_array(text, spec);
     const bool inria = doc[0].is_object() && doc[0].contains("rotation");
-    auto poses = inria ? read_inria_cameras(spec) : read_camera_path(spec);
+    auto poses = inria ? parse_inria_cameras(text, spec) : parse_camera_path(text, spec);
     if (inria)
         for (auto& pose : poses) focus_on(pose, extent);
     return poses;

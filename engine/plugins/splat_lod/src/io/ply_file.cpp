@@ -81,6 +81,12 @@ public:
             }
         }
         if (!have_format) fail_file(name_, "PLY header has no format line");
+        // Rows of no bytes need no data, so their count would be unchecked: a reader sizing its
+        // output by it could be made to allocate anything.
+        for (const auto& element : ply.elements)
+            if (element.count > 0 && element.properties.empty())
+                fail_file(name_, "element \"" + element.name + "\" has " + std::to_string(element.count) +
+                                     " rows but no properties");
         ply.header_size = position_;
         return ply;
     }

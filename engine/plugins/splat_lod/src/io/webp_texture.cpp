@@ -22,9 +22,12 @@ struct WebpDeleter {
 }  // namespace
 
 RgbaTexture load_webp(const std::filesystem::path& file, std::uint64_t min_pixels) {
+    return decode_webp(engine::read_binary_file(file), file.string(), min_pixels);
+}
+
+RgbaTexture decode_webp(std::span<const std::uint8_t> bytes, const std::string& name, std::uint64_t min_pixels) {
     RgbaTexture texture;
-    texture.name = file.string();
-    const auto bytes = engine::read_binary_file(file);
+    texture.name = name;
     int width = 0;
     int height = 0;
     if (!WebPGetInfo(bytes.data(), bytes.size(), &width, &height)) fail_file(texture.name, "not a WebP image");

@@ -2,6 +2,7 @@
 // Lossless WebP textures of a SOG scene, decoded to RGBA8 with libwebp.
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -20,5 +21,7 @@ struct RgbaTexture {
 // Decodes `file`, which must hold at least `min_pixels` texels. The dimensions are checked against
 // the file size before decoding, so a tiny file cannot make libwebp allocate gigabytes.
 RgbaTexture load_webp(const std::filesystem::path& file, std::uint64_t min_pixels);
+// The same from the file's bytes; `name` is the file named in error messages.
+RgbaTexture decode_webp(std::span<const std::uint8_t> bytes, const std::string& name, std::uint64_t min_pixels);
 
 }  // namespace splat_lod::io

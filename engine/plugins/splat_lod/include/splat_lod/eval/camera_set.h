@@ -36,6 +36,9 @@ engine::CameraView make_view(const CameraPose& pose, int width, int height);
 
 std::vector<CameraPose> read_inria_cameras(const std::filesystem::path& path);
 std::vector<CameraPose> read_camera_path(const std::filesystem::path& path);
+// The same from text already in memory; `name` is the file named in error messages.
+std::vector<CameraPose> parse_inria_cameras(const std::string& text, const std::string& name);
+std::vector<CameraPose> parse_camera_path(const std::string& text, const std::string& name);
 
 // Where the scene is: the median of the Gaussian centres and the 90th-percentile distance from it.
 struct SceneExtent {
