@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "engine/core/error.h"
 #include "splat_lod/splat_cloud.h"
 
 namespace splat_fuzz {
@@ -42,6 +43,22 @@ void check_error_names(const std::exception& error, const std::string& name);
 // What splat_io.h promises of every cloud a reader returns: consistent arrays, no NaN/Inf in any
 // attribute, unit quaternions, and a report whose counts add up.
 void check_cloud(const splat_lod::SplatCloud& cloud, const splat_lod::LoadReport& report);
+
+// One splat reader's byte-span overload on the input (read(bytes, name, &report)): an engine::Error
+// must name the file, a returned cloud must keep check_cloud's promises.
+template <class Read>
+int fuzz_splat_reader(const std::uint8_t* data, std::size_t size, const std::string& name, Read read) {
+    splat_lod::LoadReport report;
+    splat_lod::SplatCloud cloud;
+    try {
+        cloud = read(bytes_of(data, size), name, &report);
+    } catch (const engine::Error& e) {  // anything else escapes: a finding
+        check_error_names(e, name);
+        return 0;
+    }
+    check_cloud(cloud, report);
+    return 0;
+}
 
 // A folder private to this process (under the system temporary folder), made on first use and
 // removed at exit. Harnesses whose reader takes a path put their files here, and scene assets
