@@ -36,6 +36,8 @@ std::string_view to_string(FaultKind kind) {
             return "truncated";
         case FaultKind::replaced:
             return "replaced";
+        case FaultKind::corrupted:
+            return "corrupted";
     }
     return "?";
 }
@@ -86,6 +88,15 @@ void ChunkFaults::apply(std::size_t chunk, FaultKind kind, std::size_t donor) {
     if (kind == FaultKind::truncated) {
         bytes = read_bytes(path);
         bytes.resize(bytes.size() * 6 / 10);
+    } else if (kind == FaultKind::corrupted) {
+        bytes = read_bytes(path);
+        const splat_lod::world::ChunkEntry& entry = manifest_.chunks[chunk];
+        for (const auto& block : splat_lod::world::record_blocks(entry, 0, entry.prefix_count[0])) {
+            const std::uint64_t at = entry.header_bytes + block.begin * entry.vertex_bytes;
+            if (at >= bytes.size())
+                engine::fail(path.string() + ": shorter than its manifest entry says; cannot corrupt it in place");
+            bytes[static_cast<std::size_t>(at)] ^= 1u;
+        }
     } else if (kind == FaultKind::replaced) {
         // The donor's own bytes, also when the donor itself is damaged (its original is set aside).
         const bool donor_damaged = find(manifest_.chunks.at(donor).id) != nullptr;

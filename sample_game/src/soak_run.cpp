@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <optional>
@@ -164,14 +165,15 @@ SoakOutcome run_soak(const SoakOptions& o, std::FILE* progress) {
         return glm::length(glm::vec2(centre.x - home.x, centre.z - home.z));
     };
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return distance(a) < distance(b); });
-    if (o.faults && chunks.size() < 4)
-        engine::fail("sample_game: the soak's faults need a world of at least 4 chunks, " + o.world.string() + " has " +
+    if (o.faults && chunks.size() < 5)
+        engine::fail("sample_game: the soak's faults need a world of at least 5 chunks, " + o.world.string() + " has " +
                      std::to_string(chunks.size()));
     std::optional<ChunkFaults> faults;
     if (o.faults) faults.emplace(world_folder, world.manifest());
-    const FaultKind kinds[] = {FaultKind::removed, FaultKind::truncated, FaultKind::replaced};
+    const FaultKind kinds[] = {FaultKind::removed, FaultKind::truncated, FaultKind::replaced, FaultKind::corrupted};
+    constexpr std::size_t kVictims = std::size(kinds);
     // The victims of a lap: of the chunks that lost levels since the last lap end (so the camera's
-    // return reads them again), the three nearest the start; the nearest chunks when fewer lost any.
+    // return reads them again), the four nearest the start; the nearest chunks when fewer lost any.
     std::map<std::string, FaultKind> victims;
     std::vector<int> finest_at_lap_end(chunks.size(), 0);
     const auto choose_victims = [&]() {
@@ -183,7 +185,7 @@ SoakOutcome run_soak(const SoakOptions& o, std::FILE* progress) {
             (lost_levels ? lost : rest).push_back(i);
         }
         lost.insert(lost.end(), rest.begin(), rest.end());
-        lost.resize(3);
+        lost.resize(kVictims);
         return lost;
     };
 
@@ -224,8 +226,10 @@ SoakOutcome run_soak(const SoakOptions& o, std::FILE* progress) {
                 ++outcome.failures_removed;
             } else if (it->second == FaultKind::truncated) {
                 ++outcome.failures_truncated;
-            } else {
+            } else if (it->second == FaultKind::replaced) {
                 ++outcome.failures_replaced;
+            } else {
+                ++outcome.failures_corrupted;
             }
         }
     };
@@ -237,7 +241,7 @@ SoakOutcome run_soak(const SoakOptions& o, std::FILE* progress) {
             if (faulted_lap && i == fault_begin) {
                 const std::vector<std::size_t> chosen = choose_victims();
                 victims.clear();
-                for (std::size_t k = 0; k < 3; ++k) {
+                for (std::size_t k = 0; k < kVictims; ++k) {
                     faults->apply(chosen[k], kinds[k], order.back());
                     victims[chunks[chosen[k]].id] = kinds[k];
                 }
@@ -350,12 +354,14 @@ SoakOutcome run_soak(const SoakOptions& o, std::FILE* progress) {
                                 reference.lap)));
     if (o.faults)
         c.push_back(check(outcome.failures_removed > 0 && outcome.failures_truncated > 0 &&
-                              outcome.failures_replaced > 0 && outcome.failures_undamaged == 0,
-                          formatted("faults noticed: failures of removed %llu, truncated %llu, replaced %llu chunk "
-                                    "files; of undamaged chunks %llu",
+                              outcome.failures_replaced > 0 && outcome.failures_corrupted > 0 &&
+                              outcome.failures_undamaged == 0,
+                          formatted("faults noticed: failures of removed %llu, truncated %llu, replaced %llu, "
+                                    "corrupted %llu chunk files; of undamaged chunks %llu",
                                     static_cast<unsigned long long>(outcome.failures_removed),
                                     static_cast<unsigned long long>(outcome.failures_truncated),
                                     static_cast<unsigned long long>(outcome.failures_replaced),
+                                    static_cast<unsigned long long>(outcome.failures_corrupted),
                                     static_cast<unsigned long long>(outcome.failures_undamaged))));
     double worst_psnr = std::numeric_limits<double>::infinity();
     for (const auto& e : ends) worst_psnr = std::min(worst_psnr, e.psnr_vs_first);
@@ -367,7 +373,7 @@ SoakOutcome run_soak(const SoakOptions& o, std::FILE* progress) {
 
     std::string text = formatted("sample_game soak: %s, %d laps of %d frames at %dx%d, faults %s, %.0f s\n",
                                  o.world.string().c_str(), o.laps, o.frames_per_lap, o.width, o.height,
-                                 o.faults ? "on (removed, truncated, replaced chunk files)" : "off",
+                                 o.faults ? "on (removed, truncated, replaced, corrupted chunk files)" : "off",
                                  seconds_since(start));
     text += "lap  frame  GL objects  GL MiB  RSS MiB  streamed MiB  failed  settle  PSNR vs lap 1\n";
     for (const auto& e : ends)

@@ -1,8 +1,8 @@
 // The streamed world's manifest, world.json (splat_lod/world/world_manifest.h), through
 // parse_world_manifest, the text form of read_world_manifest.
 // Contract: a manifest that obeys every rule the header lists (relative paths inside the folder,
-// prefix counts that do not grow, byte counts that add up) and that write_world_manifest writes
-// back to the same values, or engine::Error "<file>: <key path>: <problem>".
+// prefix counts that do not grow, byte counts that add up, one checksum per record block) and
+// that write_world_manifest writes back to the same values, or engine::Error "<file>: <key path>: <problem>".
 #include <cmath>
 
 #include "engine/core/error.h"
@@ -33,6 +33,14 @@ void check_manifest(const sw::WorldManifest& m) {
             require(c.prefix_count[static_cast<std::size_t>(l)] <= c.prefix_count[static_cast<std::size_t>(l - 1)],
                     "prefix counts do not grow with the level");
         require(c.vertex_bytes > 0 && c.prefix_bytes(1) == c.file_bytes, "file_bytes = header + count x vertex bytes");
+        require(c.record_crc32.size() == sw::record_block_count(c), "one checksum per record block");
+        const auto blocks = sw::record_blocks(c, 0, c.prefix_count[0]);
+        require(blocks.size() == c.record_crc32.size(), "the blocks of the whole file are every block");
+        for (std::size_t b = 0; b < blocks.size(); ++b)
+            require(blocks[b].index == b && blocks[b].begin < blocks[b].end &&
+                        blocks[b].end - blocks[b].begin <= sw::kChecksumBlockRecords &&
+                        blocks[b].begin == (b == 0 ? 0 : blocks[b - 1].end),
+                    "record blocks are contiguous, in order, and at most kChecksumBlockRecords long");
         total += c.prefix_count[0];
     }
     require(total == m.gaussians, "gaussians is the chunks' sum");
@@ -52,7 +60,8 @@ void check_round_trip(const sw::WorldManifest& m) {
     for (std::size_t i = 0; i < m.chunks.size(); ++i) {
         const auto &a = m.chunks[i], &b = r.chunks[i];
         require(a.id == b.id && a.file == b.file && a.cell == b.cell && a.prefix_count == b.prefix_count &&
-                    a.file_bytes == b.file_bytes && a.bounds_min == b.bounds_min && a.bounds_max == b.bounds_max,
+                    a.file_bytes == b.file_bytes && a.header_crc32 == b.header_crc32 &&
+                    a.record_crc32 == b.record_crc32 && a.bounds_min == b.bounds_min && a.bounds_max == b.bounds_max,
                 "chunk " + std::to_string(i) + " reads back as written");
     }
 }

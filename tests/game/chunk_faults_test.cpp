@@ -50,6 +50,11 @@ FakeWorld make_fake_world(const std::string& name) {
         sw::ChunkEntry e;
         e.id = "chunk_" + std::to_string(i);
         e.file = fs::path("chunks") / (e.id + ".lod.ply");
+        // 100 header bytes and records of 10 bytes, as the file's size says: 90 + 10 i records.
+        e.header_bytes = 100;
+        e.vertex_bytes = 10;
+        e.prefix_count = {90u + 10u * static_cast<unsigned>(i), 4, 4, 1};
+        e.file_bytes = e.prefix_bytes(1);
         w.files.push_back(bytes_of(1000 + 100 * static_cast<std::size_t>(i), static_cast<std::uint8_t>(i)));
         engine::write_file_atomic(w.folder / e.file, w.files.back());
         w.manifest.chunks.push_back(e);
@@ -94,5 +99,20 @@ TEST(ChunkFaultsTest, DamageGoesToTheCopyOnlyAndRestoreBringsTheBytesBack) {
             EXPECT_EQ(engine::read_binary_file(w.copy / w.manifest.chunks[i].file), w.files[i]) << i;
         faults.apply(1, FaultKind::removed);
     }  // the destructor restores what is still damaged
+    {
+        // corrupted: the same size, one bit flipped at the first record of every checksum block
+        // (chunk 1: stream level 4 holds record 0, level 3 records 1..3, level 2 none, level 1 4..99).
+        ChunkFaults faults(w.copy, w.manifest);
+        faults.apply(1, FaultKind::corrupted);
+        const std::vector<std::uint8_t> bytes = engine::read_binary_file(w.copy / "chunks" / "chunk_1.lod.ply");
+        ASSERT_EQ(bytes.size(), w.files[1].size());
+        std::vector<std::size_t> changed;
+        for (std::size_t k = 0; k < bytes.size(); ++k)
+            if (bytes[k] != w.files[1][k]) changed.push_back(k);
+        EXPECT_EQ(changed, (std::vector<std::size_t>{100, 110, 140}));
+        EXPECT_EQ(bytes[110] ^ w.files[1][110], 1);
+        EXPECT_EQ(engine::read_binary_file(w.folder / "chunks" / "chunk_1.lod.ply"), w.files[1]);
+    }
+    EXPECT_EQ(engine::read_binary_file(w.copy / "chunks" / "chunk_1.lod.ply"), w.files[1]);
     EXPECT_EQ(engine::read_binary_file(w.copy / "chunks" / "chunk_1.lod.ply"), w.files[1]);
 }

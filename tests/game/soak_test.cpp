@@ -1,6 +1,6 @@
 // The soak run (sample_game/soak_run.h) on the tests' tiny world through the real engine: a short
-// version of `sample_game --soak`. Laps with chunk files removed, truncated and replaced underneath
-// the streamer must end like the first: same GL objects, flat memory, every chunk back, the same
+// version of `sample_game --soak`. Laps with chunk files removed, truncated, replaced and corrupted
+// underneath the streamer must end like the first: same GL objects, flat memory, every chunk back, the same
 // frame. A leak made on purpose must fail the run, so the checks can fail.
 #include <algorithm>
 #include <filesystem>
@@ -81,6 +81,7 @@ TEST_F(SoakTest, LapsWithDamagedChunkFilesEndLikeTheFirst) {
     EXPECT_GT(outcome.failures_removed, 0u);
     EXPECT_GT(outcome.failures_truncated, 0u);
     EXPECT_GT(outcome.failures_replaced, 0u);
+    EXPECT_GT(outcome.failures_corrupted, 0u);
     EXPECT_EQ(outcome.failures_undamaged, 0u);
     EXPECT_EQ(outcome.lap_ends.back().failed_chunks, 0u);
     // The user's world was never touched: the faults went to the linked copy.

@@ -56,12 +56,15 @@ WorldManifest sample_manifest() {
         c.file = fs::path("chunks") / (c.id + ".lod.ply");
         c.bounds_min = {-64.0f + 64.0f * static_cast<float>(k), -3.5f, -64.0f};
         c.bounds_max = c.bounds_min + glm::vec3(64.0f, 12.25f, 64.0f);
-        c.prefix_count = {1000u + static_cast<unsigned>(k), 40, 12, 3};
+        c.prefix_count = {5000u + static_cast<unsigned>(k), 40, 12, 3};
         c.levels[0] = {0.125f, -1.0f};
         c.levels[3] = {2.5f, 0.0625f};
         c.header_bytes = 700;
         c.vertex_bytes = 77;
         c.file_bytes = c.prefix_bytes(1);
+        c.header_crc32 = 0xdeadbeefu - static_cast<unsigned>(k);
+        for (std::uint64_t b = 0; b < record_block_count(c); ++b)
+            c.record_crc32.push_back(0xfffffff0u + static_cast<unsigned>(b));
         m.gaussians += c.prefix_count[0];
         m.chunks.push_back(c);
     }
@@ -117,6 +120,9 @@ TEST(WorldManifest, RoundTripKeepsEveryField) {
         EXPECT_EQ(a.header_bytes, b.header_bytes);
         EXPECT_EQ(a.vertex_bytes, b.vertex_bytes);
         EXPECT_EQ(a.file_bytes, b.file_bytes);
+        EXPECT_EQ(a.header_crc32, b.header_crc32);
+        EXPECT_EQ(a.record_crc32, b.record_crc32);
+        EXPECT_EQ(b.record_crc32.size(), 8u) << "levels 4, 3, 2: one block each; level 1: 4960 records in 5";
     }
     ASSERT_EQ(r.props.size(), 1u);
     EXPECT_EQ(r.props[0].mesh, m.props[0].mesh);
@@ -156,6 +162,11 @@ TEST(WorldManifest, EveryBadInputNamesTheFileAndTheKey) {
         {"prop_escape", [](json& j) { j["props"][0]["mesh"] = "../house.glb"; }, "props[0].mesh"},
         {"duplicate", [](json& j) { j["chunks"][1]["id"] = j["chunks"][0]["id"]; }, "chunks[1].id"},
         {"seed_sign", [](json& j) { j["seed"] = -3; }, "seed"},
+        {"no_header_crc", [](json& j) { j["chunks"][0].erase("header_crc32"); }, "chunks[0].header_crc32: missing"},
+        {"crc_range", [](json& j) { j["chunks"][1]["record_crc32"][3] = 4294967296ull; }, "chunks[1].record_crc32[3]"},
+        {"crc_count", [](json& j) { j["chunks"][0]["record_crc32"].erase(0); }, "chunks[0].record_crc32: holds 7"},
+        {"crc_type", [](json& j) { j["chunks"][0]["record_crc32"] = 3; }, "chunks[0].record_crc32"},
+        {"old_version", [](json& j) { j["version"] = 2; }, "generate the world again"},
     };
     for (const Case& c : cases) {
         json document = good;
@@ -177,6 +188,37 @@ TEST(WorldManifest, WriterRefusesWhatTheReaderWouldAndWritesNothing) {
     m.chunks[0].prefix_count[1] = m.chunks[0].prefix_count[0] + 1;
     EXPECT_NE(error_of([&] { write_world_manifest(path, m); }).find("chunks[0].prefix_count"), std::string::npos);
     EXPECT_FALSE(fs::exists(path));
+}
+
+TEST(WorldManifest, RecordBlocksRestartAtEveryStreamLevelAndCoverARangeExactly) {
+    ChunkEntry c;
+    const std::uint64_t B = kChecksumBlockRecords;
+    // Stream level 4: 2·B + 5 records, level 3: none, level 2: B, level 1: 3 records.
+    c.prefix_count = {3 * B + 8, 3 * B + 5, 2 * B + 5, 2 * B + 5};
+    EXPECT_EQ(record_block_count(c), 3u + 0u + 1u + 1u);
+    const auto all = record_blocks(c, 0, c.prefix_count[0]);
+    const std::vector<std::pair<std::uint64_t, std::uint64_t>> expected = {
+        {0, B}, {B, 2 * B}, {2 * B, 2 * B + 5}, {2 * B + 5, 3 * B + 5}, {3 * B + 5, 3 * B + 8}};
+    ASSERT_EQ(all.size(), expected.size());
+    for (std::size_t b = 0; b < all.size(); ++b) {
+        EXPECT_EQ(all[b].begin, expected[b].first) << b;
+        EXPECT_EQ(all[b].end, expected[b].second) << b;
+        EXPECT_EQ(all[b].index, b);
+    }
+    // A stream level alone reads exactly its own blocks; another range is widened to whole blocks.
+    const auto [begin2, end2] = level_range(c, 2);
+    const auto level2 = record_blocks(c, begin2, end2);
+    ASSERT_EQ(level2.size(), 1u);
+    EXPECT_EQ(level2[0].begin, begin2);
+    EXPECT_EQ(level2[0].end, end2);
+    EXPECT_EQ(level2[0].index, 3u);
+    const auto window = record_blocks(c, B - 1, 2 * B + 6);
+    ASSERT_EQ(window.size(), 4u);
+    EXPECT_EQ(window.front().begin, 0u);
+    EXPECT_EQ(window.back().end, 3 * B + 5);
+    EXPECT_TRUE(record_blocks(c, 7, 7).empty());
+    EXPECT_THROW(record_blocks(c, 0, c.prefix_count[0] + 1), engine::Error);
+    EXPECT_EQ(record_block_count(ChunkEntry{}), 0u);
 }
 
 TEST(WorldChunk, DescribeRefusesAFileNotInStreamOrder) {
@@ -313,10 +355,67 @@ TEST(WorldGenerator, RangeReadsRefuseMismatchedFiles) {
     lying.header_bytes += 1;
     lying.file_bytes += 1;
     EXPECT_NE(error_of([&] { read_chunk_range(file, lying, 0, 1); }).find(file.string()), std::string::npos);
+    ChunkEntry unchecked = c;
+    unchecked.record_crc32.pop_back();
+    EXPECT_NE(error_of([&] { read_chunk_range(file, unchecked, 0, 1); }).find("record checksums"), std::string::npos);
     fs::resize_file(file, c.file_bytes - 10);  // truncated
     const std::string message = error_of([&] { read_chunk_range(file, c, 0, 1); });
     EXPECT_NE(message.find(file.string()), std::string::npos) << message;
     EXPECT_NE(message.find("bytes"), std::string::npos) << message;
+}
+
+// A chunk file changed at the same size, so that size, header layout and values all still look
+// right: the checksums must catch it, in the block that changed and only there.
+TEST(WorldGenerator, RangeReadsRefuseAFileChangedAtTheSameSize) {
+    const fs::path dir = engine::test::output_dir("world");
+    fs::remove_all(dir);
+    const WorldManifest m = generate_world(tiny_options(dir, 3, 2)).manifest;
+    const auto biggest = std::max_element(m.chunks.begin(), m.chunks.end(), [](const ChunkEntry& a, const ChunkEntry& b) {
+        return a.prefix_count[0] < b.prefix_count[0];
+    });
+    const ChunkEntry& c = *biggest;
+    const fs::path file = dir / c.file;
+    const std::vector<std::uint8_t> original = engine::read_binary_file(file);
+    const auto blocks = record_blocks(c, 0, c.prefix_count[0]);
+    ASSERT_GE(blocks.size(), 2u) << "the test needs a chunk of more than one block";
+    // The stream level of the last record: the finest level the chunk has.
+    int last_level = 1;
+    while (level_range(c, last_level).first == level_range(c, last_level).second) ++last_level;
+    const auto [last_begin, last_end] = level_range(c, last_level);
+
+    // Flip the lowest mantissa bit of one float in the last record: still finite, same stream level.
+    std::vector<std::uint8_t> flipped = original;
+    const SplatCloud before = load_splat_file(file);
+    flipped[c.header_bytes + (c.prefix_count[0] - 1) * c.vertex_bytes + 24] ^= 1u;  // f_dc_0 after x y z nx ny nz
+    engine::write_file_atomic(file, flipped);
+    const SplatCloud after = load_splat_file(file);  // the file reader sees nothing wrong
+    ASSERT_EQ(after.size(), before.size());
+    EXPECT_NE(after.sh_dc.back(), before.sh_dc.back()) << "the flip changed a colour that would be drawn";
+    const std::string message = error_of([&] { read_chunk_range(file, c, last_begin, last_end); });
+    EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+    EXPECT_NE(message.find("checksum"), std::string::npos) << message;
+    EXPECT_NE(message.find("[" + std::to_string(blocks.back().begin) + ", " + std::to_string(c.prefix_count[0]) + ")"),
+              std::string::npos)
+        << message;
+    // A single record of that block fails too (the read is widened to the whole block); the blocks
+    // before it still read: a bad block fails only the reads that need it.
+    EXPECT_NE(error_of([&] { read_chunk_range(file, c, blocks.back().begin, blocks.back().begin + 1); }).find("checksum"),
+              std::string::npos);
+    EXPECT_EQ(read_chunk_range(file, c, 0, blocks.back().begin).size(), blocks.back().begin);
+
+    // A header changed at the same size: two properties' names swapped.
+    std::vector<std::uint8_t> swapped = original;
+    std::string header(original.begin(), original.begin() + static_cast<std::ptrdiff_t>(c.header_bytes));
+    const auto at0 = header.find("property float f_dc_0\n"), at1 = header.find("property float f_dc_1\n");
+    ASSERT_NE(at0, std::string::npos);
+    ASSERT_NE(at1, std::string::npos);
+    std::swap(swapped[at0 + 20], swapped[at1 + 20]);
+    engine::write_file_atomic(file, swapped);
+    const std::string header_message = error_of([&] { read_chunk_range(file, c, 0, 1); });
+    EXPECT_NE(header_message.find("header does not match the manifest's checksum"), std::string::npos) << header_message;
+
+    engine::write_file_atomic(file, original);
+    EXPECT_EQ(read_chunk_range(file, c, 0, c.prefix_count[0]).size(), c.prefix_count[0]);
 }
 
 TEST(WorldGenerator, SecondRunReusesTheCacheAndATruncatedChunkInvalidatesIt) {

@@ -1,6 +1,7 @@
 #pragma once
 // Damages the chunk files of a world while it streams, for the soak run (soak_run.h): a chunk file
-// disappears, is cut short, or is replaced by another chunk's file, and later comes back. It works
+// disappears, is cut short, is replaced by another chunk's file, or has bits flipped at the same
+// size, and later comes back. It works
 // on a linked copy of the world (make_linked_world_copy), never on the user's own files: every
 // change replaces a directory entry by rename, so the hard-linked originals are never written.
 #include <cstddef>
@@ -13,7 +14,7 @@
 
 namespace sample_game {
 
-enum class FaultKind { removed, truncated, replaced };
+enum class FaultKind { removed, truncated, replaced, corrupted };
 std::string_view to_string(FaultKind kind);
 
 // Makes `copy` a world that reads like `world`: world.json copied, every other file hard-linked
@@ -35,7 +36,10 @@ public:
     ChunkFaults& operator=(const ChunkFaults&) = delete;
 
     // removed: the file is gone; truncated: it holds the first 60 % of its bytes; replaced: it holds
-    // the bytes of chunk `donor`'s file. The original is set aside until restore_all().
+    // the bytes of chunk `donor`'s file; corrupted: its own bytes with the lowest bit of the first
+    // byte of every checksum block's first record flipped (world_manifest.h: the same size and
+    // header, every value finite, a position moved by one float step: only the checksums show it).
+    // The original is set aside until restore_all().
     void apply(std::size_t chunk, FaultKind kind, std::size_t donor = 0);
     // Puts every original back (an atomic rename over the damaged file).
     void restore_all();

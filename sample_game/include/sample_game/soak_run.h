@@ -10,10 +10,11 @@
 //     bytes), the process's resident memory (RSS; on llvmpipe this includes the "GPU" memory),
 //     the streamer's resident bytes and failed chunks, and the frame itself.
 // With faults on, the run streams from a linked copy of the world (<out>/world_copy, chunk_faults.h)
-// and, on every lap but the first and the last, damages the files of three chunks while the camera
+// and, on every lap but the first and the last, damages the files of four chunks while the camera
 // is away (from 45 % of the lap to its end): of the chunks that lost levels since the last lap end, the
-// three nearest the path's start (so the camera's return reads them again while they are damaged):
-// one removed, one truncated, one replaced by the farthest chunk's file. The files are restored
+// four nearest the path's start (so the camera's return reads them again while they are damaged):
+// one removed, one truncated, one replaced by the farthest chunk's file, one corrupted at the same
+// size (bits flipped that only the manifest's checksums show). The files are restored
 // when the walk ends, and the streamer's retry (GameSettings::retry_failed_after_frames) must bring the chunks back.
 //
 // Checks (PASS/FAIL lines in <out>/soak_summary.txt):
@@ -66,7 +67,8 @@ struct SoakOutcome {
     std::vector<SoakLapEnd> lap_ends;
     std::vector<std::string> checks;  // "PASS ..." / "FAIL ..."
     bool passed = false;
-    std::uint64_t failures_removed = 0, failures_truncated = 0, failures_replaced = 0, failures_undamaged = 0;
+    std::uint64_t failures_removed = 0, failures_truncated = 0, failures_replaced = 0, failures_corrupted = 0;
+    std::uint64_t failures_undamaged = 0;
     std::string summary_text;  // also in <out>/soak_summary.txt
     std::string plot_problem;
 };

@@ -1,6 +1,11 @@
 // describe_chunk(): the manifest entry of a baked chunk (world/world_manifest.h) from the cloud that
 // was written and the header of the file it was written to.
+#include <algorithm>
+#include <fstream>
 #include <limits>
+#include <vector>
+
+#include <zlib.h>
 
 #include "engine/core/error.h"
 #include "io/ply_vertex_layout.h"
@@ -46,6 +51,28 @@ std::array<ChunkLevel, kLevels> level_bounds(const SplatCloud& baked, const std:
     return levels;
 }
 
+std::uint32_t crc_of(const std::vector<std::uint8_t>& bytes, std::size_t size) {
+    return static_cast<std::uint32_t>(crc32_z(crc32_z(0, Z_NULL, 0), bytes.data(), size));
+}
+
+// The header's and every record block's CRC-32 (world_manifest.h: checksums), from the bytes on disk.
+void checksum_file(const std::filesystem::path& path, const io::PlyVertexLayout& layout, ChunkEntry& entry) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) engine::fail(path.string() + ": cannot open to compute its checksums");
+    std::vector<std::uint8_t> bytes(
+        static_cast<std::size_t>(std::max(layout.header_bytes, kChecksumBlockRecords * layout.vertex_bytes)));
+    const auto read = [&](std::uint64_t size) {
+        in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size));
+        if (static_cast<std::uint64_t>(in.gcount()) != size)
+            engine::fail(path.string() + ": ended while its checksums were computed (changed while being described)");
+        return crc_of(bytes, static_cast<std::size_t>(size));
+    };
+    entry.header_crc32 = read(layout.header_bytes);
+    entry.record_crc32.clear();
+    for (const RecordBlock& block : record_blocks(entry, 0, entry.prefix_count[0]))
+        entry.record_crc32.push_back(read((block.end - block.begin) * layout.vertex_bytes));
+}
+
 }  // namespace
 
 ChunkEntry describe_chunk(const SplatCloud& baked, const std::filesystem::path& folder,
@@ -81,6 +108,7 @@ ChunkEntry describe_chunk(const SplatCloud& baked, const std::filesystem::path& 
     entry.header_bytes = layout.header_bytes;
     entry.vertex_bytes = layout.vertex_bytes;
     entry.file_bytes = layout.file_bytes;
+    checksum_file(path, layout, entry);
     return entry;
 }
 

@@ -1,6 +1,7 @@
 // Reading a range of a chunk's records (world/chunk_reader.h): the header is read and checked
-// against the manifest entry, then only the wanted records, which are decoded by the ordinary PLY
-// reader behind a header rewritten to their count (one decoder for whole files and ranges).
+// against the manifest entry and its checksum, then only the checksum blocks that hold the wanted
+// records, which are checked and decoded by the ordinary PLY reader behind a header rewritten to
+// their count (one decoder for whole files and ranges).
 #include "splat_lod/world/chunk_reader.h"
 
 #include <fstream>
@@ -8,12 +9,18 @@
 #include <string>
 #include <vector>
 
+#include <zlib.h>
+
 #include "engine/core/error.h"
 #include "io/ply_vertex_layout.h"
 #include "splat_lod/splat_io.h"
 
 namespace splat_lod::world {
 namespace {
+
+std::uint32_t crc_of(const std::uint8_t* bytes, std::size_t size) {
+    return static_cast<std::uint32_t>(crc32_z(crc32_z(0, Z_NULL, 0), bytes, size));
+}
 
 [[noreturn]] void fail(const std::filesystem::path& file, const std::string& message) {
     engine::fail(file.string() + ": " + message);
@@ -45,24 +52,46 @@ SplatCloud read_chunk_range(const std::filesystem::path& file, const ChunkEntry&
     if (begin > end || end > entry.prefix_count[0])
         fail(file, "records [" + std::to_string(begin) + ", " + std::to_string(end) + ") are outside the chunk's " +
                        std::to_string(entry.prefix_count[0]));
+    if (entry.record_crc32.size() != record_block_count(entry))
+        fail(file, "the manifest entry has " + std::to_string(entry.record_crc32.size()) +
+                       " record checksums, expected " + std::to_string(record_block_count(entry)));
     const io::PlyVertexLayout layout = io::read_ply_vertex_layout(file);
     check_layout(file, entry, layout);
+    if (crc_of(reinterpret_cast<const std::uint8_t*>(layout.header.data()), layout.header.size()) != entry.header_crc32)
+        fail(file, "header does not match the manifest's checksum (the file changed since the world was generated)");
 
+    // The records of every checksum block that holds one of [begin, end), read after room for a header.
+    const std::vector<RecordBlock> blocks = record_blocks(entry, begin, end);
+    const std::uint64_t first = blocks.empty() ? begin : blocks.front().begin;
+    const std::uint64_t last = blocks.empty() ? end : blocks.back().end;
+    const std::uint64_t offset = layout.header_bytes + first * layout.vertex_bytes;
+    const std::uint64_t size = (last - first) * layout.vertex_bytes;
     const std::string header = io::header_with_vertex_count(layout, end - begin);
-    const std::uint64_t offset = layout.header_bytes + begin * layout.vertex_bytes;
-    const std::uint64_t size = (end - begin) * layout.vertex_bytes;
     std::vector<std::uint8_t> bytes(header.size() + static_cast<std::size_t>(size));
-    std::copy(header.begin(), header.end(), bytes.begin());
     std::ifstream in(file, std::ios::binary);
     if (!in) fail(file, "cannot open");
     in.seekg(static_cast<std::streamoff>(offset));
-    in.read(reinterpret_cast<char*>(bytes.data() + header.size()), static_cast<std::streamsize>(size));
+    std::uint8_t* const records = bytes.data() + header.size();
+    in.read(reinterpret_cast<char*>(records), static_cast<std::streamsize>(size));
     if (static_cast<std::uint64_t>(in.gcount()) != size)
-        fail(file, "offset " + std::to_string(offset) + ": the file ends before record " + std::to_string(end) +
+        fail(file, "offset " + std::to_string(offset) + ": the file ends before record " + std::to_string(last) +
                        " (truncated)");
+    for (const RecordBlock& block : blocks) {
+        const std::uint8_t* at = records + (block.begin - first) * layout.vertex_bytes;
+        if (crc_of(at, static_cast<std::size_t>((block.end - block.begin) * layout.vertex_bytes)) !=
+            entry.record_crc32[block.index])
+            fail(file, "records [" + std::to_string(block.begin) + ", " + std::to_string(block.end) +
+                           ") do not match the manifest's checksum (the file changed since the world was generated)");
+    }
 
+    // The wanted records with the rewritten header just before them (over checked bytes of the
+    // block before `begin`, or in the room left for it), decoded by the ordinary reader.
+    std::uint8_t* const wanted = records + (begin - first) * layout.vertex_bytes;
+    std::copy(header.begin(), header.end(), wanted - header.size());
+    const std::span<const std::uint8_t> ply(
+        wanted - header.size(), header.size() + static_cast<std::size_t>((end - begin) * layout.vertex_bytes));
     LoadReport report;
-    SplatCloud cloud = read_ply(bytes, file.string() + " [" + std::to_string(begin) + ", " + std::to_string(end) + ")",
+    SplatCloud cloud = read_ply(ply, file.string() + " [" + std::to_string(begin) + ", " + std::to_string(end) + ")",
                                 &report);
     // A dropped record would shift every later index: a chunk's records must all be usable.
     if (report.dropped() > 0)

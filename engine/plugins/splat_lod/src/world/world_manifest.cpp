@@ -1,11 +1,12 @@
 // world.json: reading with a check of every value, and the atomic writer (world/world_manifest.h).
-//   { "version": 2, "seed": 7, "size_m": 1024, "chunk_size_m": 64, "up": [0, 1, 0],
+//   { "version": 3, "seed": 7, "size_m": 1024, "chunk_size_m": 64, "up": [0, 1, 0],
 //     "gaussians": 10400000, "density": 1, "generator": "…",
 //     "stream_levels": { "size_threshold_px": 2, "rel_min": 0.5, "reach_min": [0.4, 0.12, 0.04] },
 //     "chunks": [ { "id": "chunk_-008_-008", "file": "gen-1/chunks/chunk_-008_-008.lod.ply", "cell": [-8, -8],
 //                   "bounds_min": [x, y, z], "bounds_max": [x, y, z], "prefix_count": [n1, n2, n3, n4],
 //                   "levels": [ { "extent_max": e, "extent_per_min_coverage_max": r } × 4 ],
-//                   "header_bytes": h, "vertex_bytes": v, "file_bytes": f } … ],
+//                   "header_bytes": h, "vertex_bytes": v, "file_bytes": f,
+//                   "header_crc32": c, "record_crc32": [c0, c1, …] } … ],
 //     "props": [ { "mesh": "gen-1/meshes/house.glb", "translation": [x, y, z], "rotation_euler_deg": [0, yaw, 0],
 //                  "scale": [1, 1, 1] } … ],
 //     "terrain_mesh": "gen-1/meshes/terrain.glb" }
@@ -16,6 +17,7 @@
 // may be left out.
 #include "splat_lod/world/world_manifest.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -68,6 +70,12 @@ public:
         const auto v = value.get<std::int64_t>();
         if (v < -(1 << 30) || v > (1 << 30)) error(key, "out of range: " + value.dump());
         return static_cast<int>(v);
+    }
+
+    std::uint32_t crc32(const json& value, const std::string& key) const {
+        const std::uint64_t v = whole(value, key);
+        if (v > 0xffffffffu) error(key, "expected a CRC-32 (0 to 4294967295), got " + value.dump());
+        return static_cast<std::uint32_t>(v);
     }
 
     float number(const json& value, const std::string& key) const {
@@ -159,7 +167,7 @@ void ManifestReader::check_chunk_counts(const ChunkEntry& c, const std::string& 
 
 ChunkEntry ManifestReader::chunk(const json& object, const std::string& key) const {
     only_keys(object, key, {"id", "file", "cell", "bounds_min", "bounds_max", "prefix_count", "levels", "header_bytes",
-                            "vertex_bytes", "file_bytes"});
+                            "vertex_bytes", "file_bytes", "header_crc32", "record_crc32"});
     ChunkEntry c;
     c.id = text(member(object, key, "id"), join(key, "id"));
     if (c.id.empty()) error(join(key, "id"), "must not be empty");
@@ -185,6 +193,17 @@ ChunkEntry ManifestReader::chunk(const json& object, const std::string& key) con
     c.vertex_bytes = whole(member(object, key, "vertex_bytes"), join(key, "vertex_bytes"));
     c.file_bytes = whole(member(object, key, "file_bytes"), join(key, "file_bytes"));
     check_chunk_counts(c, key);
+    c.header_crc32 = crc32(member(object, key, "header_crc32"), join(key, "header_crc32"));
+    const std::string blocks_key = join(key, "record_crc32");
+    const json& blocks = member(object, key, "record_crc32");
+    if (!blocks.is_array()) error(blocks_key, "expected an array of CRC-32 values, got " + blocks.dump());
+    const std::uint64_t expected = record_block_count(c);
+    if (blocks.size() != expected)
+        error(blocks_key, "holds " + std::to_string(blocks.size()) + " checksums, the prefix counts make " +
+                              std::to_string(expected) + " blocks of up to " + std::to_string(kChecksumBlockRecords) +
+                              " records");
+    c.record_crc32.reserve(blocks.size());
+    for (std::size_t b = 0; b < blocks.size(); ++b) c.record_crc32.push_back(crc32(blocks[b], index(blocks_key, b)));
     return c;
 }
 
@@ -274,7 +293,9 @@ json chunk_json(const ChunkEntry& c) {
             {"levels", levels},
             {"header_bytes", c.header_bytes},
             {"vertex_bytes", c.vertex_bytes},
-            {"file_bytes", c.file_bytes}};
+            {"file_bytes", c.file_bytes},
+            {"header_crc32", c.header_crc32},
+            {"record_crc32", c.record_crc32}};
 }
 
 json manifest_json(const WorldManifest& m) {
@@ -296,7 +317,51 @@ json manifest_json(const WorldManifest& m) {
             {"terrain_mesh", m.terrain_mesh.generic_string()}};
 }
 
+// The stream levels' record ranges in file order (stream level 4 first): [starts[k], starts[k + 1]).
+std::array<std::uint64_t, kLevels + 1> level_starts(const ChunkEntry& entry) {
+    std::array<std::uint64_t, kLevels + 1> starts{};
+    for (int k = 1; k <= kLevels; ++k) starts[static_cast<std::size_t>(k)] = entry.prefix_count[static_cast<std::size_t>(kLevels - k)];
+    return starts;
+}
+
+std::uint64_t blocks_of(std::uint64_t records) {
+    return records / kChecksumBlockRecords + (records % kChecksumBlockRecords != 0 ? 1 : 0);
+}
+
 }  // namespace
+
+std::uint64_t record_block_count(const ChunkEntry& entry) {
+    const auto starts = level_starts(entry);
+    std::uint64_t count = 0;
+    for (int k = 0; k < kLevels; ++k) {
+        const std::uint64_t begin = starts[static_cast<std::size_t>(k)], end = starts[static_cast<std::size_t>(k + 1)];
+        if (end > begin) count += blocks_of(end - begin);
+    }
+    return count;
+}
+
+std::vector<RecordBlock> record_blocks(const ChunkEntry& entry, std::uint64_t begin, std::uint64_t end) {
+    const auto starts = level_starts(entry);
+    if (begin > end || end > entry.prefix_count[0] || !std::is_sorted(starts.begin(), starts.end()))
+        engine::fail("splat_lod::world::record_blocks(): records [" + std::to_string(begin) + ", " + std::to_string(end) +
+                     ") are not within the chunk's " + std::to_string(entry.prefix_count[0]) +
+                     " records or its prefix counts grow with the level");
+    std::vector<RecordBlock> blocks;
+    std::uint64_t index = 0;
+    for (int k = 0; k < kLevels && begin < end; ++k) {
+        const std::uint64_t first = starts[static_cast<std::size_t>(k)], last = starts[static_cast<std::size_t>(k + 1)];
+        if (last > first && begin < last && end > first) {
+            const std::uint64_t from = (std::max(begin, first) - first) / kChecksumBlockRecords;
+            const std::uint64_t to = (std::min(end, last) - first - 1) / kChecksumBlockRecords;
+            for (std::uint64_t b = from; b <= to; ++b)
+                blocks.push_back({first + b * kChecksumBlockRecords,
+                                  std::min(last, first + (b + 1) * kChecksumBlockRecords),
+                                  static_cast<std::size_t>(index + b)});
+        }
+        if (last > first) index += blocks_of(last - first);
+    }
+    return blocks;
+}
 
 std::string chunk_id(const glm::ivec2& cell) {
     char text[48];

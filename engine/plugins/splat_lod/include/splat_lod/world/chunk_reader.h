@@ -13,10 +13,11 @@ namespace splat_lod::world {
 
 // The Gaussians [begin, end) of the chunk file `file` (the manifest's folder / entry.file),
 // decoded as the INRIA PLY reader decodes them (LOD attributes included; quaternions normalised).
-// Reads the header and then seeks to header_bytes + begin · vertex_bytes. Throws engine::Error
-// naming the file when it is missing, its size differs from entry.file_bytes, its header does not
-// match the entry (byte counts, vertex count), it ends early, a record is not finite, or the range
-// is not within [0, prefix_count[0]].
+// Reads the header and then the checksum blocks (world_manifest.h) that hold the range, seeking to
+// the first one. Throws engine::Error naming the file when it is missing, its size differs from
+// entry.file_bytes, its header does not match the entry (byte counts, vertex count, checksum), it
+// ends early, a block read does not match its checksum, a record is not finite, or the range is not
+// within [0, prefix_count[0]].
 SplatCloud read_chunk_range(const std::filesystem::path& file, const ChunkEntry& entry, std::uint64_t begin,
                             std::uint64_t end);
 

@@ -14,12 +14,22 @@
 // header_bytes + count · vertex_bytes. (Each Gaussian keeps its bake level, lod_level, which the
 // renderer selects by; "level" in the streamer always means stream level.)
 //
+// Checksums (version 3): the manifest holds zlib's CRC-32 of each chunk file's header and of every
+// block of its records, so that a reader finds a file that changed since the world was made even
+// when its size, header and values still look right (a copy of another world's chunk, bit flips).
+// Blocks never straddle a stream level: each stream level's records [prefix_count[l],
+// prefix_count[l − 1]) are cut into blocks of kChecksumBlockRecords from its first record, the last
+// block shorter; record_crc32 lists them in file order (stream level 4 first). A read of one stream
+// level or of a prefix therefore checks exactly the records it reads; any other range is widened to
+// whole blocks (at most 2 · (kChecksumBlockRecords − 1) records more).
+//
 // Streaming decisions: stream level l < 4 of a chunk is needed only while, at the chunk's nearest
 // distance z, some Gaussian of it could have coverage ≥ S_T or coverage / S_min ≥ S_rel_min. With
 // coverage ≤ 2·e·f / z (e: the Gaussian's extent in world units, f: focal length in pixels) the
 // per-level maxima below bound both tests, for any S_T and S_rel_min:
 //   needed(l) ⇔ 2·extent_max·f / z ≥ S_T  or  2·extent_per_min_coverage_max·f / z ≥ S_rel_min.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -32,9 +42,10 @@
 
 namespace splat_lod::world {
 
-inline constexpr int kManifestVersion = 2;
+inline constexpr int kManifestVersion = 3;
 inline constexpr int kLevels = 4;
 inline constexpr const char* kManifestFileName = "world.json";
+inline constexpr std::uint64_t kChecksumBlockRecords = 1024;
 
 struct ChunkLevel {
     // Largest extent sqrt(2·ln(255·o))·min(σ_max, √2·σ_mid) over the stream level's Gaussians
@@ -54,6 +65,8 @@ struct ChunkEntry {
     std::uint64_t header_bytes = 0;
     std::uint64_t vertex_bytes = 0;        // bytes per Gaussian record in the file
     std::uint64_t file_bytes = 0;          // the whole file (checked before use)
+    std::uint32_t header_crc32 = 0;        // CRC-32 of the header_bytes header bytes
+    std::vector<std::uint32_t> record_crc32;  // one per record block (record_block_count), file order
 
     std::uint64_t prefix_bytes(int level) const { return header_bytes + prefix_count[level - 1] * vertex_bytes; }
 };
@@ -82,6 +95,18 @@ struct WorldManifest {
     std::filesystem::path terrain_mesh;    // optional glTF ground under the splats (may be empty)
 };
 
+// A block of records covered by one checksum: records [begin, end), record_crc32[index].
+struct RecordBlock {
+    std::uint64_t begin = 0, end = 0;
+    std::size_t index = 0;
+};
+
+// How many record blocks the entry's prefix counts make (what record_crc32 must hold).
+std::uint64_t record_block_count(const ChunkEntry& entry);
+// The blocks that hold a record of [begin, end), in file order (none for an empty range). The
+// range must lie within [0, prefix_count[0]] and the prefix counts must not grow with the level.
+std::vector<RecordBlock> record_blocks(const ChunkEntry& entry, std::uint64_t begin, std::uint64_t end);
+
 // "chunk_+003_-002" for column 3, row −2.
 std::string chunk_id(const glm::ivec2& cell);
 
@@ -89,7 +114,7 @@ std::string chunk_id(const glm::ivec2& cell);
 // ("world.json: chunks[3].prefix_count: counts must not increase with the level"): a missing or
 // unreadable file, bad JSON, another version, an unknown or missing key, a wrong type, a negative
 // or non-finite number, prefix counts that grow with the level or disagree with the byte counts,
-// and paths (chunk files, meshes) that are absolute or leave the manifest's folder.
+// checksums that are not 32-bit or not one per record block, and paths (chunk files, meshes) that are absolute or leave the manifest's folder.
 WorldManifest read_world_manifest(const std::filesystem::path& path);
 // The same from text already in memory; `name` is the file named in error messages.
 WorldManifest parse_world_manifest(const std::string& text, const std::string& name);
@@ -100,8 +125,9 @@ void write_world_manifest(const std::filesystem::path& path, const WorldManifest
 
 // The manifest entry of a baked chunk already written to `folder / file` (an INRIA PLY by
 // write_inria_ply): prefix counts (the cloud must be in stream_order() of `rule`: stream level 4
-// first), bounds of the means, per-stream-level extent bounds (world/gaussian_extent.h) and the byte
-// layout read back from the file's header. Throws engine::Error naming the file when the order is
+// first), bounds of the means, per-stream-level extent bounds (world/gaussian_extent.h), the byte
+// layout read back from the file's header and the checksums of the bytes read back from the file
+// (so that what the manifest vouches for is what reached the disk). Throws engine::Error naming the file when the order is
 // wrong or the file does not hold the cloud's records.
 ChunkEntry describe_chunk(const SplatCloud& baked, const std::filesystem::path& folder,
                           const std::filesystem::path& file, const glm::ivec2& cell, const StreamLevelRule& rule);
