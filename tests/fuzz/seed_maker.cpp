@@ -273,6 +273,20 @@ void splat_and_spz_seeds(SeedWriter& write) {
     write("spz", "v4_sh3.spz", encode_spz(make_cloud(3, 3, 14), 4));
 }
 
+// Chunk files as the world generator writes them (INRIA PLY with LOD properties) behind the
+// world_chunk harness's 7 control bytes: one of a few records, one of more than a checksum block.
+void world_chunk_seeds(SeedWriter& write) {
+    using splat_io_test::make_cloud;
+    const auto seed = [&](const char* name, Bytes control, std::size_t n, int sh_degree) {
+        const Bytes file = splat_lod::encode_inria_ply(make_cloud(n, sh_degree, 15, true));
+        control.insert(control.end(), file.begin(), file.end());
+        write("world_chunk", name, control);
+    };
+    seed("40_sh0.bin", {0, 200, 120, 40, 0, 255, 0}, 40, 0);
+    seed("9_sh1_bad_block.bin", {2, 255, 128, 64, 30, 200, 0}, 9, 1);
+    seed("1100_sh0_bad_second_block.bin", {2, 255, 255, 255, 3, 100, 1}, 1100, 0);
+}
+
 std::string codebook(float lo, float hi) {
     std::string text = "[";
     for (int i = 0; i < 256; ++i) {
@@ -419,6 +433,7 @@ int main(int argc, char** argv) {
         splat_and_spz_seeds(write);
         sog_seeds(write);
         gltf_seeds(write);
+        world_chunk_seeds(write);
         const int made = write.written;
         if (!shared.empty()) {
             real_splat_seeds(write, shared / "splats");
