@@ -90,13 +90,19 @@ SplatCloud read_chunk_range(const std::filesystem::path& file, const ChunkEntry&
     std::copy(header.begin(), header.end(), wanted - header.size());
     const std::span<const std::uint8_t> ply(
         wanted - header.size(), header.size() + static_cast<std::size_t>((end - begin) * layout.vertex_bytes));
+    const std::string range = "records [" + std::to_string(begin) + ", " + std::to_string(end) + ")";
     LoadReport report;
-    SplatCloud cloud = read_ply(ply, file.string() + " [" + std::to_string(begin) + ", " + std::to_string(end) + ")",
-                                &report);
+    SplatCloud cloud;
+    try {
+        cloud = read_ply(ply, file.string(), &report);
+    } catch (const engine::Error& e) {
+        // "<file>: <problem>" from the reader, said again with the range: "<file>: records [b, e): <problem>".
+        const std::string message = e.what(), prefix = file.string() + ": ";
+        fail(file, range + ": " + (message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message));
+    }
     // A dropped record would shift every later index: a chunk's records must all be usable.
     if (report.dropped() > 0)
-        fail(file, std::to_string(report.dropped()) + " records in [" + std::to_string(begin) + ", " +
-                       std::to_string(end) + ") have NaN/Inf values or a zero quaternion");
+        fail(file, range + ": " + std::to_string(report.dropped()) + " have NaN/Inf values or a zero quaternion");
     return cloud;
 }
 
