@@ -4,9 +4,10 @@
 // rewritten header.
 // Input: byte 0 selects what the manifest entry gets wrong (bit 0: the header's CRC, bit 1: the
 // CRC of one record block, chosen by byte 6; bit 2: the record count, one too many); bytes 1–3
-// split the records into stream levels, bytes 4–5 choose an extra range; the rest is the chunk file. The entry is what the
-// generator would write for a chunk of that layout (world_manifest.h), its checksums computed
-// from the file's own bytes, so that mutations reach the decoder and not only the size check.
+// split the records into stream levels, bytes 4–5 choose an extra range; the rest is the chunk
+// file. The entry is what the generator would write for a chunk of that layout (world_manifest.h),
+// its checksums computed from the file's own bytes, so that mutations reach the decoder and not
+// only the size check.
 // Contract: read_chunk_range either returns exactly end − begin Gaussians keeping splat_io.h's
 // promises, or throws engine::Error naming the file; it never returns records from a block whose
 // checksum is wrong, nor from a file whose header checksum is wrong.
@@ -53,7 +54,8 @@ sw::ChunkEntry entry_for(const splat_lod::io::PlyVertexLayout& layout, std::span
     for (const sw::RecordBlock& block : sw::record_blocks(e, 0, n)) {
         const std::uint64_t from = e.header_bytes + block.begin * e.vertex_bytes;
         const std::uint64_t to = e.header_bytes + block.end * e.vertex_bytes;
-        e.record_crc32.push_back(to <= file.size() ? crc_of(file.data() + from, static_cast<std::size_t>(to - from)) : 0);
+        const bool present = to <= file.size();
+        e.record_crc32.push_back(present ? crc_of(file.data() + from, static_cast<std::size_t>(to - from)) : 0);
     }
     return e;
 }

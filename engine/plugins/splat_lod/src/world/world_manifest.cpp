@@ -320,7 +320,8 @@ json manifest_json(const WorldManifest& m) {
 // The stream levels' record ranges in file order (stream level 4 first): [starts[k], starts[k + 1]).
 std::array<std::uint64_t, kLevels + 1> level_starts(const ChunkEntry& entry) {
     std::array<std::uint64_t, kLevels + 1> starts{};
-    for (int k = 1; k <= kLevels; ++k) starts[static_cast<std::size_t>(k)] = entry.prefix_count[static_cast<std::size_t>(kLevels - k)];
+    for (int k = 1; k <= kLevels; ++k)
+        starts[static_cast<std::size_t>(k)] = entry.prefix_count[static_cast<std::size_t>(kLevels - k)];
     return starts;
 }
 
@@ -343,8 +344,8 @@ std::uint64_t record_block_count(const ChunkEntry& entry) {
 std::vector<RecordBlock> record_blocks(const ChunkEntry& entry, std::uint64_t begin, std::uint64_t end) {
     const auto starts = level_starts(entry);
     if (begin > end || end > entry.prefix_count[0] || !std::is_sorted(starts.begin(), starts.end()))
-        engine::fail("splat_lod::world::record_blocks(): records [" + std::to_string(begin) + ", " + std::to_string(end) +
-                     ") are not within the chunk's " + std::to_string(entry.prefix_count[0]) +
+        engine::fail("splat_lod::world::record_blocks(): records [" + std::to_string(begin) + ", " +
+                     std::to_string(end) + ") are not within the chunk's " + std::to_string(entry.prefix_count[0]) +
                      " records or its prefix counts grow with the level");
     std::vector<RecordBlock> blocks;
     std::uint64_t index = 0;

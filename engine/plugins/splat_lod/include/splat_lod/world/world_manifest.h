@@ -114,7 +114,8 @@ std::string chunk_id(const glm::ivec2& cell);
 // ("world.json: chunks[3].prefix_count: counts must not increase with the level"): a missing or
 // unreadable file, bad JSON, another version, an unknown or missing key, a wrong type, a negative
 // or non-finite number, prefix counts that grow with the level or disagree with the byte counts,
-// checksums that are not 32-bit or not one per record block, and paths (chunk files, meshes) that are absolute or leave the manifest's folder.
+// checksums that are not 32-bit or not one per record block, and paths (chunk files, meshes) that
+// are absolute or leave the manifest's folder.
 WorldManifest read_world_manifest(const std::filesystem::path& path);
 // The same from text already in memory; `name` is the file named in error messages.
 WorldManifest parse_world_manifest(const std::string& text, const std::string& name);
@@ -127,8 +128,8 @@ void write_world_manifest(const std::filesystem::path& path, const WorldManifest
 // write_inria_ply): prefix counts (the cloud must be in stream_order() of `rule`: stream level 4
 // first), bounds of the means, per-stream-level extent bounds (world/gaussian_extent.h), the byte
 // layout read back from the file's header and the checksums of the bytes read back from the file
-// (so that what the manifest vouches for is what reached the disk). Throws engine::Error naming the file when the order is
-// wrong or the file does not hold the cloud's records.
+// (so that what the manifest vouches for is what reached the disk). Throws engine::Error naming the
+// file when the order is wrong or the file does not hold the cloud's records.
 ChunkEntry describe_chunk(const SplatCloud& baked, const std::filesystem::path& folder,
                           const std::filesystem::path& file, const glm::ivec2& cell, const StreamLevelRule& rule);
 
