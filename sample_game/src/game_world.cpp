@@ -42,6 +42,12 @@ std::uint64_t level_count(const sw::ChunkEntry& chunk, int level) {
     return level == sw::kLevels ? prefix : prefix - chunk.prefix_count[static_cast<std::size_t>(level)];
 }
 
+// The manifest, read only once the folder's lock is held (a run of splat_world could be replacing it).
+sw::WorldManifest read_manifest_under(const sw::WorldFolderLock& lock, const std::filesystem::path& folder) {
+    lock.require();
+    return sw::read_world_manifest(folder / sw::kManifestFileName);
+}
+
 }  // namespace
 
 void require_world_folder(const std::filesystem::path& folder) {
@@ -55,7 +61,8 @@ GameWorld::GameWorld(engine::Engine& engine, const std::filesystem::path& folder
     : engine_(engine),
       settings_(settings),
       folder_(folder),
-      manifest_(sw::read_world_manifest(folder / sw::kManifestFileName)),
+      lock_(folder, sw::WorldFolderLock::Mode::stream),
+      manifest_(read_manifest_under(lock_, folder)),
       terrain_(manifest_.seed, manifest_.size_m),
       scene_(std::make_unique<engine::Scene>()) {
     validate(settings_);

@@ -2,7 +2,8 @@
 // leaves the previous world byte for byte; after a commit only the new world's files remain
 // (previous generation, leftovers of killed runs and flat-layout files removed, other files kept); a
 // cached run removes what a run killed after its commit left; worlds of the flat layout still read;
-// a second run into a locked folder fails. Atomic writes keep permissions, use unique temporaries
+// a second run into a locked folder fails, and so does a run into a folder a program streams.
+// Atomic writes keep permissions, use unique temporaries
 // and remove them on failure; temporaries of dead writers are found. The kill tests with real
 // processes: tests/tools/output_safety_kill_test.cpp.
 #include <gtest/gtest.h>
@@ -24,6 +25,7 @@
 #include "engine/core/file_io.h"
 #include "splat_io_test_helpers.h"
 #include "splat_lod/world/world_generator.h"
+#include "splat_lod/world/world_lock.h"
 #include "splat_lod/world/world_manifest.h"
 #include "test_support.h"
 #include "tiny_world.h"
@@ -177,6 +179,44 @@ TEST(WorldOutputSafety, ASecondRunIntoALockedFolderFailsAndTheCacheStillServes) 
 
     EXPECT_TRUE(generate_world(options).summary.cached);
     EXPECT_FALSE(fs::exists(dir / "gen-9"));
+}
+
+// A program streaming the world holds the folder's shared lock (world_lock.h): a regeneration
+// would remove the files under it, so it is refused while a cached run still serves; and a
+// program cannot start streaming while a run writes.
+TEST(WorldOutputSafety, ARunIntoAFolderBeingStreamedFailsAndStreamingWaitsForARun) {
+    const fs::path dir = engine::test::output_dir("world_safety");
+    fs::remove_all(dir);
+    const WorldOptions options = engine::test::tiny_world_options(dir, 4, 2);
+    generate_world(options);
+    const auto bytes = folder_bytes(dir);
+    {
+        const WorldFolderLock game(dir, WorldFolderLock::Mode::stream);
+        ASSERT_TRUE(game.held()) << game.problem();
+        const WorldFolderLock second_game(dir, WorldFolderLock::Mode::stream);
+        EXPECT_TRUE(second_game.held()) << "any number of programs may stream one world";
+        WorldOptions forced = options;
+        forced.force = true;
+        const std::string message = error_of([&] { generate_world(forced); });
+        EXPECT_NE(message.find(dir.string()), std::string::npos) << message;
+        EXPECT_NE(message.find("a program is streaming this world"), std::string::npos) << message;
+        EXPECT_TRUE(generate_world(options).summary.cached);
+        EXPECT_TRUE(folder_bytes(dir) == bytes) << "nothing may be written or removed under a streaming program";
+    }
+    {
+        const WorldFolderLock run(dir, WorldFolderLock::Mode::write);
+        ASSERT_TRUE(run.held()) << run.problem();
+        const WorldFolderLock game(dir, WorldFolderLock::Mode::stream);
+        EXPECT_FALSE(game.held());
+        EXPECT_NE(game.problem().find("the world generator is writing"), std::string::npos) << game.problem();
+        EXPECT_NE(error_of([&] { game.require(); }).find(dir.string() + ": the world generator"), std::string::npos);
+    }
+    WorldOptions forced = options;
+    forced.force = true;
+    EXPECT_FALSE(generate_world(forced).summary.cached) << "with the locks gone, a run may write again";
+    const WorldFolderLock missing(dir / "absent", WorldFolderLock::Mode::stream);
+    EXPECT_FALSE(missing.held());
+    EXPECT_NE(missing.problem().find("cannot open the world's folder"), std::string::npos) << missing.problem();
 }
 
 TEST(OutputSafety, AtomicWritesKeepPermissionsUseUniqueTemporariesAndCleanUpOnFailure) {

@@ -17,6 +17,7 @@
 #include "sample_game/game_settings.h"
 #include "splat_lod/world/chunk_streamer.h"
 #include "splat_lod/world/stream_scene_sink.h"
+#include "splat_lod/world/world_lock.h"
 #include "splat_lod/world/world_manifest.h"
 #include "splat_lod/world/world_terrain.h"
 
@@ -34,7 +35,9 @@ class GameWorld {
 public:
     // Reads `folder`/world.json, loads the props and the terrain mesh, starts the streamer, reserves
     // the GPU scene for the memory budget (so its buffers never grow mid-walk) and publishes the
-    // LOD settings. Throws engine::Error naming the file on a missing or bad world.
+    // LOD settings. Holds the folder's shared lock until destroyed (splat_world refuses to rewrite
+    // it meanwhile). Throws engine::Error naming the file on a missing or bad world, or when
+    // splat_world is writing into the folder.
     GameWorld(engine::Engine& engine, const std::filesystem::path& folder, const GameSettings& settings);
     ~GameWorld();  // stops the streamer before the scene it feeds goes
     GameWorld(const GameWorld&) = delete;
@@ -82,6 +85,8 @@ private:
     engine::Engine& engine_;
     GameSettings settings_;
     std::filesystem::path folder_;
+    // Held while the world streams, so that splat_world cannot regenerate it underneath (world_lock.h).
+    splat_lod::world::WorldFolderLock lock_;
     splat_lod::world::WorldManifest manifest_;
     splat_lod::world::WorldTerrain terrain_;
     std::unique_ptr<engine::Scene> scene_;

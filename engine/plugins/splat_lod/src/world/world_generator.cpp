@@ -4,7 +4,6 @@
 #include "splat_lod/world/world_generator.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -16,9 +15,6 @@
 #include <system_error>
 #include <utility>
 
-#include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
@@ -26,6 +22,7 @@
 #include "splat_lod/bake/bake_cameras.h"
 #include "splat_lod/splat_io.h"
 #include "splat_lod/synth/fine_detail_scene.h"
+#include "splat_lod/world/world_lock.h"
 #include "world/chunk_cameras.h"
 #include "world/chunk_content.h"
 #include "world/world_layout.h"
@@ -159,35 +156,6 @@ fs::path new_generation(const fs::path& output) {
     if (ec) engine::fail(output.string() + ": cannot list the world's folder: " + ec.message());
     return std::string(kGenerationPrefix) + std::to_string(highest + 1);
 }
-
-// An exclusive flock() on the world's folder, held while a run writes or removes files there: a
-// second run into the same folder would otherwise take the first one's generation for a leftover.
-// The kernel releases it when the process dies, so a killed run never leaves the folder locked.
-class FolderLock {
-public:
-    explicit FolderLock(const fs::path& folder) : fd_(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)) {
-        if (fd_ < 0) {
-            problem_ = "cannot open the world's folder: " + std::string(std::strerror(errno));
-        } else if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-            problem_ = errno == EWOULDBLOCK ? "another run of the world generator is writing into this folder (it "
-                                              "holds the folder's lock); wait for it or choose another folder"
-                                            : "cannot lock the world's folder: " + std::string(std::strerror(errno));
-            ::close(std::exchange(fd_, -1));
-        }
-    }
-    ~FolderLock() {
-        if (fd_ >= 0) ::close(fd_);  // releases the lock
-    }
-    FolderLock(const FolderLock&) = delete;
-    FolderLock& operator=(const FolderLock&) = delete;
-
-    bool held() const { return fd_ >= 0; }
-    const std::string& problem() const { return problem_; }
-
-private:
-    int fd_;
-    std::string problem_;
-};
 
 // The names in `folder`, listed before anything is removed from it (none when it cannot be read).
 std::vector<std::string> entry_names(const fs::path& folder) {
@@ -446,7 +414,8 @@ WorldResult generate_world(const WorldOptions& o) {
     std::error_code ec;
     fs::create_directories(o.output, ec);
     if (ec) engine::fail(o.output.string() + ": cannot create the world's folder: " + ec.message());
-    const FolderLock lock(o.output);
+    // Held while this run writes or removes files (world_lock.h); a cached world needs no lock.
+    const WorldFolderLock lock(o.output, WorldFolderLock::Mode::write);
     if (!o.force) {
         if (auto cached = find_cached_world(o, &s.cache_note)) {
             // What a run killed between its commit and its clean-up left (unless a run is busy here).
@@ -459,7 +428,7 @@ WorldResult generate_world(const WorldOptions& o) {
             return result;
         }
     }
-    if (!lock.held()) engine::fail(o.output.string() + ": " + lock.problem());
+    lock.require();
 
     // Every file goes into a generation folder that no manifest names (see remove_unnamed_files).
     const fs::path generation = new_generation(o.output);

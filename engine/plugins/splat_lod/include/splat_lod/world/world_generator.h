@@ -16,10 +16,11 @@
 // generation folders; nothing else in <output>). A run killed or failing at any moment therefore
 // leaves the previous world.json and every file it names untouched, or the new world complete; a
 // failed run removes its own generation folder, a killed run's is removed by the next run (a cached
-// one too). One run at a time per folder: a run holds an flock() on <output> while it writes or
-// removes files there (released by the kernel if it dies); a second one fails saying so. A program
-// streaming the old world while a new one is committed loses its files: restart it. The manifest
-// format is unchanged (version 2): worlds in the flat layout (chunks/, meshes/) read as before.
+// one too). One run at a time per folder, and none while a program streams the world: a run holds
+// an exclusive flock() on <output> while it writes or removes files there (world_lock.h; released by
+// the kernel if it dies), a streaming program a shared one, and a run that cannot take the lock
+// fails saying who holds it (a cached world is still returned without it, and nothing is removed).
+// Worlds in the flat layout (chunks/, meshes/) read as before.
 //
 // Content (world_terrain.h for the ground): hills with a river valley winding along z and a path
 // winding along x; ground Gaussians over all of it (meadow, forest floor, the path's dirt, banks),
