@@ -1,9 +1,9 @@
 #pragma once
 // Damages the chunk files of a world while it streams, for the soak run (soak_run.h): a chunk file
 // disappears, is cut short, is replaced by another chunk's file, or has bits flipped at the same
-// size, and later comes back. It works
-// on a linked copy of the world (make_linked_world_copy), never on the user's own files: every
-// change replaces a directory entry by rename, so the hard-linked originals are never written.
+// size, and later comes back. It works on a linked copy of the world (make_linked_world_copy),
+// never on the user's own files: every change replaces a directory entry by rename, so the
+// hard-linked originals are never written.
 #include <cstddef>
 #include <filesystem>
 #include <string>
