@@ -11,8 +11,6 @@
 // Contract: read_chunk_range either returns exactly end − begin Gaussians keeping splat_io.h's
 // promises, or throws engine::Error naming the file; it never returns records from a block whose
 // checksum is wrong, nor from a file whose header checksum is wrong.
-#include <zlib.h>
-
 #include <algorithm>
 #include <array>
 
@@ -28,10 +26,6 @@ namespace sw = splat_lod::world;
 using splat_fuzz::require;
 
 constexpr std::size_t kControlBytes = 7;
-
-std::uint32_t crc_of(const std::uint8_t* bytes, std::size_t size) {
-    return static_cast<std::uint32_t>(crc32_z(crc32_z(0, Z_NULL, 0), bytes, size));
-}
 
 // The entry the generator would describe for a file with this layout; prefix counts split by the
 // control bytes; checksums of the bytes the file holds (0 for blocks past its end).
@@ -50,12 +44,13 @@ sw::ChunkEntry entry_for(const splat_lod::io::PlyVertexLayout& layout, std::span
     e.header_bytes = layout.header_bytes;
     e.vertex_bytes = std::max<std::uint64_t>(layout.vertex_bytes, 1);
     e.file_bytes = e.prefix_bytes(1);
-    e.header_crc32 = crc_of(file.data(), static_cast<std::size_t>(layout.header_bytes));
+    e.header_crc32 = sw::checksum(file.first(static_cast<std::size_t>(layout.header_bytes)));
     for (const sw::RecordBlock& block : sw::record_blocks(e, 0, n)) {
         const std::uint64_t from = e.header_bytes + block.begin * e.vertex_bytes;
         const std::uint64_t to = e.header_bytes + block.end * e.vertex_bytes;
         const bool present = to <= file.size();
-        e.record_crc32.push_back(present ? crc_of(file.data() + from, static_cast<std::size_t>(to - from)) : 0);
+        const auto size = static_cast<std::size_t>(to - from);
+        e.record_crc32.push_back(present ? sw::checksum(file.subspan(static_cast<std::size_t>(from), size)) : 0);
     }
     return e;
 }

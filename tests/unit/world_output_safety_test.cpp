@@ -11,12 +11,11 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <regex>
 #include <set>
 #include <thread>
 
-#include <fcntl.h>
-#include <sys/file.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -49,6 +48,15 @@ std::set<std::string> names(const std::map<std::string, std::string>& files) {
     return result;
 }
 
+// The tiny test world (seed 4) generated afresh in the tests' world_safety folder; its options.
+WorldOptions fresh_world(int threads = 2) {
+    const fs::path dir = engine::test::output_dir("world_safety");
+    fs::remove_all(dir);
+    WorldOptions options = engine::test::tiny_world_options(dir, 4, threads);
+    generate_world(options);
+    return options;
+}
+
 bool has_temporary(const fs::path& folder) {
     for (const auto& item : fs::recursive_directory_iterator(folder))
         if (item.path().filename().string().find(".tmp-") != std::string::npos) return true;
@@ -58,10 +66,8 @@ bool has_temporary(const fs::path& folder) {
 }  // namespace
 
 TEST(WorldOutputSafety, AFailedRunLeavesThePreviousWorldByteForByte) {
-    const fs::path dir = engine::test::output_dir("world_safety");
-    fs::remove_all(dir);
-    WorldOptions options = engine::test::tiny_world_options(dir, 4, 1);
-    generate_world(options);
+    WorldOptions options = fresh_world(1);
+    const fs::path dir = options.output;
     const auto before = folder_bytes(dir);
     ASSERT_TRUE(before.count("gen-1/chunks/chunk_+000_+000.lod.ply"));
     options.seed = 8;
@@ -87,10 +93,8 @@ TEST(WorldOutputSafety, AFailedRunLeavesThePreviousWorldByteForByte) {
 }
 
 TEST(WorldOutputSafety, ACommittedRunRemovesThePreviousGenerationAndLeftoversButNothingElse) {
-    const fs::path dir = engine::test::output_dir("world_safety");
-    fs::remove_all(dir);
-    WorldOptions options = engine::test::tiny_world_options(dir, 4, 2);
-    generate_world(options);
+    WorldOptions options = fresh_world();
+    const fs::path dir = options.output;
     touch(dir / "gen-5/chunks/chunk_+000_+000.lod.ply");  // a killed run's
     touch(dir / "gen-5/meshes/house.glb.tmp-123-0");
     touch(dir / "world.json.tmp-99999-0");
@@ -116,10 +120,8 @@ TEST(WorldOutputSafety, ACommittedRunRemovesThePreviousGenerationAndLeftoversBut
 }
 
 TEST(WorldOutputSafety, ACachedRunRemovesWhatARunKilledAfterItsCommitLeft) {
-    const fs::path dir = engine::test::output_dir("world_safety");
-    fs::remove_all(dir);
-    const WorldOptions options = engine::test::tiny_world_options(dir, 4, 2);
-    generate_world(options);
+    const WorldOptions options = fresh_world();
+    const fs::path dir = options.output;
     const auto bytes = folder_bytes(dir);
     std::map<std::string, fs::file_time_type> times;
     for (const auto& [name, content] : bytes) times[name] = fs::last_write_time(dir / name);
@@ -132,10 +134,8 @@ TEST(WorldOutputSafety, ACachedRunRemovesWhatARunKilledAfterItsCommitLeft) {
 }
 
 TEST(WorldOutputSafety, WorldsOfTheFlatLayoutStillReadAndAreReplaced) {
-    const fs::path dir = engine::test::output_dir("world_safety");
-    fs::remove_all(dir);
-    WorldOptions options = engine::test::tiny_world_options(dir, 4, 2);
-    generate_world(options);
+    WorldOptions options = fresh_world();
+    const fs::path dir = options.output;
     // What earlier versions wrote: chunks/ and meshes/ beside world.json, the manifest naming them.
     fs::rename(dir / "gen-1/chunks", dir / "chunks");
     fs::rename(dir / "gen-1/meshes", dir / "meshes");
@@ -159,23 +159,20 @@ TEST(WorldOutputSafety, WorldsOfTheFlatLayoutStillReadAndAreReplaced) {
 }
 
 TEST(WorldOutputSafety, ASecondRunIntoALockedFolderFailsAndTheCacheStillServes) {
-    const fs::path dir = engine::test::output_dir("world_safety");
-    fs::remove_all(dir);
-    const WorldOptions options = engine::test::tiny_world_options(dir, 4, 2);
-    generate_world(options);
+    const WorldOptions options = fresh_world();
+    const fs::path dir = options.output;
     touch(dir / "gen-9/chunks/chunk_+000_+000.lod.ply");  // as if another run were writing it
     const auto bytes = folder_bytes(dir);
 
-    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    ASSERT_GE(fd, 0);
-    ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+    std::optional<WorldFolderLock> other_run(std::in_place, dir, WorldFolderLock::Mode::write);
+    ASSERT_TRUE(other_run->held()) << other_run->problem();
     WorldOptions other = options;
     other.seed = 8;
     const std::string message = error_of([&] { generate_world(other); });
     EXPECT_NE(message.find("another run"), std::string::npos) << message;
     EXPECT_TRUE(generate_world(options).summary.cached);
     EXPECT_TRUE(folder_bytes(dir) == bytes) << "nothing may be written or removed without the lock";
-    ::close(fd);
+    other_run.reset();
 
     EXPECT_TRUE(generate_world(options).summary.cached);
     EXPECT_FALSE(fs::exists(dir / "gen-9"));
@@ -185,10 +182,8 @@ TEST(WorldOutputSafety, ASecondRunIntoALockedFolderFailsAndTheCacheStillServes) 
 // would remove the files under it, so it is refused while a cached run still serves; and a
 // program cannot start streaming while a run writes.
 TEST(WorldOutputSafety, ARunIntoAFolderBeingStreamedFailsAndStreamingWaitsForARun) {
-    const fs::path dir = engine::test::output_dir("world_safety");
-    fs::remove_all(dir);
-    const WorldOptions options = engine::test::tiny_world_options(dir, 4, 2);
-    generate_world(options);
+    const WorldOptions options = fresh_world();
+    const fs::path dir = options.output;
     const auto bytes = folder_bytes(dir);
     {
         const WorldFolderLock game(dir, WorldFolderLock::Mode::stream);

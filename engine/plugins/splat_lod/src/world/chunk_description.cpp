@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <fstream>
 #include <limits>
+#include <span>
 #include <vector>
-
-#include <zlib.h>
 
 #include "engine/core/error.h"
 #include "io/ply_vertex_layout.h"
@@ -51,10 +50,6 @@ std::array<ChunkLevel, kLevels> level_bounds(const SplatCloud& baked, const std:
     return levels;
 }
 
-std::uint32_t crc_of(const std::vector<std::uint8_t>& bytes, std::size_t size) {
-    return static_cast<std::uint32_t>(crc32_z(crc32_z(0, Z_NULL, 0), bytes.data(), size));
-}
-
 // The header's and every record block's CRC-32 (world_manifest.h: checksums), from the bytes on disk.
 void checksum_file(const std::filesystem::path& path, const io::PlyVertexLayout& layout, ChunkEntry& entry) {
     std::ifstream in(path, std::ios::binary);
@@ -65,7 +60,7 @@ void checksum_file(const std::filesystem::path& path, const io::PlyVertexLayout&
         in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size));
         if (static_cast<std::uint64_t>(in.gcount()) != size)
             engine::fail(path.string() + ": ended while its checksums were computed (changed while being described)");
-        return crc_of(bytes, static_cast<std::size_t>(size));
+        return checksum(std::span(bytes.data(), static_cast<std::size_t>(size)));
     };
     entry.header_crc32 = read(layout.header_bytes);
     entry.record_crc32.clear();

@@ -9,18 +9,12 @@
 #include <string>
 #include <vector>
 
-#include <zlib.h>
-
 #include "engine/core/error.h"
 #include "io/ply_vertex_layout.h"
 #include "splat_lod/splat_io.h"
 
 namespace splat_lod::world {
 namespace {
-
-std::uint32_t crc_of(const std::uint8_t* bytes, std::size_t size) {
-    return static_cast<std::uint32_t>(crc32_z(crc32_z(0, Z_NULL, 0), bytes, size));
-}
 
 [[noreturn]] void fail(const std::filesystem::path& file, const std::string& message) {
     engine::fail(file.string() + ": " + message);
@@ -57,7 +51,8 @@ SplatCloud read_chunk_range(const std::filesystem::path& file, const ChunkEntry&
                        " record checksums, expected " + std::to_string(record_block_count(entry)));
     const io::PlyVertexLayout layout = io::read_ply_vertex_layout(file);
     check_layout(file, entry, layout);
-    if (crc_of(reinterpret_cast<const std::uint8_t*>(layout.header.data()), layout.header.size()) != entry.header_crc32)
+    if (checksum(std::span(reinterpret_cast<const std::uint8_t*>(layout.header.data()), layout.header.size())) !=
+        entry.header_crc32)
         fail(file, "header does not match the manifest's checksum (the file changed since the world was generated)");
 
     // The records of every checksum block that holds one of [begin, end), read after room for a header.
@@ -78,7 +73,7 @@ SplatCloud read_chunk_range(const std::filesystem::path& file, const ChunkEntry&
                        " (truncated)");
     for (const RecordBlock& block : blocks) {
         const std::uint8_t* at = records + (block.begin - first) * layout.vertex_bytes;
-        if (crc_of(at, static_cast<std::size_t>((block.end - block.begin) * layout.vertex_bytes)) !=
+        if (checksum(std::span(at, static_cast<std::size_t>((block.end - block.begin) * layout.vertex_bytes))) !=
             entry.record_crc32[block.index])
             fail(file, "records [" + std::to_string(block.begin) + ", " + std::to_string(block.end) +
                            ") do not match the manifest's checksum (the file changed since the world was generated)");

@@ -24,6 +24,7 @@
 #include <utility>
 
 #include <nlohmann/json.hpp>
+#include <zlib.h>
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
@@ -330,6 +331,10 @@ std::uint64_t blocks_of(std::uint64_t records) {
 }
 
 }  // namespace
+
+std::uint32_t checksum(std::span<const std::uint8_t> bytes) {
+    return static_cast<std::uint32_t>(crc32_z(crc32_z(0, Z_NULL, 0), bytes.data(), bytes.size()));
+}
 
 std::uint64_t record_block_count(const ChunkEntry& entry) {
     const auto starts = level_starts(entry);

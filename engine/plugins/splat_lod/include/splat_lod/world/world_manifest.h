@@ -32,6 +32,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -100,6 +101,9 @@ struct RecordBlock {
     std::uint64_t begin = 0, end = 0;
     std::size_t index = 0;
 };
+
+// The checksum the manifest records of a header or a record block: zlib's CRC-32 of the bytes.
+std::uint32_t checksum(std::span<const std::uint8_t> bytes);
 
 // How many record blocks the entry's prefix counts make (what record_crc32 must hold).
 std::uint64_t record_block_count(const ChunkEntry& entry);
