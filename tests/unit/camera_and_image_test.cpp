@@ -19,6 +19,39 @@ TEST(Camera, PixelConventionsAreTheDocumentedOnes) {
     EXPECT_NEAR(right.x, 110.0f, 1e-4f);
 }
 
+TEST(Camera, ATileViewPutsEveryPointWhereTheWholeImageHasIt) {
+    const auto whole =
+        engine::make_look_at_camera({1, 2, 5}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), 300, 120, 0.1f, 100.0f);
+    EXPECT_FLOAT_EQ(whole.aspect(), 2.5f);
+    const glm::ivec2 origin{200, 40};
+    const auto tile = engine::tile_view(whole, origin, {100, 50});
+    EXPECT_EQ(tile.width, 100);
+    EXPECT_EQ(tile.full_size, glm::ivec2(300, 120));
+    EXPECT_FLOAT_EQ(tile.focal_length(), whole.focal_length());
+    EXPECT_FLOAT_EQ(tile.aspect(), whole.aspect());
+    EXPECT_EQ(tile.principal_point(), glm::vec2(150.0f - 200.0f, 60.0f - 40.0f));
+    const auto nested = engine::tile_view(tile, {10, 5}, {20, 20});
+    EXPECT_EQ(nested.tile_origin, glm::ivec2(210, 45));
+    for (const glm::vec3 point : {glm::vec3(0.0f), glm::vec3(1.5f, -0.3f, 0.2f), glm::vec3(-0.7f, 0.9f, -1.0f)}) {
+        // The pixel model (project_to_pixel) and the projection matrix (what the mesh pass
+        // rasterises) agree with the whole image's, shifted by the tile's origin.
+        const glm::vec3 in_whole = whole.project_to_pixel(point), in_tile = tile.project_to_pixel(point);
+        EXPECT_NEAR(in_tile.x, in_whole.x - 200.0f, 1e-3f);
+        EXPECT_NEAR(in_tile.y, in_whole.y - 40.0f, 1e-3f);
+        for (const engine::CameraView* view : {&whole, &tile}) {
+            const glm::vec4 clip = view->projection * view->view * glm::vec4(point, 1.0f);
+            const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+            const glm::vec2 pixel{(ndc.x + 1.0f) * 0.5f * static_cast<float>(view->width),
+                                  (1.0f - ndc.y) * 0.5f * static_cast<float>(view->height)};
+            const glm::vec3 expected = view->project_to_pixel(point);
+            EXPECT_NEAR(pixel.x, expected.x, 2e-3f);
+            EXPECT_NEAR(pixel.y, expected.y, 2e-3f);
+        }
+    }
+    EXPECT_THROW(engine::tile_view(whole, {250, 0}, {100, 50}), engine::Error);
+    EXPECT_THROW(engine::tile_view(whole, {0, 0}, {0, 50}), engine::Error);
+}
+
 TEST(Camera, RejectsImpossibleSettings) {
     EXPECT_THROW(engine::make_look_at_camera({0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 1.0f, 10, 10, 0.1f, 10.0f), engine::Error);
     EXPECT_THROW(engine::make_look_at_camera({0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 1.0f, 0, 10, 0.1f, 10.0f), engine::Error);

@@ -9,9 +9,26 @@
 
 namespace engine {
 
-float CameraView::focal_length() const { return 0.5f * static_cast<float>(height) / std::tan(0.5f * fov_y); }
+namespace {
 
-glm::vec2 CameraView::principal_point() const { return {0.5f * static_cast<float>(width), 0.5f * static_cast<float>(height)}; }
+glm::ivec2 whole_size(const CameraView& c) {
+    return c.full_size.x > 0 ? c.full_size : glm::ivec2(c.width, c.height);
+}
+
+}  // namespace
+
+float CameraView::focal_length() const {
+    return 0.5f * static_cast<float>(whole_size(*this).y) / std::tan(0.5f * fov_y);
+}
+
+glm::vec2 CameraView::principal_point() const {
+    return 0.5f * glm::vec2(whole_size(*this)) - glm::vec2(tile_origin);
+}
+
+float CameraView::aspect() const {
+    const glm::ivec2 size = whole_size(*this);
+    return static_cast<float>(size.x) / static_cast<float>(size.y);
+}
 
 glm::vec3 CameraView::project_to_pixel(const glm::vec3& world) const {
     const glm::vec3 v = glm::vec3(view * glm::vec4(world, 1.0f));
@@ -45,6 +62,28 @@ CameraView make_look_at_camera(const glm::vec3& eye, const glm::vec3& target, co
     t.translation = eye;
     t.rotation = Transform::look_rotation(eye, target, up);
     return make_camera(t.matrix(), fov_y_radians, width, height, znear, zfar);
+}
+
+CameraView tile_view(const CameraView& whole, glm::ivec2 origin, glm::ivec2 size) {
+    const glm::ivec2 full = whole_size(whole);
+    const glm::ivec2 first = whole.tile_origin + origin, end = first + size;
+    if (size.x <= 0 || size.y <= 0 || origin.x < 0 || origin.y < 0 || origin.x + size.x > whole.width ||
+        origin.y + size.y > whole.height)
+        fail("camera: tile " + std::to_string(size.x) + "x" + std::to_string(size.y) + " at (" +
+             std::to_string(origin.x) + ", " + std::to_string(origin.y) + ") is not inside the " +
+             std::to_string(whole.width) + "x" + std::to_string(whole.height) + " image");
+    CameraView c = whole;
+    c.width = size.x;
+    c.height = size.y;
+    c.full_size = full;
+    c.tile_origin = first;
+    // The tile's edges as x/z and y/z in view space (image rows grow downwards, view Y upwards).
+    const float f = whole.focal_length();
+    const glm::vec2 centre = 0.5f * glm::vec2(full);
+    const float left = (static_cast<float>(first.x) - centre.x) / f, right = (static_cast<float>(end.x) - centre.x) / f;
+    const float top = (centre.y - static_cast<float>(first.y)) / f, bottom = (centre.y - static_cast<float>(end.y)) / f;
+    c.projection = glm::frustum(left * c.znear, right * c.znear, bottom * c.znear, top * c.znear, c.znear, c.zfar);
+    return c;
 }
 
 }  // namespace engine

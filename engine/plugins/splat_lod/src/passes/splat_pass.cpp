@@ -87,7 +87,7 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, const R
     const float f = camera.focal_length() * s;
     const glm::vec2 c = camera.principal_point() * s;
     const float tan_y = std::tan(0.5f * camera.fov_y);
-    const float tan_x = tan_y * static_cast<float>(camera.width) / static_cast<float>(camera.height);
+    const float tan_x = tan_y * camera.aspect();  // the whole image's, also for a tile of it (camera.h)
     gpu::FrameUniforms u;
     u.view = camera.view;
     u.camera_position = glm::vec4(camera.position, 1.0f);
