@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <memory>
+#include <optional>
 #include <set>
 
 #include "engine/core/error.h"
@@ -10,33 +12,20 @@
 #include "engine/engine.h"
 #include "engine/render/render_target.h"
 #include "formatted.h"
+#include "progress.h"
 #include "passes/splat_pass.h"
 #include "sample_game/frame_probe.h"
 #include "sample_game/frame_sheet.h"
 #include "sample_game/game_world.h"
+#include "sample_game/chunk_borders.h"
 #include "sample_game/profile_plots.h"
+#include "sample_game/reference_cache.h"
 #include "sample_game/world_path.h"
 #include "splat_lod/eval/image_metrics.h"
 #include "splat_lod/splat_lod_plugin.h"
 
 namespace sample_game {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string duration(double seconds) {
-    const auto s = static_cast<long long>(std::max(0.0, seconds) + 0.5);
-    char text[32];
-    if (s >= 60)
-        std::snprintf(text, sizeof text, "%lldm%02llds", s / 60, s % 60);
-    else
-        std::snprintf(text, sizeof text, "%llds", s);
-    return text;
-}
 
 double mib(std::uint64_t bytes) {
     return static_cast<double>(bytes) / static_cast<double>(kMiB);
@@ -51,52 +40,20 @@ struct PreloadStats {
 };
 
 // The path frames the baseline draws: every K-th overview frame (of the overview's own count) and
-// every K-th frame of the rest of the path (of the path's count).
-std::vector<std::size_t> baseline_frame_indices(const std::vector<PathPose>& poses, const ProfileOptions& o) {
-    std::vector<std::size_t> chosen;
+// every K-th frame of the rest of the path (of the path's count), and the frames with a reference.
+std::vector<std::size_t> baseline_frame_indices(const std::vector<PathPose>& poses, const ProfileOptions& o,
+                                                const std::vector<std::size_t>& reference_frames) {
+    std::set<std::size_t> chosen(reference_frames.begin(), reference_frames.end());
     std::size_t overview_seen = 0;
     for (std::size_t i = 0; i < poses.size(); ++i) {
         if (poses[i].segment == Segment::overview) {
-            if (overview_seen++ % static_cast<std::size_t>(o.baseline_overview_every) == 0) chosen.push_back(i);
+            if (overview_seen++ % static_cast<std::size_t>(o.baseline_overview_every) == 0) chosen.insert(i);
         } else if (o.baseline_every > 0 && i % static_cast<std::size_t>(o.baseline_every) == 0) {
-            chosen.push_back(i);
+            chosen.insert(i);
         }
     }
-    return chosen;
+    return {chosen.begin(), chosen.end()};
 }
-
-// One line per step at most every two seconds (and always the last), with the time per step and
-// what is left.
-class Progress {
-public:
-    // total 0: open-ended (no ETA).
-    Progress(std::FILE* out, std::string stage, std::size_t total)
-        : out_(out), stage_(std::move(stage)), total_(total) {}
-    void step(std::size_t done, const std::string& detail) {
-        if (!out_ || (done == 0 && total_ > 0)) return;
-        const auto now = Clock::now();
-        if ((total_ == 0 || done < total_) && now - last_ < std::chrono::seconds(2)) return;
-        last_ = now;
-        const double elapsed = seconds_since(start_);
-        if (total_ == 0) {  // open-ended: no ETA
-            std::fprintf(out_, "sample_game: %s %zu%s, %s elapsed\n", stage_.c_str(), done, detail.c_str(),
-                         duration(elapsed).c_str());
-            std::fflush(out_);
-            return;
-        }
-        const double per = done > 0 ? elapsed / static_cast<double>(done) : 0.0;
-        std::fprintf(out_, "sample_game: %s %zu/%zu%s, %.2f s each, %s elapsed, ETA %s\n", stage_.c_str(), done, total_,
-                     detail.c_str(), per, duration(elapsed).c_str(),
-                     duration(per * static_cast<double>(total_ - done)).c_str());
-        std::fflush(out_);
-    }
-
-private:
-    std::FILE* out_;
-    std::string stage_;
-    std::size_t total_;
-    Clock::time_point start_ = Clock::now(), last_{};
-};
 
 std::string frame_name(const std::string& run, const FrameRecord& r) {
     return formatted("%s_%04d_%s.png", run.c_str(), r.frame, std::string(to_string(r.segment)).c_str());
@@ -110,6 +67,35 @@ struct Run {
     std::FILE* progress;
     FrameSheet sheet;
     std::vector<std::filesystem::path> frame_pictures;
+    // The cached reference of this run's key (none: no reference columns) and what seam_ratio needs.
+    const CachedReference* cached_reference = nullptr;
+    std::unique_ptr<HeightGrid> ground;
+    std::vector<std::size_t> reference_frames() const {
+        std::vector<std::size_t> frames;
+        if (cached_reference)
+            for (const auto& [frame, image] : cached_reference->frames) frames.push_back(static_cast<std::size_t>(frame));
+        return frames;
+    }
+    const splat_lod::eval::FloatImage* reference_of(int frame) const {
+        if (!cached_reference) return nullptr;
+        const auto it = cached_reference->frames.find(frame);
+        return it == cached_reference->frames.end() ? nullptr : &it->second;
+    }
+    // This row's image against the reference (and, for the LOD run, seam_ratio), when it has one.
+    void compare_with_reference(const engine::RenderTarget& target, const engine::CameraView& camera, FrameRecord& r) {
+        const splat_lod::eval::FloatImage* truth = reference_of(r.frame);
+        if (!truth) return;
+        const auto image = splat_lod::eval::to_float(target.read_color());
+        r.psnr_vs_reference = splat_lod::eval::psnr(image, *truth);
+        r.ssim_vs_reference = splat_lod::eval::ssim(image, *truth);
+        if (r.run != "lod") return;
+        if (!ground)
+            ground = std::make_unique<HeightGrid>([&](float x, float z) { return world.terrain().height(x, z); },
+                                                  world.manifest().size_m);
+        const ChunkMap map =
+            chunk_map(*ground, ChunkGrid{world.manifest().size_m, world.manifest().chunk_size_m}, camera);
+        r.seam_ratio = seam_ratio(image, *truth, map).value_or(-1.0);
+    }
 
     void keep_picture(const engine::RenderTarget& target, const FrameRecord& r) {
         if (options.frames_png_every <= 0 || r.frame % options.frames_png_every != 0) return;
@@ -160,7 +146,7 @@ struct Run {
         const std::uint64_t first_update = options.preload ? preload(preload_stats) : 0;
         std::set<std::size_t> compared;
         if (options.baseline)
-            for (const std::size_t i : baseline_frame_indices(poses, options)) compared.insert(i);
+            for (const std::size_t i : baseline_frame_indices(poses, options, reference_frames())) compared.insert(i);
         engine::RenderTarget target(options.width, options.height);
         std::vector<FrameRecord> records;
         Progress report(progress, "LOD + streaming: frame", poses.size());
@@ -172,6 +158,7 @@ struct Run {
             draw_and_measure(world, engine, camera, target, r);
             keep_picture(target, r);
             if (compared.count(i)) lod_images[r.frame] = target.read_color();
+            compare_with_reference(target, camera, r);
             records.push_back(r);
             report.step(i + 1, formatted(" (%s, %.0f ms, %.1f MiB resident)", std::string(to_string(r.segment)).c_str(),
                                          r.frame_ms, mib(r.resident_bytes)));
@@ -185,7 +172,7 @@ struct Run {
         plugin_msgs::LodSettings lod = world.settings().lod;
         lod.mode = plugin_msgs::LodMode::baseline;
         engine.bus().publish(lod);
-        const std::vector<std::size_t> chosen = baseline_frame_indices(poses, options);
+        const std::vector<std::size_t> chosen = baseline_frame_indices(poses, options, reference_frames());
         engine::RenderTarget target(options.width, options.height);
         std::vector<FrameRecord> records;
         if (chosen.empty()) return records;
@@ -203,6 +190,7 @@ struct Run {
             const engine::CameraView camera = world.camera(poses[chosen[k]], options.width, options.height, &r);
             draw_and_measure(world, engine, camera, target, r);
             keep_picture(target, r);
+            compare_with_reference(target, camera, r);
             if (const auto it = lod_images.find(r.frame); it != lod_images.end()) {
                 const auto reference = splat_lod::eval::to_float(target.read_color());
                 const auto lod_image = splat_lod::eval::to_float(it->second);
@@ -265,6 +253,8 @@ void validate(const ProfileOptions& o) {
     if (o.frames_png_every < 0) engine::fail("sample_game: --frames-png must not be negative");
     if (o.baseline_every < 0) engine::fail("sample_game: --baseline-every must not be negative");
     if (o.baseline_overview_every < 1) engine::fail("sample_game: --baseline-overview-every must be at least 1");
+    if (o.reference_supersample < 3 || o.reference_supersample > 8)
+        engine::fail("sample_game: --supersample must be 3..8, got " + std::to_string(o.reference_supersample));
     validate(o.settings);
     require_world_folder(o.world);
 }
@@ -281,7 +271,12 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
     const std::vector<PathPose> poses = sample_world_path(world.terrain(), options.frames);
     world.warm_up(options.width, options.height);
 
-    Run run{options, engine, world, poses, progress, FrameSheet(240, 5), {}, {}};
+    const ReferenceKey key = reference_key(options.world, options.width, options.height, poses,
+                                           options.settings.fov_y_deg, options.reference_supersample);
+    const std::optional<CachedReference> reference = read_reference(options.world, key);  // throws when broken
+
+    Run run{options, engine, world, poses, progress, FrameSheet(240, 5), {}, reference ? &*reference : nullptr,
+            nullptr, {}};
     const auto lod_start = Clock::now();
     PreloadStats preload;
     const std::vector<FrameRecord> lod = run.lod_frames(preload);
@@ -330,6 +325,12 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
         context.outputs.push_back(formatted("%s/frames/: %zu frames (every %d-th)", folder.c_str(),
                                             run.frame_pictures.size(), options.frames_png_every));
     if (!plots.problem.empty()) context.outputs.push_back("NO PLOTS: " + plots.problem);
+    context.reference =
+        reference ? formatted("found, %s (%zu frames, %dx supersampled)", reference->folder.string().c_str(),
+                              reference->frames.size(), key.supersample)
+                  : formatted("none cached for this run (%s); `sample_game --reference` with the same --world, "
+                              "--width, --height, --frames and --fov-y makes it",
+                              reference_folder(options.world, key).string().c_str());
     outcome.summary_text = format_summary(outcome.summary, context);
     engine::write_text_file_atomic(options.out / "summary.txt", outcome.summary_text);
     return outcome;

@@ -108,6 +108,96 @@ void overview_check(const std::vector<FrameRecord>& lod, const std::vector<Frame
     }
 }
 
+std::vector<ReferenceFrameResult> reference_frames(const std::vector<FrameRecord>& lod,
+                                                   const std::vector<FrameRecord>& baseline) {
+    std::map<int, ReferenceFrameResult> frames;
+    for (const auto& r : lod)
+        if (r.psnr_vs_reference >= 0.0) {
+            ReferenceFrameResult& f = frames[r.frame];
+            f.frame = r.frame;
+            f.segment = r.segment;
+            f.lod_psnr = r.psnr_vs_reference;
+            f.lod_ssim = r.ssim_vs_reference;
+            f.seam_ratio = r.seam_ratio;
+        }
+    for (const auto& r : baseline)
+        if (const auto it = frames.find(r.frame); it != frames.end() && r.psnr_vs_reference >= 0.0) {
+            it->second.baseline_psnr = r.psnr_vs_reference;
+            it->second.baseline_ssim = r.ssim_vs_reference;
+        }
+    std::vector<ReferenceFrameResult> out;
+    for (const auto& [frame, result] : frames) out.push_back(result);
+    return out;
+}
+
+void reference_checks(ProfileSummary& s) {
+    const auto& frames = s.reference_frames;
+    const char* none = "no reference for this run (sample_game --reference makes it)";
+    // 4: never much worse than the baseline.
+    int pairs = 0, worse = 0;
+    double worst = 1e9;
+    for (const auto& f : frames)
+        if (f.baseline_psnr >= 0.0) {
+            ++pairs;
+            worst = std::min(worst, f.lod_psnr - f.baseline_psnr);
+            worse += f.lod_psnr < f.baseline_psnr - kReferenceMaxLossDb ? 1 : 0;
+        }
+    s.reference_loss.measured = pairs > 0;
+    s.reference_loss.pass = pairs > 0 && worse == 0;
+    s.reference_loss.text =
+        frames.empty() ? formatted("reference, LOD vs baseline: %s", none)
+        : pairs == 0   ? std::string("reference, LOD vs baseline: no baseline frames (run without --no-baseline)")
+                       : formatted("reference, LOD vs baseline: LOD PSNR - baseline PSNR >= -%.1f dB on %d of %d "
+                                   "reference frames (worst %+.2f dB)",
+                                   kReferenceMaxLossDb, pairs - worse, pairs, worst);
+    // 5: the overview much better than the baseline, and good in itself.
+    int overview = 0, good = 0;
+    double least_gain = 1e9, least_psnr = 1e9;
+    for (const auto& f : frames)
+        if (f.segment == Segment::overview && f.baseline_psnr >= 0.0) {
+            ++overview;
+            least_gain = std::min(least_gain, f.lod_psnr - f.baseline_psnr);
+            least_psnr = std::min(least_psnr, f.lod_psnr);
+            good += f.lod_psnr >= f.baseline_psnr + kReferenceOverviewGainDb && f.lod_psnr >= kReferenceOverviewMinDb;
+        }
+    s.reference_overview.measured = overview > 0;
+    s.reference_overview.pass = overview > 0 && good == overview;
+    s.reference_overview.text =
+        overview == 0 ? formatted("reference, overview: %s", frames.empty() ? none : "no overview frame in both runs")
+                      : formatted("reference, overview: LOD >= baseline + %.0f dB and >= %.0f dB on %d of %d frames "
+                                  "(least gain %+.2f dB, lowest LOD PSNR %.2f dB)",
+                                  kReferenceOverviewGainDb, kReferenceOverviewMinDb, good, overview, least_gain,
+                                  least_psnr);
+    // 6: no seams.
+    int measured = 0, within = 0;
+    double largest = 0.0;
+    for (const auto& f : frames)
+        if (f.seam_ratio >= 0.0) {
+            ++measured;
+            largest = std::max(largest, f.seam_ratio);
+            within += f.seam_ratio <= kMaxSeamRatio ? 1 : 0;
+        }
+    s.reference_seams.measured = measured > 0;
+    s.reference_seams.pass = measured > 0 && within == measured;
+    s.reference_seams.text =
+        measured == 0 ? formatted("reference, seams: %s", frames.empty() ? none : "no frame shows a chunk border")
+                      : formatted("reference, seams: seam_ratio <= %.2f on %d of %d frames (largest %.3f)",
+                                  kMaxSeamRatio, within, measured, largest);
+}
+
+std::string reference_table(const ProfileSummary& s) {
+    if (s.reference_frames.empty()) return "";
+    const auto cell = [](double v, int digits) { return v < 0.0 ? std::string("-") : formatted("%.*f", digits, v); };
+    std::string out = "\nagainst the reference (PSNR dB / SSIM; seam_ratio of the LOD image)\n";
+    out += "  frame  segment    LOD psnr    ssim | baseline psnr    ssim | seam_ratio\n";
+    for (const auto& f : s.reference_frames)
+        out += formatted("  %5d  %-9s %9s %7s | %13s %7s | %10s\n", f.frame, std::string(to_string(f.segment)).c_str(),
+                         cell(f.lod_psnr, 2).c_str(), cell(f.lod_ssim, 4).c_str(),
+                         cell(f.baseline_psnr, 2).c_str(), cell(f.baseline_ssim, 4).c_str(),
+                         cell(f.seam_ratio, 3).c_str());
+    return out;
+}
+
 std::string verdict(const Check& check) {
     return std::string(!check.measured ? "n/a " : check.pass ? "PASS" : "FAIL") + "  " + check.text + "\n";
 }
@@ -130,6 +220,8 @@ ProfileSummary summarize(const std::vector<FrameRecord>& lod, const std::vector<
     segment_times(lod, baseline, s);
     budget_checks(lod, s);
     overview_check(lod, baseline, s);
+    s.reference_frames = reference_frames(lod, baseline);
+    reference_checks(s);
     return s;
 }
 
@@ -147,12 +239,15 @@ std::string format_summary(const ProfileSummary& s, const SummaryContext& contex
                    ? formatted(" %15d %7.1f  (%.1f)\n", t.baseline_frames, t.baseline_median_ms, t.lod_median_same_ms)
                    : std::string("               -\n");
     }
+    if (!context.reference.empty()) out += "\nreference: " + context.reference + "\n";
+    out += reference_table(s);
     out += formatted(
         "\nstreaming: %.1f MiB uploaded in all, peak GPU memory of the splat pass %.1f MiB (scene + frame buffers), "
         "%llu chunk failures\n",
         mib(s.total_upload_bytes), mib(s.peak_gpu_total_bytes), static_cast<unsigned long long>(s.failures));
     out += "\nchecks (computed from the measurements)\n";
     out += "  " + verdict(s.memory) + "  " + verdict(s.upload) + "  " + verdict(s.overview);
+    out += "  " + verdict(s.reference_loss) + "  " + verdict(s.reference_overview) + "  " + verdict(s.reference_seams);
     out += formatted("\nwall time: %.0f s", context.wall_seconds);
     out += context.timing.empty() ? std::string("\n") : " (" + context.timing + ")\n";
     if (!context.outputs.empty()) {

@@ -5,12 +5,15 @@
 //               [--no-baseline] [--baseline-every K] [--baseline-overview-every K] [--no-preload]
 //               [--sync-streaming] [LOD options]
 //   sample_game --soak [--world DIR] [--out DIR] [--laps N] [--frames N] [--no-faults] [--retry-after-frames N]
+//   sample_game --reference [--world DIR] [--width W --height H] [--frames N] [--fov-y D] [--supersample S] [--force]
 // The profile runs headless (EGL): the path with LOD and streaming, then the baseline, and writes
 // profile.csv, baseline.csv, summary.txt, plots and frames to --out; it prints the summary. Exit
 // code 1 on an error (bad option, missing or broken world, no GL); a budget check that fails is a
 // result, printed in the summary, not an error. The soak (soak_run.h) walks the path --laps times
 // (--frames poses per lap), damaging chunk files of a linked copy of the world on the middle laps,
-// and exits 1 when a check fails (a leak, a chunk that does not come back).
+// and exits 1 when a check fails (a leak, a chunk that does not come back). The reference
+// (reference_run.h) renders the profile's reference frames supersampled and caches them beside
+// the world, where the profile with the same size, frames and field of view finds them.
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -21,12 +24,14 @@
 #include "engine/platform/gl_context.h"
 #include "sample_game/game_window.h"
 #include "sample_game/profile_run.h"
+#include "sample_game/reference_run.h"
 #include "sample_game/soak_run.h"
 
 namespace {
 
 struct CommandLine {
-    bool profile = false, soak = false, no_faults = false;
+    bool profile = false, soak = false, no_faults = false, reference = false, force = false;
+    int supersample = sample_game::kDefaultReferenceSupersample;
     int laps = 10;
     std::string world = "out/world/default", out = "out/game";
     int width = 0, height = 0, frames = -1;
@@ -52,6 +57,15 @@ void add_options(CLI::App& app, CommandLine& c) {
     app.add_flag("--soak", c.soak,
                  "Run headless: walk the path --laps times, damaging chunk files of a copy of the world; check "
                  "that memory and GL objects stay flat and streaming recovers");
+    app.add_flag("--reference", c.reference,
+                 "Run headless: render the profile's reference frames supersampled (baseline mode, every chunk "
+                 "resident) and cache them in <world>/reference/, where --profile finds them");
+    app.add_flag("--force", c.force, "Reference: make it again even when it is cached");
+    app.add_option("--supersample", c.supersample,
+                   "Reference: pixels per side rendered for each output pixel (3..8; the profile looks for this "
+                   "factor's reference)")
+        ->check(CLI::Range(3, 8))
+        ->capture_default_str();
     app.add_option("--laps", c.laps, "Soak: laps of the path (default 10)")->check(CLI::Range(2, 100000));
     app.add_flag("--no-faults", c.no_faults, "Soak: leave the chunk files alone (stream the world itself)");
     app.add_option("--retry-after-frames", c.settings.retry_failed_after_frames,
@@ -139,6 +153,7 @@ int run_profile(const CommandLine& c) {
     const auto context = engine::HeadlessGlContext::create();
     std::fprintf(stderr, "sample_game: %s on %s\n", context->info().renderer.c_str(), context->info().platform.c_str());
     const sample_game::ProfileOutcome outcome = sample_game::run_profile(o, stderr);
+    o.reference_supersample = c.supersample;
     std::printf("%s", outcome.summary_text.c_str());
     if (!outcome.plot_problem.empty()) std::fprintf(stderr, "sample_game: %s\n", outcome.plot_problem.c_str());
     return 0;
@@ -148,6 +163,23 @@ int run_soak(const CommandLine& c) {
     sample_game::SoakOptions o;
     o.world = c.world;
     o.out = c.out == "out/game" ? "out/soak" : c.out;
+int run_reference(const CommandLine& c) {
+    sample_game::ReferenceOptions o;  // the profile's defaults, so that the profile finds it
+    o.world = c.world;
+    o.width = c.width > 0 ? c.width : 640;
+    o.height = c.height > 0 ? c.height : 360;
+    o.frames = c.frames > 0 ? c.frames : 400;
+    o.settings = c.settings;
+    o.supersample = c.supersample;
+    o.force = c.force;
+    sample_game::validate(o);
+    const auto context = engine::HeadlessGlContext::create();
+    std::fprintf(stderr, "sample_game: %s on %s\n", context->info().renderer.c_str(), context->info().platform.c_str());
+    const sample_game::ReferenceOutcome outcome = sample_game::make_reference(o, stderr);
+    std::printf("%s", outcome.text.c_str());
+    return 0;
+}
+
     o.width = c.width > 0 ? c.width : 320;
     o.height = c.height > 0 ? c.height : 180;
     o.frames_per_lap = c.frames > 0 ? c.frames : 200;
@@ -194,8 +226,9 @@ int main(int argc, char** argv) {
     }
     try {
         apply_common(c);
-        if (c.profile && c.soak) engine::fail("sample_game: --profile and --soak are different runs; give one");
-        return c.soak ? run_soak(c) : c.profile ? run_profile(c) : run_window(c);
+        if (int(c.profile) + int(c.soak) + int(c.reference) > 1)
+            engine::fail("sample_game: --profile, --soak and --reference are different runs; give one");
+        return c.soak ? run_soak(c) : c.profile ? run_profile(c) : c.reference ? run_reference(c) : run_window(c);
     } catch (const std::exception& e) {
         // The game's own messages already start with "sample_game: "; the engine's name their file.
         const std::string message = e.what();

@@ -81,7 +81,7 @@ TEST(ProfileSummary, PassesWhenTheMeasurementsAreWithinBudgetAndTheOverviewIsChe
     EXPECT_EQ(s.segments[static_cast<std::size_t>(Segment::overview)].frames, 4);
     EXPECT_DOUBLE_EQ(s.segments[static_cast<std::size_t>(Segment::overview)].median_ms, 10.0);
     EXPECT_EQ(s.segments[static_cast<std::size_t>(Segment::ground)].baseline_frames, 1);
-    const std::string text = format_summary(s, {"a world", "settings", 12.0, "", {"out/profile.csv"}});
+    const std::string text = format_summary(s, {"a world", "settings", 12.0, "", {"out/profile.csv"}, ""});
     EXPECT_NE(text.find("PASS  memory"), std::string::npos) << text;
     EXPECT_NE(text.find("PASS  upload"), std::string::npos) << text;
     EXPECT_NE(text.find("PASS  overview"), std::string::npos) << text;

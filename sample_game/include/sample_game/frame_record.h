@@ -55,6 +55,13 @@ struct FrameRecord {
 };
 
 struct FrameColumn {
+    // Rows of a frame with a cached reference (reference_cache.h): this row's image against it; −1
+    // where the frame has none.
+    double psnr_vs_reference = -1.0, ssim_vs_reference = -1.0;
+    // LOD rows of a reference frame: the image's mean absolute error against the reference within
+    // ±4 px of the projected chunk borders divided by that elsewhere (chunk_borders.h); −1 on
+    // baseline rows, frames without a reference, and frames without border or error to compare.
+    double seam_ratio = -1.0;
     std::string name;
     std::string meaning;
     std::function<std::string(const FrameRecord&)> value;

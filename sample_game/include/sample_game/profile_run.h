@@ -8,6 +8,8 @@
 //   <out>/summary.txt       per-segment frame times and the three checks (profile_summary.h)
 //   <out>/frame_time.png memory.png gaussians.png   (profile_plots.h; needs gnuplot)
 //   <out>/frames/*.png      every K-th frame (LOD and baseline), and frames_sheet.png of them
+// When the world has a reference for the run's key (reference_cache.h), its frames are compared
+// with it (a broken cached reference is an error naming its file).
 // The first view is streamed completely before the walk starts (preload, like a loading screen;
 // its updates are drawn at a quarter of the size and not recorded), unless `preload` is off.
 // Needs a current GL context. Budget checks that fail are results, not errors.
@@ -34,6 +36,10 @@ struct ProfileOptions {
     // Before the first frame, stream the first view completely (as a game's loading screen would),
     // so that the walk starts with what it needs rather than measuring a cold start.
     bool preload = true;
+    // The supersampling factor of the reference to look for (reference_cache.h): when one is cached
+    // for this world, size, frame count and field of view, its frames are drawn in the baseline too
+    // and both CSVs get psnr_vs_reference, ssim_vs_reference and (LOD rows) seam_ratio.
+    int reference_supersample = 3;
 };
 
 struct ProfileOutcome {

@@ -6,7 +6,13 @@
 //      GPU scene's pages equal the streamer's count);
 //   2. no frame uploads more than the upload budget;
 //   3. the overview segment is at least kRequiredOverviewSpeedup× cheaper per frame with LOD and
-//      streaming than the same frames in `baseline` mode with every chunk resident.
+//      streaming than the same frames in `baseline` mode with every chunk resident;
+// and, where a supersampled reference was cached for the run (reference_cache.h), three more on its
+// frames (PSNR against the reference):
+//   4. the LOD image is never more than kReferenceMaxLossDb worse than the baseline's;
+//   5. on the overview's reference frames the LOD image is at least kReferenceOverviewGainDb better
+//      than the baseline's and at least kReferenceOverviewMinDb;
+//   6. seam_ratio (chunk_borders.h) is at most kMaxSeamRatio on every reference frame.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -18,6 +24,10 @@
 namespace sample_game {
 
 inline constexpr double kRequiredOverviewSpeedup = 5.0;
+inline constexpr double kReferenceMaxLossDb = 0.5;
+inline constexpr double kReferenceOverviewGainDb = 3.0;
+inline constexpr double kReferenceOverviewMinDb = 30.0;
+inline constexpr double kMaxSeamRatio = 1.25;
 
 struct SegmentTimes {
     int frames = 0;
@@ -31,6 +41,13 @@ struct Check {
     bool measured = false;  // false: not measured (e.g. --no-baseline); neither pass nor fail
     bool pass = false;
     std::string text;  // "PASS  memory: peak 97.3 MiB <= budget 128 MiB on all 400 frames"
+};
+
+// One reference frame: the LOD and baseline images against the reference (−1: not drawn/compared).
+struct ReferenceFrameResult {
+    int frame = 0;
+    Segment segment = Segment::ground;
+    double lod_psnr = -1.0, lod_ssim = -1.0, baseline_psnr = -1.0, baseline_ssim = -1.0, seam_ratio = -1.0;
 };
 
 struct ProfileSummary {
@@ -50,6 +67,8 @@ struct ProfileSummary {
     // LOD run's images against the baseline's (none when the images were not compared).
     std::optional<double> overview_psnr, overview_ssim;
     Check memory, upload, overview;
+    std::vector<ReferenceFrameResult> reference_frames;  // empty: no reference
+    Check reference_loss, reference_overview, reference_seams;
 };
 
 ProfileSummary summarize(const std::vector<FrameRecord>& lod, const std::vector<FrameRecord>& baseline,
@@ -62,6 +81,7 @@ struct SummaryContext {
     double wall_seconds = 0.0;
     std::string timing;                // where the wall time went
     std::vector<std::string> outputs;  // "profile.csv: one row per frame", ...
+    std::string reference;             // whether a reference was found, and where
 };
 
 std::string format_summary(const ProfileSummary& summary, const SummaryContext& context);

@@ -1,0 +1,65 @@
+#pragma once
+// Where a frame shows the borders between the world's chunks, for the profile's seam_ratio: the LOD
+// image's error against the reference near the projected chunk borders, divided by its error
+// elsewhere. A pixel shows the chunk whose square holds the point where the pixel's ray meets the
+// terrain's height field (props and trees standing on it are not traced: they belong to the chunk
+// under them); a pixel whose ray leaves the world without meeting the ground shows no chunk (sky).
+// A pixel is in the border band when some pixel within `radius` pixels (Chebyshev) shows another
+// chunk. GL-free.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "engine/render/camera.h"
+#include "splat_lod/eval/image_metrics.h"
+
+namespace sample_game {
+
+inline constexpr int kSeamBandRadiusPx = 4;
+
+// The height field on a regular grid over the world [−size/2, size/2]², bilinear between samples,
+// with its lowest and highest sample (so that rays are clipped to the slab that holds the ground).
+class HeightGrid {
+public:
+    HeightGrid(const std::function<float(float x, float z)>& height, float size_m, int cells = 1024);
+    float size() const { return size_; }
+    float height(float x, float z) const;  // clamped to the grid's edge outside the world
+    float lowest() const { return lowest_; }
+    float highest() const { return highest_; }
+
+private:
+    float size_, step_;
+    int samples_;  // per side
+    std::vector<float> heights_;
+    float lowest_ = 0.0f, highest_ = 0.0f;
+};
+
+// The world's chunk grid: `count` × `count` squares of `chunk_size_m`, row-major from −x, −z
+// (the generator's layout: chunk (i, j) covers [−size/2 + i·chunk, −size/2 + (i + 1)·chunk) in x).
+struct ChunkGrid {
+    float size_m = 0.0f, chunk_size_m = 1.0f;
+    int count() const;
+    int chunk_at(float x, float z) const;  // −1 outside the world
+};
+
+// Per pixel (row-major, top row first): the chunk it shows, −1 for none.
+struct ChunkMap {
+    int width = 0, height = 0;
+    std::vector<int> chunk;
+};
+
+// Casts every pixel centre's ray of `camera` onto the ground: marched in steps growing with the
+// distance (2 % of it, at least a tenth of the grid spacing), then refined by bisection.
+ChunkMap chunk_map(const HeightGrid& ground, const ChunkGrid& chunks, const engine::CameraView& camera);
+
+// 1 where a pixel showing a chunk has a pixel within `radius` showing another chunk.
+std::vector<std::uint8_t> border_band(const ChunkMap& map, int radius = kSeamBandRadiusPx);
+
+// Mean absolute error (over RGB) of `image` against `reference` in the band divided by that
+// outside it, both over pixels that show a chunk; none when either part is empty or the error
+// outside the band is 0. Throws engine::Error when the sizes differ.
+std::optional<double> seam_ratio(const splat_lod::eval::FloatImage& image, const splat_lod::eval::FloatImage& reference,
+                                 const ChunkMap& map, int radius = kSeamBandRadiusPx);
+
+}  // namespace sample_game
