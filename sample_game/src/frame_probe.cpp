@@ -68,6 +68,9 @@ void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::Ca
         record.considered = s->considered;
         record.visible = s->visible;
         record.skipped = s->skipped;
+        record.culled = s->culled;
+        record.unbudgeted = s->unbudgeted;
+        record.budget_threshold_px = s->budget_threshold_px;
         record.tile_splat_pairs = s->tile_splat_pairs;
         record.drawn_per_level = s->per_level;
         record.gpu_total_bytes = s->resident_bytes;

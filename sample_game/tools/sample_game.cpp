@@ -109,6 +109,10 @@ void add_options(CLI::App& app, CommandLine& c) {
     app.add_option("--upscaler", c.upscaler, "spline (default), bicubic, bilinear or lanczos3")
         ->check(CLI::IsMember({"spline", "bicubic", "bilinear", "lanczos3"}));
     app.add_flag("--level-colouring", lod.level_colouring, "Tint each Gaussian by its LOD level");
+    app.add_option("--splat-budget", lod.splat_budget,
+                   "At most N Gaussians drawn per frame (0: none); above it the LOD cut moves to coarser levels")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     app.add_option("--load-distance-scale", c.settings.load_distance_scale,
                    "Load levels this much earlier than the on-axis bound")
         ->capture_default_str();
@@ -149,20 +153,16 @@ int run_profile(const CommandLine& c) {
     o.baseline_every = c.baseline_every;
     o.baseline_overview_every = c.baseline_overview_every;
     o.preload = !c.no_preload;
+    o.reference_supersample = c.supersample;
     sample_game::validate(o);  // before making a GL context: option errors come first
     const auto context = engine::HeadlessGlContext::create();
     std::fprintf(stderr, "sample_game: %s on %s\n", context->info().renderer.c_str(), context->info().platform.c_str());
     const sample_game::ProfileOutcome outcome = sample_game::run_profile(o, stderr);
-    o.reference_supersample = c.supersample;
     std::printf("%s", outcome.summary_text.c_str());
     if (!outcome.plot_problem.empty()) std::fprintf(stderr, "sample_game: %s\n", outcome.plot_problem.c_str());
     return 0;
 }
 
-int run_soak(const CommandLine& c) {
-    sample_game::SoakOptions o;
-    o.world = c.world;
-    o.out = c.out == "out/game" ? "out/soak" : c.out;
 int run_reference(const CommandLine& c) {
     sample_game::ReferenceOptions o;  // the profile's defaults, so that the profile finds it
     o.world = c.world;
@@ -180,6 +180,10 @@ int run_reference(const CommandLine& c) {
     return 0;
 }
 
+int run_soak(const CommandLine& c) {
+    sample_game::SoakOptions o;
+    o.world = c.world;
+    o.out = c.out == "out/game" ? "out/soak" : c.out;
     o.width = c.width > 0 ? c.width : 320;
     o.height = c.height > 0 ? c.height : 180;
     o.frames_per_lap = c.frames > 0 ? c.frames : 200;

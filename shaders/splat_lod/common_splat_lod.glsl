@@ -26,3 +26,37 @@ vec3 level_colour(uint level, vec3 colour) {
     float brightness = dot(colour, vec3(0.299, 0.587, 0.114));
     return tint[level - 1u] * (0.35 + 0.65 * clamp(brightness, 0.0, 1.0));
 }
+
+// The splat budget (splat_lod_shared.h): the β bins [x, y] in which the Gaussian is selected with its
+// coverage divided by β = 2^(b/8); empty when y < x. Bin 0 (β = 1) agrees with lod_selected exactly,
+// so a budget that does not bind changes nothing. "Not too large" holds from β ≥ S / (S_max·S_rel_max)
+// on, "not too small" up to β ≤ max(S / S_T, S / (S_min·S_rel_min)).
+ivec2 budget_bins(uint level, float coverage, float coverage_min, float coverage_max) {
+    const ivec2 none = ivec2(1, 0);
+    uint mode = frame.lod_levels.x, finest = frame.lod_levels.y, coarsest = frame.lod_levels.z;
+    bool all_levels = mode == SPLAT_LOD_MODE_INSERT_LARGE || mode == SPLAT_LOD_MODE_FULL;
+    if (!all_levels && level != finest) return none;
+    if (mode == SPLAT_LOD_MODE_BASELINE || mode == SPLAT_LOD_MODE_INSERT_LARGE) return ivec2(0, SPLAT_BUDGET_BINS - 1);
+    if (!(coverage >= 0.0)) return none;
+    bool large_ok = level == finest || coverage_max < 0.0 || coverage / coverage_max <= frame.lod_rule.z;
+    bool small_ok = level == coarsest || coverage_min < 0.0 || coverage >= frame.lod_rule.x ||
+                    coverage / coverage_min >= frame.lod_rule.y;
+    if (!small_ok) return none;
+    int lo = 0;
+    if (!large_ok) {
+        float beta = coverage / (coverage_max * frame.lod_rule.z);
+        lo = int(clamp(ceil(SPLAT_BUDGET_BINS_PER_OCTAVE * log2(beta)), 1.0, float(SPLAT_BUDGET_BINS)));
+    }
+    int hi = SPLAT_BUDGET_BINS - 1;
+    if (!(level == coarsest || coverage_min < 0.0)) {
+        float beta = max(coverage / frame.lod_rule.x, coverage / (coverage_min * frame.lod_rule.y));
+        hi = int(clamp(floor(SPLAT_BUDGET_BINS_PER_OCTAVE * log2(beta)), 0.0, float(SPLAT_BUDGET_BINS - 1)));
+    }
+    return ivec2(lo, hi);
+}
+
+// The coverage histogram's bin of a coverage in px (splat_lod_shared.h).
+uint coverage_bin(float coverage) {
+    float k = floor(SPLAT_BUDGET_BINS_PER_OCTAVE * log2(max(coverage, 1e-30)) + SPLAT_COVERAGE_BIN_OFFSET);
+    return uint(clamp(k, 0.0, float(SPLAT_COVERAGE_BINS - 1)));
+}

@@ -1,5 +1,6 @@
-// Step 1a, cluster skipping: one invocation per project workgroup's cluster (GpuCluster). Clusters
-// whose Gaussians are all too small for this view are counted and left out; the others are
+// Step 1a, cluster culling and skipping: one invocation per project workgroup's cluster
+// (GpuCluster). Clusters that the view frustum leaves out and clusters whose Gaussians are all too
+// small for this view are counted and left out; the others are
 // appended to the list that step 1b dispatches over (indirectly), so skipped Gaussians cost nothing
 // beyond their share of this pass. The list's order depends on scheduling, the result does not:
 // every Gaussian writes only its own slots.
@@ -21,6 +22,37 @@ const mat3 VIEW_TO_CAMERA = mat3(1, 0, 0, 0, -1, 0, 0, 0, -1);
 // every member that bound is below S_T and its ratio to S_min below S_rel_min, none is drawn.
 // Members of the coarsest level, members without S_min, and clusters reaching the near plane are
 // never skipped.
+// True when no member of the cluster can touch the image (exact: step 1b would cull every one).
+// A member at camera-space (x, y, z), z > 0, has its mean at u = cx + fx·x/z and reaches at most
+// r = √L·‖J‖₂·‖M‖₂·σ_max + √(L·dilation) pixels from it, with ‖J‖₂ ≤ j/z (the Jacobian's clamp, as in
+// skip_cluster) and √L·σ_max ≤ reach. So it misses the image's right side when
+// fx·x − a·z > reach·‖M‖₂·j with a = W + 1 + √(L_max·dilation) − cx (one pixel of margin), a
+// half-space test; the smallest value over the sphere of means is the centre's minus the radius
+// times the plane normal's length. Likewise left, top and bottom; and when the whole sphere lies
+// at z ≤ znear, step 1b culls every member at the near plane.
+bool cull_cluster(GpuCluster c) {
+    if (frame.options.x == 0u || !(c.reach.x >= 0.0) || c.bounds.w < 0.0) return false;
+    GpuInstance inst = instances[floatBitsToUint(c.bounds.w)];
+    float stretch = uintBitsToFloat(inst.info.w);
+    vec3 p = VIEW_TO_CAMERA * (frame.view * (inst.model * vec4(c.sphere.xyz, 1.0))).xyz;
+    float radius = c.sphere.w * stretch * 1.0001;
+    if (p.z + radius < frame.params.x) return true;
+    float fx = frame.focal_principal.x, fy = frame.focal_principal.y, lx = frame.image.z, ly = frame.image.w;
+    float j = sqrt(fx * fx * (1.0 + lx * lx) + fy * fy * (1.0 + ly * ly));
+    float reach = c.reach.x * stretch * j * 1.001 + 1e-3;
+    float margin = 1.0 + sqrt(2.0 * log(255.0) * frame.params.y) * 1.001;
+    // Planes n·p > reach with n = (±f, 0, −a) or (0, ±f, −a): a member is outside when n·p > reach.
+    vec4 sides[4] = vec4[](vec4(fx, 0.0, -(frame.image.x + margin - frame.focal_principal.z), 0.0),
+                           vec4(-fx, 0.0, -(frame.focal_principal.z + margin), 0.0),
+                           vec4(0.0, fy, -(frame.image.y + margin - frame.focal_principal.w), 0.0),
+                           vec4(0.0, -fy, -(frame.focal_principal.w + margin), 0.0));
+    for (int k = 0; k < 4; ++k) {
+        vec3 n = sides[k].xyz;
+        if (dot(n, p) - radius * length(n) > reach) return true;
+    }
+    return false;
+}
+
 bool skip_cluster(uint cluster) {
     uint mode = frame.lod_levels.x;
     if (frame.params.w < 0.5 || (mode != SPLAT_LOD_MODE_FILTER_SMALL && mode != SPLAT_LOD_MODE_FULL)) return false;
@@ -45,6 +77,10 @@ void main() {
     uint first = cluster * SPLAT_PROJECT_WORKGROUP_SIZE;
     if (first >= count) return;
     if (clusters[cluster].sphere.w < 0.0) return;  // an empty range of the scene (GpuScene): no members
+    if (cull_cluster(clusters[cluster])) {
+        atomicAdd(stats.skipping.y, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
+        return;
+    }
     if (skip_cluster(cluster)) {
         atomicAdd(stats.skipping.x, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
         return;

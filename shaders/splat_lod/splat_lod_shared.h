@@ -104,6 +104,7 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 #define SPLAT_BINDING_CLUSTER_LIST 11  // { uvec4 dispatch; uint ids[]; }: the clusters step 1b projects;
                                        // dispatch = its indirect arguments (x = clusters kept; the
                                        // CPU resets it to (0, 1, 1) each frame)
+#define SPLAT_BINDING_BUDGET 12       // SplatBudgetState: the splat budget's histograms and choice, per frame
 #define SPLAT_UNIFORM_FRAME 0          // FrameUniforms (uniform block binding)
 #define SPLAT_IMAGE_COLOR 0            // the frame's display-space colour (rgba8), read and written
 #define SPLAT_TEXTURE_VIEW_DEPTH 1     // the mesh pass's view depth (r32f), +inf where no mesh
@@ -117,6 +118,21 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 #define SPLAT_IMAGE_LOW_DXY 4
 #define SPLAT_IMAGE_LOW_FRONT 5
 #define SPLAT_UPSCALE_WORKGROUP_SIZE 8     // the upscale pass: 8×8 output pixels per workgroup
+
+// The splat budget (SplatPassSettings::splat_budget): when the selection would draw more than N
+// Gaussians, the frame selects as if every coverage were β times smaller, β = 2^(b/8) for the
+// smallest bin b whose count fits (an eighth of an octave per bin: the LOD cut moves to coarser
+// levels); if even the last bin does not fit, the smallest Gaussians of that cut are dropped by a
+// coverage histogram of the same resolution. Both histograms are filled by step 1b and read by
+// splat_budget.comp.glsl in the same frame, so no frame ever draws more than N.
+#define SPLAT_BUDGET_BINS 96           // β from 1 to 2^(95/8) ≈ 3700
+#define SPLAT_BUDGET_BINS_PER_OCTAVE 8.0
+#define SPLAT_COVERAGE_BINS 256        // coverage 2^(k/8 − 8) px: 1/256 px … ≈ 2^24 px
+#define SPLAT_COVERAGE_BIN_OFFSET 64.0 // 8 octaves below 1 px
+// Under a budget step 1b stores a splat's bins in ProjectedSplat::conic.w as float bits: first β bin
+// (bits 0–7), last β bin (8–15), coverage bin (16–23), level − 1 (24–25), and bit 30 set, which
+// keeps the value a normal float (no denormal flushing can change it).
+#define SPLAT_BUDGET_PACK_FLAG 0x40000000u
 
 // Gaussians with their 3D covariance precomputed (local space of the cloud).
 SPLAT_LOD_STRUCT(GpuGaussian) {
@@ -145,6 +161,9 @@ SPLAT_LOD_STRUCT(GpuCluster) {
                   // y: max over members of that extent / coverage_min (−1 when any member has no
                   //    coverage_min > 0: never skipped)
                   // z: highest member level; w: instance index as float bits, or −1 (mixed instances)
+    vec4 reach;   // x: max over members of sqrt(2·ln(255·o))·σ_max, how far (local units) a member's
+                  //    α = 1/255 ellipsoid reaches from its mean; −1: never frustum-culled
+                  //    (non-finite bounds); yzw unused
 };
 
 // A projected Gaussian, stored at its Gaussian index (entries of culled ones are not read).
@@ -166,6 +185,7 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     vec4 lod_rule;          // S_T (px), S_rel_min, S_rel_max, coverage scale: output px per raster px (1/s)
     uvec4 lod_levels;       // mode (SPLAT_LOD_MODE_*), finest level, coarsest level, level colouring (0/1)
     vec4 upscale;           // output width, height (px), render scale s, 1/s; image.xy is the raster size
+    uvec4 options;          // x: frustum culling (0/1), y: splat budget N (0: none), zw unused
 };
 
 // Written by the GPU each frame and read back asynchronously by the CPU.
@@ -175,7 +195,18 @@ SPLAT_LOD_STRUCT(FrameCounters) {
     uint keys_needed;   // tile-splat pairs this frame asked for
     uint overflowed;    // 1 when keys_needed > key capacity (the frame dropped pairs)
     uvec4 per_level;    // visible Gaussians per LOD level 1..4
-    uvec4 skipping;     // x: Gaussians in project workgroups skipped as too small (GpuCluster); yzw unused
+    uvec4 skipping;     // x: Gaussians in project workgroups skipped as too small (GpuCluster),
+                        // y: Gaussians in clusters culled by the view frustum; zw unused
+    uvec4 budget;       // x: β bin chosen (0: the budget did not bind), y: coverage bin below which the
+                        // last cut's Gaussians were dropped (0: none), z: Gaussians the selection
+                        // would have drawn without the budget, w unused
+};
+
+// The splat budget's per-frame state (SPLAT_BINDING_BUDGET), cleared by the CPU each frame.
+SPLAT_LOD_STRUCT(SplatBudgetState) {
+    uvec4 choice;                        // x: β bin, y: coverage cut bin, z: count at β = 1, w unused
+    uint selected[SPLAT_BUDGET_BINS];    // difference array: +1 at a Gaussian's first bin, −1 after its last
+    uint coverage[SPLAT_COVERAGE_BINS];  // Gaussians still selected at the last β bin, by coverage bin
 };
 
 #ifdef __cplusplus

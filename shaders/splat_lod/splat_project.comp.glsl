@@ -12,6 +12,7 @@ layout(std430, binding = SPLAT_BINDING_PROJECTED) writeonly buffer Projected { P
 layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) writeonly buffer TileCounts { uint tile_counts[]; };
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
+layout(std430, binding = SPLAT_BINDING_BUDGET) buffer Budget { SplatBudgetState budget; };
 
 #include "common_splat_sh.glsl"
 #include "common_splat_lod.glsl"
@@ -47,7 +48,11 @@ uint project(uint index) {
     // Selected by the coverage at the output resolution (what the viewer sees), also when the
     // splats are rasterised smaller for upscaling (ALGORITHMS §5).
     float coverage = pixel_coverage(cov, det_undilated, opacity) * frame.lod_rule.w;
-    if (!lod_selected(uint(g.lod.z), coverage, g.lod.x, g.lod.y)) return 0u;
+    // Under a splat budget every Gaussian selected at some β is projected; the budget pass then
+    // picks β and the trim pass keeps those selected at it.
+    bool budgeted = frame.options.y != 0u;
+    ivec2 bins = budgeted ? budget_bins(uint(g.lod.z), coverage, g.lod.x, g.lod.y) : ivec2(0);
+    if (budgeted ? bins.y < bins.x : !lod_selected(uint(g.lod.z), coverage, g.lod.x, g.lod.y)) return 0u;
     float dilation = frame.params.y;
     cov[0][0] += dilation;
     cov[1][1] += dilation;
@@ -73,10 +78,19 @@ uint project(uint index) {
     uint level = clamp(uint(g.lod.z), 1u, 4u);
     if (frame.lod_levels.w != 0u) color = level_colour(level, color);  // debug view
 
-    projected[index] = ProjectedSplat(vec4(mean, z, opacity), vec4(cov[1][1], -cov[0][1], cov[0][0], 0.0) / det,
-                                      vec4(color, 0.0), rect);
-    atomicAdd(stats.visible, 1u);
-    atomicAdd(stats.per_level[level - 1u], 1u);
+    vec4 conic = vec4(vec3(cov[1][1], -cov[0][1], cov[0][0]) / det, 0.0);
+    if (budgeted) {
+        uint cbin = coverage_bin(coverage);
+        conic.w = uintBitsToFloat(SPLAT_BUDGET_PACK_FLAG | uint(bins.x) | (uint(bins.y) << 8) | (cbin << 16) |
+                                  ((level - 1u) << 24));
+        atomicAdd(budget.selected[bins.x], 1u);
+        if (bins.y + 1 < SPLAT_BUDGET_BINS) atomicAdd(budget.selected[bins.y + 1], 0xFFFFFFFFu);  // −1
+        else atomicAdd(budget.coverage[cbin], 1u);
+    } else {
+        atomicAdd(stats.visible, 1u);
+        atomicAdd(stats.per_level[level - 1u], 1u);
+    }
+    projected[index] = ProjectedSplat(vec4(mean, z, opacity), conic, vec4(color, 0.0), rect);
     return (rect.z - rect.x) * (rect.w - rect.y);
 }
 

@@ -29,9 +29,10 @@ protected:
 };
 
 engine::Image render_mode(engine::test::SplatRenderHarness& harness, const std::shared_ptr<const splat_lod::SplatCloud>& cloud,
-                          const engine::CameraView& camera, plugin_msgs::LodMode mode) {
+                          const engine::CameraView& camera, plugin_msgs::LodMode mode, std::uint32_t splat_budget = 0) {
     plugin_msgs::LodSettings lod;
     lod.mode = mode;
+    lod.splat_budget = splat_budget;
     harness.engine().bus().publish(lod);
     return harness.render({cloud}, camera);
 }
@@ -113,6 +114,134 @@ TEST_F(SplatBakeRenderTest, ClusterSkippingChangesNothingButTheWork) {
             if (pass->latest_statistics()->skipped > 0) skipped_somewhere = true;
         }
     EXPECT_TRUE(skipped_somewhere) << "far away, whole clusters of small Gaussians are skipped";
+}
+
+// A pose at `eye` looking at `target` (up made orthogonal to the view).
+eval::CameraPose look_at(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up_hint, float fov_y) {
+    eval::CameraPose pose;
+    pose.eye = eye;
+    pose.forward = glm::normalize(target - eye);
+    pose.up = glm::normalize(up_hint - glm::dot(up_hint, pose.forward) * pose.forward);
+    pose.fov_y = fov_y;
+    pose.focus_distance = glm::length(target - eye);
+    return pose;
+}
+
+TEST_F(SplatBakeRenderTest, FrustumCullingChangesNothingButTheWork) {
+    // Clusters outside the view are dropped before projection, and that must be invisible: the same
+    // bytes and per-level counts with it on and off, from inside the garden looking every way, from
+    // outside with it half out of view, in every mode, natively and at a third of the resolution.
+    const auto garden = bake_garden(0);
+    const auto& extent = garden.extent;
+    const glm::vec3 up(0, 1, 0);
+    const auto cloud = std::make_shared<const splat_lod::SplatCloud>(garden.baked);
+    auto* pass = splat_lod::find_splat_pass(harness.engine().renderer());
+    std::vector<eval::CameraPose> poses;
+    for (int k = 0; k < 4; ++k) {  // inside, looking out in four directions
+        const float a = 1.5707963f * static_cast<float>(k);
+        poses.push_back(look_at(extent.centre, extent.centre + glm::vec3(std::cos(a), 0.0f, std::sin(a)), up, 0.9f));
+    }
+    const auto orbit = eval::orbit_poses(extent, up, 1).front();
+    const glm::vec3 target = orbit.eye + orbit.forward * orbit.focus_distance;
+    const glm::vec3 aside = glm::normalize(glm::cross(orbit.forward, up)) * extent.radius;
+    poses.push_back(look_at(orbit.eye, target + aside, up, orbit.fov_y));               // half out of view
+    poses.push_back(look_at(orbit.eye, 2.0f * orbit.eye - target, up, orbit.fov_y));   // facing away
+    std::uint64_t culled = 0;
+    for (std::size_t p = 0; p < poses.size(); ++p)
+        for (const auto mode : {plugin_msgs::LodMode::full, plugin_msgs::LodMode::baseline})
+            for (const float scale : {1.0f, 1.0f / 3.0f}) {
+                SCOPED_TRACE("pose " + std::to_string(p) + ", " + std::string(plugin_msgs::to_string(mode)) +
+                             ", render scale " + std::to_string(scale));
+                const auto view = eval::make_view(poses[p], 120, 90);
+                pass->settings.render_scale = scale;
+                pass->settings.frustum_culling = false;
+                const auto without = render_mode(harness, cloud, view, mode);
+                const auto stats_without = *pass->latest_statistics();
+                pass->settings.frustum_culling = true;
+                const auto with = render_mode(harness, cloud, view, mode);
+                EXPECT_EQ(with.rgba, without.rgba);
+                EXPECT_EQ(pass->latest_statistics()->per_level, stats_without.per_level);
+                EXPECT_EQ(stats_without.culled, 0u);
+                culled += pass->latest_statistics()->culled;
+            }
+    pass->settings.render_scale = 1.0f;
+    EXPECT_GT(culled, 0u) << "clusters behind and beside the view are culled";
+}
+
+TEST_F(SplatBakeRenderTest, FrustumCullingKeepsGaussiansWhoseTailsReachIntoTheView) {
+    // A cluster of wide Gaussians just left of the view, their means outside it, their 1/255 tails
+    // inside: the bound must not drop them (and far beyond the tails it does).
+    const engine::CameraView view = eval::make_view(look_at(glm::vec3(0, 0, 5), glm::vec3(0), glm::vec3(0, 1, 0), 1.0472f), 96, 64);
+    auto* pass = splat_lod::find_splat_pass(harness.engine().renderer());
+    for (const float x : {-5.2f, -40.0f}) {
+        std::vector<engine::test::GaussianSpec> specs(256);
+        for (std::size_t i = 0; i < specs.size(); ++i) {
+            specs[i].position = glm::vec3(x, -0.5f + static_cast<float>(i) / 256.0f, 0.0f);
+            specs[i].log_scale = glm::vec3(std::log(0.8f));
+            specs[i].color = glm::vec3(0.9f, 0.6f, 0.2f);
+        }
+        const auto cloud = std::make_shared<const splat_lod::SplatCloud>(engine::test::make_cloud(specs));
+        pass->settings.frustum_culling = false;
+        const auto without = render_mode(harness, cloud, view, plugin_msgs::LodMode::baseline);
+        const auto visible_without = pass->latest_statistics()->visible;
+        pass->settings.frustum_culling = true;
+        const auto with = render_mode(harness, cloud, view, plugin_msgs::LodMode::baseline);
+        EXPECT_EQ(with.rgba, without.rgba);
+        if (x > -6.0f) {
+            EXPECT_GT(visible_without, 0u) << "the tails reach into the image";
+            EXPECT_EQ(pass->latest_statistics()->culled, 0u);
+        } else {
+            EXPECT_EQ(visible_without, 0u);
+            EXPECT_EQ(pass->latest_statistics()->culled, 256u) << "far outside, the whole cluster is culled";
+        }
+    }
+}
+
+TEST_F(SplatBakeRenderTest, SplatBudgetIsNeverExceededAndChangesNothingWhenItFits) {
+    const auto garden = bake_garden(0);
+    const auto cloud = std::make_shared<const splat_lod::SplatCloud>(garden.baked);
+    auto* pass = splat_lod::find_splat_pass(harness.engine().renderer());
+    const auto pose = eval::orbit_poses(garden.extent, glm::vec3(0, 1, 0), 1).front();
+    const auto view = eval::make_view(eval::dolly(pose, 0.6f), 128, 96);
+    for (const auto mode : {plugin_msgs::LodMode::full, plugin_msgs::LodMode::baseline}) {
+        SCOPED_TRACE(std::string(plugin_msgs::to_string(mode)));
+        const auto free = render_mode(harness, cloud, view, mode);
+        const plugin_msgs::SplatStatistics unbudgeted = *pass->latest_statistics();
+        ASSERT_GT(unbudgeted.visible, 1000u);
+        EXPECT_EQ(unbudgeted.unbudgeted, unbudgeted.visible);
+
+        // Fits exactly.
+        const auto fitting = render_mode(harness, cloud, view, mode, static_cast<std::uint32_t>(unbudgeted.visible));
+        EXPECT_EQ(fitting.rgba, free.rgba);
+        EXPECT_EQ(pass->latest_statistics()->visible, unbudgeted.visible);
+        EXPECT_EQ(pass->latest_statistics()->budget_scale, 1.0);
+
+        double previous_psnr = 1e9;
+        for (const double share : {0.7, 0.3, 0.05}) {
+            const auto budget = static_cast<std::uint32_t>(share * static_cast<double>(unbudgeted.visible));
+            const auto image = render_mode(harness, cloud, view, mode, budget);
+            const auto& s = *pass->latest_statistics();
+            SCOPED_TRACE("budget " + std::to_string(budget));
+            EXPECT_LE(s.visible, budget);
+            EXPECT_GT(s.visible, 0u);
+            EXPECT_EQ(s.per_level[0] + s.per_level[1] + s.per_level[2] + s.per_level[3], s.visible);
+            EXPECT_EQ(s.unbudgeted, unbudgeted.visible);
+            EXPECT_GT(s.budget_threshold_px, 0.0);
+            if (mode == plugin_msgs::LodMode::baseline) {  // no coarser level to go to: the smallest go
+                EXPECT_GT(s.budget_coverage_cut_px, 0.0);
+                EXPECT_EQ(s.budget_scale, 1.0);
+            } else
+                EXPECT_TRUE(s.budget_scale > 1.0 || s.budget_coverage_cut_px > 0.0);
+            const double psnr = eval::psnr(eval::to_float(image), eval::to_float(free));
+            RecordProperty(std::string(plugin_msgs::to_string(mode)) + "_psnr_at_" + std::to_string(share), std::to_string(psnr));
+            EXPECT_LE(psnr, previous_psnr + 0.5) << "a smaller budget does not get closer to the free frame";
+            previous_psnr = psnr;
+        }
+        for (const std::uint32_t tiny : {1u, 17u}) {  // even the coarsest cut is too many
+            render_mode(harness, cloud, view, mode, tiny);
+            EXPECT_LE(pass->latest_statistics()->visible, tiny);
+        }
+    }
 }
 
 }  // namespace

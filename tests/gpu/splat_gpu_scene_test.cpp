@@ -57,7 +57,7 @@ TEST_F(SplatGpuSceneTest, ArrivingCloudsUploadOnlyTheirOwnBytes) {
     // Bytes per Gaussian slot: 64 (GpuGaussian) + 12 (SH degree 0) + a cluster record per 256.
     const auto slot_bytes = [](std::uint64_t count) {
         const std::uint64_t span = (count + 255) / 256 * 256;
-        return span * (64 + 12) + span / 256 * 32;
+        return span * (64 + 12) + span / 256 * sizeof(splat_lod::gpu::GpuCluster);
     };
     EXPECT_EQ(first, slot_bytes(700));
     EXPECT_EQ(second, slot_bytes(300));

@@ -240,12 +240,12 @@ glm::vec3 before_chunk_0_0(float d) {
 TEST(StreamPolicy, GpuBytesDistancesAndLoadDistances) {
     EXPECT_EQ(sw::gpu_bytes(1, 3), 256u);
     EXPECT_EQ(sw::gpu_bytes(10, 0), 760u);
-    // As the incremental GPU scene stores uploads: whole pages of 256 slots plus a 32-byte cluster.
+    // As the incremental GPU scene stores uploads: whole pages of 256 slots plus a 48-byte cluster.
     const sw::PageLayout pages;
     EXPECT_EQ(sw::gpu_bytes(0, 0, pages), 0u);
-    EXPECT_EQ(sw::gpu_bytes(1, 0, pages), 256u * 76u + 32u);
-    EXPECT_EQ(sw::gpu_bytes(300, 0, pages), 2u * (256u * 76u + 32u));
-    EXPECT_EQ(sw::max_gaussians_within(3u * (256u * 76u + 32u) - 1u, 0, pages), 512u);
+    EXPECT_EQ(sw::gpu_bytes(1, 0, pages), 256u * 76u + 48u);
+    EXPECT_EQ(sw::gpu_bytes(300, 0, pages), 2u * (256u * 76u + 48u));
+    EXPECT_EQ(sw::max_gaussians_within(3u * (256u * 76u + 48u) - 1u, 0, pages), 512u);
     EXPECT_EQ(sw::max_gaussians_within(100u, 0, pages), 0u);
     const sw::ChunkEntry e = make_chunk(0, 0);
     EXPECT_EQ(sw::nearest_distance(e, {5.0f, 1.0f, 5.0f}), 0.0f);

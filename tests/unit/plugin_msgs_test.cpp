@@ -91,6 +91,7 @@ TEST(PluginMsgs, LodSettingsDefaultsFollowTheDesign) {
     EXPECT_EQ(settings.upscaler, Upscaler::spline);
     EXPECT_FALSE(settings.mip_filter);
     EXPECT_FALSE(settings.level_colouring);
+    EXPECT_EQ(settings.splat_budget, 0u);  // no budget unless asked for
     EXPECT_EQ(settings.validate(), "");
     EXPECT_EQ(json::parse("{}").get<LodSettings>(), settings);  // missing keys keep defaults
 }
@@ -107,6 +108,7 @@ TEST(PluginMsgs, LodSettingsRoundTripEveryModeAndUpscaler) {
             settings.render_scale = 1.0f / 3.0f;
             settings.mip_filter = true;
             settings.level_colouring = true;
+            settings.splat_budget = 200000;
             expect_round_trip(settings);
         }
     }
@@ -120,6 +122,15 @@ TEST(PluginMsgs, LodSettingsEnumsTravelAsNames) {
     EXPECT_EQ(j.at("mode"), "insert_large");
     EXPECT_EQ(j.at("upscaler"), "lanczos3");
     EXPECT_EQ(to_string(LodMode::filter_small), "filter_small");
+}
+
+TEST(PluginMsgs, LodSettingsRejectABudgetThatIsNotACount) {
+    expect_rejected<LodSettings>({
+        {R"({"splat_budget": -5})", "lod_settings.splat_budget: expected a non-negative integer, got -5"},
+        {R"({"splat_budget": 1.5})", "lod_settings.splat_budget: expected a non-negative integer"},
+        {R"({"splat_budget": 5000000000})", "lod_settings.splat_budget: 5000000000 is out of range"},
+        {R"({"splat_budget": "200k"})", "lod_settings.splat_budget"},
+    });
 }
 
 TEST(PluginMsgs, LodSettingsRejectBadEnumNamesNamingTheKey) {

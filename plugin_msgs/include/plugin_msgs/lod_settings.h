@@ -50,6 +50,9 @@ struct LodSettings {
     Upscaler upscaler = Upscaler::spline;
     bool mip_filter = false;         // Mip-Splatting's 2D filter, the anti-aliasing baseline (§1)
     bool level_colouring = false;    // debug view: tint each Gaussian by its LOD level
+    // At most this many Gaussians drawn per frame (0: no budget): above it the frame's LOD cut moves
+    // to coarser levels (as if its size threshold and coverage ranges were larger), chosen on the GPU.
+    std::uint32_t splat_budget = 0;
 
     // Empty when the settings are usable, otherwise "lod_settings.<key>: <why>".
     std::string validate() const;
@@ -89,7 +92,8 @@ inline void to_json(nlohmann::json& json, const LodSettings& s) {
                           {"render_scale", s.render_scale},
                           {"upscaler", s.upscaler},
                           {"mip_filter", s.mip_filter},
-                          {"level_colouring", s.level_colouring}};
+                          {"level_colouring", s.level_colouring},
+                          {"splat_budget", s.splat_budget}};
 }
 
 // Missing keys keep their defaults; unknown keys, wrong types, unknown enum names and values
@@ -98,7 +102,7 @@ inline void from_json(const nlohmann::json& json, LodSettings& s) {
     constexpr auto kind = LodSettings::kind;
     detail::require_object(json, kind);
     detail::only_keys(json, kind, {"mode", "size_threshold_px", "rel_min", "rel_max", "render_scale", "upscaler",
-                                   "mip_filter", "level_colouring"});
+                                   "mip_filter", "level_colouring", "splat_budget"});
     LodSettings read;
     detail::read(json, kind, "mode", read.mode);
     detail::read(json, kind, "size_threshold_px", read.size_threshold_px);
@@ -108,6 +112,7 @@ inline void from_json(const nlohmann::json& json, LodSettings& s) {
     detail::read(json, kind, "upscaler", read.upscaler);
     detail::read(json, kind, "mip_filter", read.mip_filter);
     detail::read(json, kind, "level_colouring", read.level_colouring);
+    detail::read(json, kind, "splat_budget", read.splat_budget);
     if (const std::string error = read.validate(); !error.empty()) throw std::invalid_argument(error);
     s = read;
 }

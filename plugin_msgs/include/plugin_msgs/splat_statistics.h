@@ -17,6 +17,17 @@ struct SplatStatistics {
     std::uint64_t visible = 0;             // after culling (and LOD selection)
     std::array<std::uint64_t, 4> per_level{0, 0, 0, 0};  // visible per LOD level 1..4
     std::uint64_t skipped = 0;             // not projected: in clusters too small to select (LOD modes)
+    std::uint64_t culled = 0;              // not projected: in clusters outside the view frustum
+    // The splat budget (LodSettings::splat_budget; 0: none). `unbudgeted` is what the selection would
+    // have drawn without it; the frame selected with coverage divided by `budget_scale` (β ≥ 1), i.e.
+    // with a size threshold of `budget_threshold_px` = β·S_T and coverage ranges β times larger, and
+    // dropped Gaussians of coverage below `budget_coverage_cut_px` (0: none) when even the coarsest
+    // cut did not fit.
+    std::uint64_t splat_budget = 0;
+    std::uint64_t unbudgeted = 0;
+    double budget_scale = 1.0;
+    double budget_threshold_px = 0.0;
+    double budget_coverage_cut_px = 0.0;
     std::uint64_t tile_splat_pairs = 0;    // keys the frame needed
     std::uint64_t key_capacity = 0;
     bool overflowed = false;               // the frame needed more keys than the capacity (grown after)
@@ -26,6 +37,8 @@ struct SplatStatistics {
 };
 
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(SplatStatistics, frame_index, considered, visible, per_level,
-                                                skipped, tile_splat_pairs, key_capacity, overflowed, resident_bytes)
+                                                skipped, culled, splat_budget, unbudgeted, budget_scale,
+                                                budget_threshold_px, budget_coverage_cut_px, tile_splat_pairs,
+                                                key_capacity, overflowed, resident_bytes)
 
 }  // namespace plugin_msgs

@@ -39,6 +39,9 @@ struct FrameRecord {
     int redraws = 0;  // frames drawn again because the key buffer overflowed (it grows after each)
 
     std::uint64_t considered = 0, visible = 0, skipped = 0, tile_splat_pairs = 0;
+    std::uint64_t culled = 0;           // Gaussians in clusters outside the view frustum, dropped before projection
+    std::uint64_t unbudgeted = 0;       // what the selection would draw without the splat budget (= visible without one)
+    double budget_threshold_px = 0.0;   // the size threshold the frame selected with (S_T × the budget's β)
     std::array<std::uint64_t, 4> drawn_per_level{};  // visible per LOD level 1..4
 
     std::uint64_t resident_bytes = 0;   // the streamer's count of resident GPU bytes (pages)
@@ -52,9 +55,6 @@ struct FrameRecord {
     // Baseline rows only: the LOD run's image of the same path frame against this one (every chunk
     // resident, `baseline` mode) as the reference; −1 where not compared.
     double psnr_lod_vs_baseline = -1.0, ssim_lod_vs_baseline = -1.0;
-};
-
-struct FrameColumn {
     // Rows of a frame with a cached reference (reference_cache.h): this row's image against it; −1
     // where the frame has none.
     double psnr_vs_reference = -1.0, ssim_vs_reference = -1.0;
@@ -62,6 +62,9 @@ struct FrameColumn {
     // ±4 px of the projected chunk borders divided by that elsewhere (chunk_borders.h); −1 on
     // baseline rows, frames without a reference, and frames without border or error to compare.
     double seam_ratio = -1.0;
+};
+
+struct FrameColumn {
     std::string name;
     std::string meaning;
     std::function<std::string(const FrameRecord&)> value;

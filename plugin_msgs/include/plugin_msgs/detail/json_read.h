@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <initializer_list>
 #include <limits>
 #include <optional>
@@ -47,6 +48,8 @@ void check_number_kind(const nlohmann::json& value, std::string_view kind, std::
     } else if constexpr (std::is_unsigned_v<T>) {
         if (!value.is_number_unsigned())
             field_error(kind, key, "expected a non-negative integer, got " + value.dump());
+        if (value.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<T>::max()))
+            field_error(kind, key, value.dump() + " is out of range");
     } else if constexpr (std::is_integral_v<T>) {
         if (!value.is_number_integer()) field_error(kind, key, "expected an integer, got " + value.dump());
     } else if constexpr (std::is_floating_point_v<T>) {

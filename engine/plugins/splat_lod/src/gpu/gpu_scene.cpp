@@ -14,6 +14,7 @@
 #include "engine/scene/node.h"
 #include "splat_lod/splat_component.h"
 #include "splat_lod/world/gaussian_extent.h"
+#include "splat_lod/world/stream_policy.h"
 
 namespace splat_lod::gpu {
 namespace {
@@ -105,6 +106,7 @@ std::vector<GpuCluster> build_clusters(const std::vector<const SplatCloud*>& clo
             if (first) {
                 c.sphere = glm::vec4(0.0f);
                 c.bounds = glm::vec4(0.0f, 0.0f, 0.0f, std::bit_cast<float>(instance));
+                c.reach = glm::vec4(0.0f);
             } else if (std::bit_cast<std::uint32_t>(c.bounds.w) != instance) {
                 c.bounds.w = -1.0f;  // spans two instances: never skipped
             }
@@ -113,6 +115,9 @@ std::vector<GpuCluster> build_clusters(const std::vector<const SplatCloud*>& clo
             // The shorter chord's bound (world/gaussian_extent.h): coverage ≤ 2·e·‖M‖₂·‖J‖₂.
             const double extent = world::gaussian_extent(cloud.log_scales[i], cloud.opacity_logits[i]);
             c.bounds.x = std::max(c.bounds.x, static_cast<float>(extent));
+            // The frustum test's reach: the whole α = 1/255 ellipsoid, rounded up.
+            const double reach = world::gaussian_reach(cloud.log_scales[i], cloud.opacity_logits[i]);
+            c.reach.x = std::max(c.reach.x, static_cast<float>(reach * (1.0 + 1e-5)));
             // The ratio, not the smallest coverage_min: one tiny member would otherwise pin the
             // whole cluster, while e / S_min is about the same for neighbours seen from the same
             // distances.
@@ -147,6 +152,7 @@ std::vector<GpuCluster> build_clusters(const std::vector<const SplatCloud*>& clo
         // A non-finite bound (a Gaussian at 1e38, say) disables the cluster rather than culling wrongly.
         const glm::vec4 v = clusters[c].sphere;
         if (!std::isfinite(v.x + v.y + v.z + v.w) || !std::isfinite(clusters[c].bounds.x)) clusters[c].bounds.y = -1.0f;
+        if (!std::isfinite(v.x + v.y + v.z + v.w) || !std::isfinite(clusters[c].reach.x)) clusters[c].reach.x = -1.0f;
     }
     return clusters;
 }
@@ -173,12 +179,16 @@ float spectral_norm(const glm::mat3& m) {
 namespace {
 
 constexpr std::uint32_t kCluster = SPLAT_PROJECT_WORKGROUP_SIZE;
+// The streamer counts bytes the way this scene stores them (stream_policy.h).
+static_assert(world::PageLayout{}.page_gaussians == kCluster);
+static_assert(world::PageLayout{}.page_overhead_bytes == sizeof(GpuCluster));
 
 // A cluster with no members: step 1a drops it in every mode (sphere radius < 0).
 GpuCluster empty_cluster() {
     GpuCluster c{};
     c.sphere = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
     c.bounds = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);
+    c.reach = glm::vec4(-1.0f, 0.0f, 0.0f, 0.0f);
     return c;
 }
 

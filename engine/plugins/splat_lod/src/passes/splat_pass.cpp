@@ -44,6 +44,7 @@ void SplatPass::apply(const plugin_msgs::LodSettings& lod) {
     settings.level_colouring = lod.level_colouring;
     settings.render_scale = lod.render_scale;
     settings.upscaler = lod.upscaler;
+    settings.splat_budget = lod.splat_budget;
 }
 SplatPass::~SplatPass() = default;
 
@@ -58,6 +59,8 @@ void SplatPass::ensure_frame_buffers(std::uint32_t gaussians, std::uint32_t tile
         args_.storage(sizeof(glm::uvec4));
         count_ = engine::gl::Buffer("splat gaussian count");
         count_.storage(sizeof(std::uint32_t));
+        budget_ = engine::gl::Buffer("splat budget");
+        budget_.storage(sizeof(gpu::SplatBudgetState));
         for (auto& r : readbacks_) {
             r.buffer = engine::gl::Buffer("splat counters readback");
             r.buffer.storage(sizeof(gpu::FrameCounters), nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
@@ -103,6 +106,7 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, const R
     u.lod_levels = glm::uvec4(static_cast<std::uint32_t>(lod.mode), static_cast<std::uint32_t>(lod.finest_level),
                               scene_.coarsest_level(), settings.level_colouring ? 1u : 0u);
     u.upscale = glm::vec4(frame.target.width(), frame.target.height(), s, 1.0f / s);
+    u.options = glm::uvec4(settings.frustum_culling ? 1u : 0u, settings.splat_budget, 0u, 0u);
     uniforms_.upload(0, sizeof(u), &u);
     const std::uint32_t count = scene_.gaussian_count();
     count_.upload(0, sizeof(count), &count);
@@ -148,7 +152,8 @@ void SplatPass::bind_all(const engine::FrameContext& frame) {
         {SPLAT_BINDING_CLUSTERS, scene_.clusters().id()},   {SPLAT_BINDING_CLUSTER_LIST, cluster_list_.id()},
         {SPLAT_BINDING_TILE_COUNTS, tile_counts_.id()},     {SPLAT_BINDING_KEYS, keys_.id()},
         {SPLAT_BINDING_VALUES, values_.id()},               {SPLAT_BINDING_TILE_RANGES, tile_ranges_.id()},
-        {SPLAT_BINDING_STATS, counters_.id()},              {SPLAT_BINDING_ARGS, args_.id()}};
+        {SPLAT_BINDING_STATS, counters_.id()},              {SPLAT_BINDING_ARGS, args_.id()},
+        {SPLAT_BINDING_BUDGET, budget_.id()}};
     for (const auto& [binding, buffer] : storage) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer);
     glBindImageTexture(SPLAT_IMAGE_COLOR, frame.target.color().id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
     glBindTextureUnit(SPLAT_TEXTURE_VIEW_DEPTH, frame.target.view_depth().id());
@@ -180,6 +185,7 @@ void SplatPass::execute(engine::FrameContext& frame) {
     ensure_frame_buffers(n, tiles_x * tiles_y);
     upload_frame_uniforms(frame, raster);
     glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    if (settings.splat_budget > 0) glClearNamedBufferData(budget_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     glClearNamedBufferData(tile_ranges_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     // Gaussians of skipped clusters are never visited: their tile counts stay 0.
     glClearNamedBufferData(tile_counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
@@ -187,7 +193,8 @@ void SplatPass::execute(engine::FrameContext& frame) {
     cluster_list_.upload(0, sizeof(no_clusters), &no_clusters);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 
-    {  // 1. a: skip clusters too small for the view; b: cull + project + SH colour, tiles touched
+    {  // 1. a: cull clusters outside the frustum, skip those too small for the view; b: cull + project
+       //    + SH colour, tiles touched; under a splat budget c: choose β, d: keep what is selected at it
         GpuTimerScope t(frame.timers, "splat.project");
         bind_all(frame);
         glUseProgram(program(frame, "splat_clusters.comp.glsl").id());
@@ -197,6 +204,14 @@ void SplatPass::execute(engine::FrameContext& frame) {
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, cluster_list_.id());
         glDispatchComputeIndirect(0);
         barrier();
+        if (settings.splat_budget > 0) {
+            glUseProgram(program(frame, "splat_budget.comp.glsl").id());
+            glDispatchCompute(1, 1, 1);
+            barrier();
+            glUseProgram(program(frame, "splat_budget_trim.comp.glsl").id());
+            glDispatchComputeIndirect(0);
+            barrier();
+        }
     }
     {  // 2. exclusive scan of tile counts: each splat's key range; the total lands at [n]
         GpuTimerScope t(frame.timers, "splat.scan");
@@ -257,6 +272,8 @@ void SplatPass::record_statistics(engine::FrameContext& frame) {
     r.fence.insert();
     r.frame = frame.frame_index;
     r.considered = scene_.live_gaussians();
+    r.splat_budget = settings.splat_budget;
+    r.size_threshold_px = settings.lod.size_threshold_px;
     r.resident_bytes = scene_.resident_bytes() + projected_.size() + tile_counts_.size() + keys_.size() +
                        values_.size() + tile_ranges_.size() + cluster_list_.size() + low_res_bytes();
     ++frames_;
@@ -276,6 +293,15 @@ void SplatPass::collect_statistics(engine::MessageBus& bus, bool wait) {
         s.visible = c.visible;
         for (int l = 0; l < 4; ++l) s.per_level[static_cast<std::size_t>(l)] = c.per_level[l];
         s.skipped = c.skipping.x;
+        s.culled = c.skipping.y;
+        s.splat_budget = r.splat_budget;
+        s.unbudgeted = r.splat_budget > 0 ? c.budget.z : c.visible;
+        s.budget_scale = r.splat_budget > 0 ? std::exp2(static_cast<double>(c.budget.x) / SPLAT_BUDGET_BINS_PER_OCTAVE) : 1.0;
+        s.budget_threshold_px = s.budget_scale * r.size_threshold_px;
+        s.budget_coverage_cut_px =
+            r.splat_budget > 0 && c.budget.y > 0
+                ? std::exp2((static_cast<double>(c.budget.y) - SPLAT_COVERAGE_BIN_OFFSET) / SPLAT_BUDGET_BINS_PER_OCTAVE)
+                : 0.0;
         s.tile_splat_pairs = c.keys_needed;
         s.key_capacity = key_capacity_;
         s.overflowed = c.overflowed != 0;

@@ -32,6 +32,14 @@ struct SplatPassSettings {
     // Skip whole project workgroups whose Gaussians are all too small to be selected (exact: the
     // image and counts are the same either way; off only to measure what it saves).
     bool cluster_skipping = true;
+    // Drop whole clusters that the view frustum leaves out before per-Gaussian work (exact, like the
+    // skipping; off only to measure what it saves and to test that the image does not change).
+    bool frustum_culling = true;
+    // At most this many Gaussians drawn per frame (0: no budget). When the selection would draw more,
+    // the frame selects as if every coverage were β times smaller (S_T and the coverage ranges β times
+    // larger: coarser levels), the smallest β in eighth-octave steps that fits, chosen on the GPU in
+    // the same frame; if even β ≈ 3700 does not fit, the smallest of those Gaussians are dropped.
+    std::uint32_t splat_budget = 0;
     // Gradient-aware upscaling (ALGORITHMS §5): below 1 the splats are rasterised at this fraction
     // of the output size, with their analytic image derivatives, and brought to the output by
     // `upscaler` before compositing over the mesh pass. Outside (0, 1] execute() throws engine::Error.
@@ -81,6 +89,8 @@ private:
         std::uint64_t frame = 0;
         std::uint64_t resident_bytes = 0;
         std::uint64_t considered = 0;
+        std::uint32_t splat_budget = 0;
+        float size_threshold_px = 0.0f;
     };
     // What the tile raster draws this frame: the output size at render scale 1, else the
     // low-resolution size of splat_lod/upscale.h.
@@ -108,7 +118,7 @@ private:
     engine::gl::Buffer uniforms_{engine::gl::NoCreate}, projected_{engine::gl::NoCreate},
         tile_counts_{engine::gl::NoCreate}, keys_{engine::gl::NoCreate}, values_{engine::gl::NoCreate},
         tile_ranges_{engine::gl::NoCreate}, counters_{engine::gl::NoCreate}, args_{engine::gl::NoCreate},
-        count_{engine::gl::NoCreate}, cluster_list_{engine::gl::NoCreate};
+        count_{engine::gl::NoCreate}, cluster_list_{engine::gl::NoCreate}, budget_{engine::gl::NoCreate};
     struct LowResImages {
         int width = 0, height = 0;
         std::array<engine::gl::Texture, 4> images{engine::gl::Texture(engine::gl::NoCreate), engine::gl::Texture(engine::gl::NoCreate),

@@ -2,7 +2,9 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <memory>
 
 #include "engine/ui/overlay.h"
@@ -55,6 +57,10 @@ void LodPanel::draw() {
     ImGui::DragFloat("rel max", &edit.rel_max, 0.01f, 0.01f, 8.0f, "%.2f");
     ImGui::Checkbox("mip filter", &edit.mip_filter);
     ImGui::Checkbox("level colouring", &edit.level_colouring);
+    // The splat budget in thousands of Gaussians per frame (0: none).
+    int budget_k = static_cast<int>(edit.splat_budget / 1000);
+    if (ImGui::DragInt("splat budget (k, 0: none)", &budget_k, 5.0f, 0, 100000))
+        edit.splat_budget = static_cast<std::uint32_t>(std::max(budget_k, 0)) * 1000u;
     ImGui::Separator();
     // Render scale as its inverse, the upscaling factor: 1 is native, 3 renders a third as wide.
     float factor = 1.0f / edit.render_scale;
@@ -75,8 +81,13 @@ void LodPanel::draw() {
         return;
     }
     const auto& s = *statistics_;
-    ImGui::Text("visible %llu of %llu, skipped %llu", static_cast<unsigned long long>(s.visible),
-                static_cast<unsigned long long>(s.considered), static_cast<unsigned long long>(s.skipped));
+    ImGui::Text("visible %llu of %llu, culled %llu, skipped %llu", static_cast<unsigned long long>(s.visible),
+                static_cast<unsigned long long>(s.considered), static_cast<unsigned long long>(s.culled),
+                static_cast<unsigned long long>(s.skipped));
+    if (s.splat_budget > 0)
+        ImGui::Text("budget %llu: would draw %llu; threshold %.2f px (x%.2f)%s",
+                    static_cast<unsigned long long>(s.splat_budget), static_cast<unsigned long long>(s.unbudgeted),
+                    s.budget_threshold_px, s.budget_scale, s.budget_coverage_cut_px > 0.0 ? ", smallest dropped" : "");
     ImGui::Text("per level  %llu / %llu / %llu / %llu", static_cast<unsigned long long>(s.per_level[0]),
                 static_cast<unsigned long long>(s.per_level[1]), static_cast<unsigned long long>(s.per_level[2]),
                 static_cast<unsigned long long>(s.per_level[3]));

@@ -32,4 +32,14 @@ inline double gaussian_extent(const glm::vec3& log_scale, float opacity_logit) {
     return std::sqrt(2.0 * std::log(255.0 * opacity)) * sigma;
 }
 
+// How far from its mean a Gaussian's α = 1/255 ellipsoid reaches: sqrt(2·ln(255·o))·σ_max; 0 when
+// the opacity is at most 1/255. Its projection stays within that distance's image (the frustum
+// test of the GPU clusters, splat_clusters.comp.glsl).
+inline double gaussian_reach(const glm::vec3& log_scale, float opacity_logit) {
+    const double opacity = opacity_from_logit(static_cast<double>(opacity_logit));
+    if (!(opacity > 1.0 / 255.0)) return 0.0;
+    const double sigma = std::exp(static_cast<double>(std::max({log_scale.x, log_scale.y, log_scale.z})));
+    return std::sqrt(2.0 * std::log(255.0 * opacity)) * sigma;
+}
+
 }  // namespace splat_lod::world

@@ -29,10 +29,11 @@ constexpr std::uint64_t gpu_bytes_per_gaussian(int sh_degree) {
 
 // How the GPU scene stores one upload (gpu/gpu_scene.h): whole pages of `page_gaussians` slots plus
 // `page_overhead_bytes` per page (its cluster record). The defaults of StreamerSettings match the
-// incremental GPU scene: 256 slots (SPLAT_PROJECT_WORKGROUP_SIZE) and a 32-byte GpuCluster.
+// incremental GPU scene: 256 slots (SPLAT_PROJECT_WORKGROUP_SIZE) and a 48-byte GpuCluster
+// (gpu_scene.cpp checks both).
 struct PageLayout {
     std::uint32_t page_gaussians = 256;
-    std::uint32_t page_overhead_bytes = 32;
+    std::uint32_t page_overhead_bytes = 48;
 };
 
 // GPU bytes of one upload of `count` Gaussians stored with SH degree `sh_degree` (0..3): whole
