@@ -44,21 +44,47 @@ void validate(const ReferenceOptions& o) {
     require_world_folder(o.world);
 }
 
+namespace {
+
+// Below this side a tile that does not fit the key buffer is not split further (the error stands).
+constexpr int kMinSplitSide = 64;
+
+struct TiledDraw {
+    engine::Engine& engine;
+    const engine::Scene& scene;
+    const engine::CameraView& camera;
+    splat_lod::eval::FloatImage& whole;
+    std::map<std::pair<int, int>, engine::RenderTarget> targets;  // one per tile size
+
+    // Draws the window [x0, x0 + w) × [y0, y0 + h); a window whose (Gaussian, tile) pairs do not fit
+    // the largest key buffer the sort allows is drawn as four quarters instead.
+    void window(int x0, int y0, int w, int h) {
+        const engine::CameraView tile = engine::tile_view(camera, {x0, y0}, {w, h});
+        auto target = targets.try_emplace({w, h}, w, h).first;
+        try {
+            splat_lod::render_complete(engine, scene, tile, target->second);
+        } catch (const engine::Error&) {
+            if (std::min(w, h) < 2 * kMinSplitSide) throw;
+            for (const auto& [dx, dw] : spans(w, (w + 1) / 2))
+                for (const auto& [dy, dh] : spans(h, (h + 1) / 2)) window(x0 + dx, y0 + dy, dw, dh);
+            return;
+        }
+        const engine::Image image = target->second.read_color();
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int c = 0; c < 3; ++c)
+                    whole.at(x0 + x, y0 + y, c) = static_cast<float>(image.pixel(x, y)[c]) / 255.0f;
+    }
+};
+
+}  // namespace
+
 splat_lod::eval::FloatImage render_tiled(engine::Engine& engine, const engine::Scene& scene,
                                          const engine::CameraView& camera, int max_side) {
     splat_lod::eval::FloatImage whole = splat_lod::eval::make_float_image(camera.width, camera.height);
-    std::map<std::pair<int, int>, engine::RenderTarget> targets;  // one per tile size
+    TiledDraw draw{engine, scene, camera, whole, {}};
     for (const auto& [y0, h] : spans(camera.height, max_side))
-        for (const auto& [x0, w] : spans(camera.width, max_side)) {
-            const engine::CameraView tile = engine::tile_view(camera, {x0, y0}, {w, h});
-            auto target = targets.try_emplace({w, h}, w, h).first;
-            splat_lod::render_complete(engine, scene, tile, target->second);
-            const engine::Image image = target->second.read_color();
-            for (int y = 0; y < h; ++y)
-                for (int x = 0; x < w; ++x)
-                    for (int c = 0; c < 3; ++c)
-                        whole.at(x0 + x, y0 + y, c) = static_cast<float>(image.pixel(x, y)[c]) / 255.0f;
-        }
+        for (const auto& [x0, w] : spans(camera.width, max_side)) draw.window(x0, y0, w, h);
     return whole;
 }
 

@@ -111,6 +111,57 @@ TEST(ProfileSummary, FailsEachCheckFromTheNumbersAlone) {
     EXPECT_NE(format_summary(no_baseline, {}).find("n/a   overview"), std::string::npos);
 }
 
+namespace {
+
+// Reference frames 0 (ground) and 12, 13 (overview): LOD and baseline PSNR against the reference
+// and the LOD image's seam ratio as given.
+void set_reference(std::vector<FrameRecord>& lod, std::vector<FrameRecord>& baseline, double ground_loss_db,
+                   double overview_gain_db, double overview_lod_db, double seam) {
+    for (const int frame : {0, 12, 13}) {
+        const bool overview = frame != 0;
+        FrameRecord& l = lod[static_cast<std::size_t>(frame)];
+        l.psnr_vs_reference = overview ? overview_lod_db : 35.0 - ground_loss_db;
+        l.ssim_vs_reference = 0.9;
+        l.seam_ratio = seam;
+        for (FrameRecord& b : baseline)
+            if (b.frame == frame) {
+                b.psnr_vs_reference = overview ? overview_lod_db - overview_gain_db : 35.0;
+                b.ssim_vs_reference = 0.8;
+            }
+    }
+}
+
+}  // namespace
+
+TEST(ProfileSummary, ReferenceChecksComeFromTheNumbers) {
+    std::vector<FrameRecord> lod = lod_run(100 * kMiB, 4 * kMiB), baseline = baseline_run(60.0);
+    const ProfileSummary none = summarize(lod, baseline, 128 * kMiB, 4 * kMiB);
+    EXPECT_TRUE(none.reference_frames.empty());
+    EXPECT_FALSE(none.reference_loss.measured || none.reference_overview.measured || none.reference_seams.measured);
+    EXPECT_NE(format_summary(none, {}).find("n/a   reference, seams"), std::string::npos);
+
+    set_reference(lod, baseline, 0.4, 3.5, 31.0, 1.1);
+    const ProfileSummary good = summarize(lod, baseline, 128 * kMiB, 4 * kMiB);
+    ASSERT_EQ(good.reference_frames.size(), 3u);
+    EXPECT_EQ(good.reference_frames[1].frame, 12);
+    EXPECT_DOUBLE_EQ(good.reference_frames[1].baseline_psnr, 27.5);
+    EXPECT_TRUE(good.reference_loss.pass) << good.reference_loss.text;
+    EXPECT_TRUE(good.reference_overview.pass) << good.reference_overview.text;
+    EXPECT_TRUE(good.reference_seams.pass) << good.reference_seams.text;
+    const std::string text = format_summary(good, {"w", "s", 1.0, "", {}, "found, somewhere"});
+    EXPECT_NE(text.find("reference: found, somewhere"), std::string::npos) << text;
+    EXPECT_NE(text.find("against the reference"), std::string::npos) << text;
+    EXPECT_NE(text.find("PASS  reference, overview"), std::string::npos) << text;
+
+    set_reference(lod, baseline, 0.6, 2.5, 31.0, 1.3);  // too much worse, too little better, seams
+    const ProfileSummary bad = summarize(lod, baseline, 128 * kMiB, 4 * kMiB);
+    EXPECT_FALSE(bad.reference_loss.pass);
+    EXPECT_FALSE(bad.reference_overview.pass);
+    EXPECT_FALSE(bad.reference_seams.pass);
+    set_reference(lod, baseline, 0.0, 5.0, 29.0, 1.0);  // better than the baseline, but under 30 dB
+    EXPECT_FALSE(summarize(lod, baseline, 128 * kMiB, 4 * kMiB).reference_overview.pass);
+}
+
 TEST(StreamingPanel, KeepsTheLastFramesAndTheFailures) {
     engine::MessageBus bus;
     StreamingPanel panel(bus);

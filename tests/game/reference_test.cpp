@@ -75,7 +75,7 @@ TEST_F(ReferenceTest, ATiledRenderEqualsTheUntiledOne) {
         const auto tiled = render_tiled(engine, world.scene(), camera, 40);  // 4 × 3 tiles
         const double psnr = splat_lod::eval::psnr(tiled, whole);
         EXPECT_TRUE(std::isinf(psnr) || psnr > 60.0) << psnr << " dB";
-        EXPECT_LE(largest_difference(tiled, whole), 2.5 / 255.0);
+        EXPECT_LE(largest_difference(tiled, whole), 1.0 / 255.0);  // identical on llvmpipe
         double sum = 0.0;
         for (const float v : whole.rgb) sum += v;
         EXPECT_GT(sum, 0.0);

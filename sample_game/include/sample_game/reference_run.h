@@ -46,7 +46,8 @@ void validate(const ReferenceOptions& options);
 ReferenceOutcome make_reference(const ReferenceOptions& options, std::FILE* progress);
 
 // Draws `camera` (any size) in tiles of at most max_side × max_side pixels and returns the whole
-// image, display-space values in [0, 1]. Each tile is drawn until complete (render_complete).
+// image, display-space values in [0, 1]. Each tile is drawn until complete (render_complete); one
+// whose (Gaussian, tile) pairs exceed the largest key buffer the sort allows is drawn in quarters.
 splat_lod::eval::FloatImage render_tiled(engine::Engine& engine, const engine::Scene& scene,
                                          const engine::CameraView& camera, int max_side);
 
