@@ -2,7 +2,7 @@
 // reuses the world already there when it was made with the same options.
 //   splat_world --out DIR [--seed N] [--size M] [--chunk M] [--density F] [--threads N]
 //               [--refine-iterations N] [--bake-width W --bake-height H] [--no-terrain-mesh] [--force]
-//               [--count-only]
+//               [--count-only | --shard I/N | --merge]
 // Progress (chunks done, Gaussians, elapsed, ETA) goes to stderr, the summary (chunks, Gaussians per
 // level, bytes, stage times) to stdout. Exit code 1 on any error.
 //
@@ -14,9 +14,16 @@
 // and every file it names byte for byte, or the new world complete; the next run cleans up. Only
 // one run at a time may write into a folder (a second fails with a message). Disk space: up to two
 // worlds while a run replaces one.
+//
+// Sharded bakes (world/world_shards.h, docs/world_bakes.md): `--shard I/N` (I 1-based) bakes chunks
+// k with k mod N = I - 1 into --out/staging-<hash>/ and writes the shard's record there; shards may
+// run at once, on one machine or on several sharing the folder. `--merge`, once all are done,
+// checks every chunk against its record and commits the world: the same bytes as an unsharded run.
 #include <charconv>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -24,6 +31,7 @@
 #include "engine/core/cli_values.h"
 #include "engine/core/error.h"
 #include "splat_lod/world/world_generator.h"
+#include "splat_lod/world/world_shards.h"
 
 namespace {
 
@@ -58,8 +66,8 @@ void print_progress(const splat_lod::world::WorldProgress& p) {
 
 int main(int argc, char** argv) {
     splat_lod::world::WorldOptions options;
-    std::string out, seed_text = "1";
-    bool no_terrain_mesh = false, count_only = false;
+    std::string out, seed_text = "1", shard_text;
+    bool no_terrain_mesh = false, count_only = false, merge = false;
     CLI::App app{"Generate and bake the sample world of LOD splat chunks and glTF props (cached in --out)"};
     app.add_option("--out", out, "the world's folder (world.json, gen-<n>/chunks/, gen-<n>/meshes/)")
         ->required();
@@ -78,7 +86,15 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(64, 8192));
     app.add_flag("--no-terrain-mesh", no_terrain_mesh, "do not write the coarse terrain mesh");
     app.add_flag("--force", options.force, "regenerate even when the cached world matches");
-    app.add_flag("--count-only", count_only, "only generate the content and print its Gaussian counts (no bake, no files)");
+    auto* count_flag =
+        app.add_flag("--count-only", count_only, "only generate the content and print its Gaussian counts (no bake, no files)");
+    auto* shard_option = app.add_option("--shard", shard_text,
+                                        "bake only shard I of N (I is 1-based: 1..N), chunks k with k mod N = I - 1, "
+                                        "into --out/staging-<hash>/; then --merge")
+                             ->excludes(count_flag);
+    app.add_flag("--merge", merge, "commit the world that --shard runs baked into --out (all must be done)")
+        ->excludes(count_flag)
+        ->excludes(shard_option);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -86,6 +102,7 @@ int main(int argc, char** argv) {
         return app.exit(e) == 0 ? 0 : 1;
     }
     try {
+        if (shard_option->count() > 0) splat_lod::world::parse_world_shard(shard_text);  // before any work
         options.seed = engine::parse_u64(seed_text, "--seed");
         options.output = out;
         options.terrain_mesh = !no_terrain_mesh;
@@ -95,11 +112,21 @@ int main(int argc, char** argv) {
             std::printf("%s", splat_lod::world::format_summary(summary).c_str());
             return 0;
         }
-        const auto result = splat_lod::world::generate_world(options);
+        namespace world = splat_lod::world;
+        const auto shard = shard_option->count() > 0 ? std::optional(world::parse_world_shard(shard_text))
+                                                     : std::optional<world::WorldShard>();
+        const auto result = shard ? world::bake_world_shard(options, *shard)
+                            : merge ? world::merge_world_shards(options)
+                                    : world::generate_world(options);
         if (!result.summary.cached && !result.summary.cache_note.empty())
             std::fprintf(stderr, "splat_world: not cached: %s\n", result.summary.cache_note.c_str());
-        std::printf("%s", splat_lod::world::format_summary(result.summary).c_str());
-        std::printf("world: %s\n", (options.output / splat_lod::world::kManifestFileName).string().c_str());
+        std::printf("%s", world::format_summary(result.summary).c_str());
+        const auto record = shard ? options.output / world::staging_folder(options) / world::shard_record_name(*shard)
+                                  : std::filesystem::path();
+        if (shard && std::filesystem::exists(record))
+            std::printf("shard %zu/%zu: %s\n", shard->index, shard->count, record.string().c_str());
+        else
+            std::printf("world: %s\n", (options.output / world::kManifestFileName).string().c_str());
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "splat_world: %s\n", e.what());

@@ -20,7 +20,9 @@
 // an exclusive flock() on <output> while it writes or removes files there (world_lock.h; released by
 // the kernel if it dies), a streaming program a shared one, and a run that cannot take the lock
 // fails saying who holds it (a cached world is still returned without it, and nothing is removed).
-// Worlds in the flat layout (chunks/, meshes/) read as before.
+// Worlds in the flat layout (chunks/, meshes/) read as before. A bake may also be split into shards
+// run as separate processes and merged into the same bytes (world_shards.h); their files wait in a
+// staging folder, staging-<hash>/, until the merge renames it to the next gen-<n> and commits.
 //
 // Content (world_terrain.h for the ground): hills with a river valley winding along z and a path
 // winding along x; ground Gaussians over all of it (meadow, forest floor, the path's dirt, banks),
@@ -51,7 +53,9 @@
 namespace splat_lod::world {
 
 struct WorldProgress {
-    std::string stage;               // "meshes", "chunks", "manifest", "clean-up" (after the commit), "cached"
+    // "meshes", "chunks", "manifest", "clean-up" (after the commit), "cached"; a shard's "shard record",
+    // a merge's "merge" (the check of the shards' records)
+    std::string stage;
     std::size_t chunks_done = 0;
     std::size_t chunks_total = 0;
     std::uint64_t gaussians = 0;     // in the chunks baked so far
