@@ -62,6 +62,25 @@ void print_progress(const splat_lod::world::WorldProgress& p) {
                  duration(p.eta_seconds).c_str());
 }
 
+// The merge's summary: what it committed (the bake statistics stay with the shards that baked).
+std::string merge_summary(const splat_lod::world::WorldSummary& s) {
+    std::string text = "merged world: " + std::to_string(s.chunks) + " chunks, " + std::to_string(s.gaussians) +
+                       " Gaussians on disk, " + std::to_string(s.props) + " props\n";
+    for (int l = splat_lod::world::kLevels; l >= 1; --l)
+        text += "  stream level " + std::to_string(l) + ": " +
+                std::to_string(s.gaussians_per_stream_level[static_cast<std::size_t>(l - 1)]) + " Gaussians\n";
+    char line[128];
+    std::snprintf(line, sizeof line, "  bytes: chunks %.1f MiB, meshes %.2f MiB\n",
+                  static_cast<double>(s.chunk_bytes) / 1048576.0, static_cast<double>(s.mesh_bytes) / 1048576.0);
+    text += line;
+    for (const auto& stage : s.stages) {
+        std::snprintf(line, sizeof line, "  %-32s %6.1f s\n", stage.stage.c_str(), stage.seconds);
+        text += line;
+    }
+    std::snprintf(line, sizeof line, "  total %.1f s\n", s.seconds);
+    return text + line;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -86,8 +105,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(64, 8192));
     app.add_flag("--no-terrain-mesh", no_terrain_mesh, "do not write the coarse terrain mesh");
     app.add_flag("--force", options.force, "regenerate even when the cached world matches");
-    auto* count_flag =
-        app.add_flag("--count-only", count_only, "only generate the content and print its Gaussian counts (no bake, no files)");
+    auto* count_flag = app.add_flag("--count-only", count_only,
+                                    "only generate the content and print its Gaussian counts (no bake, no files)");
     auto* shard_option = app.add_option("--shard", shard_text,
                                         "bake only shard I of N (I is 1-based: 1..N), chunks k with k mod N = I - 1, "
                                         "into --out/staging-<hash>/; then --merge")
@@ -120,7 +139,8 @@ int main(int argc, char** argv) {
                                     : world::generate_world(options);
         if (!result.summary.cached && !result.summary.cache_note.empty())
             std::fprintf(stderr, "splat_world: not cached: %s\n", result.summary.cache_note.c_str());
-        std::printf("%s", world::format_summary(result.summary).c_str());
+        const bool merged = merge && !result.summary.cached;
+        std::printf("%s", (merged ? merge_summary(result.summary) : world::format_summary(result.summary)).c_str());
         const auto record = shard ? options.output / world::staging_folder(options) / world::shard_record_name(*shard)
                                   : std::filesystem::path();
         if (shard && std::filesystem::exists(record))
