@@ -304,7 +304,9 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
         outcome.pictures.push_back(options.out / "frames_sheet.png");
     }
     outcome.summary =
-        summarize(lod, baseline, options.settings.memory_budget_bytes, options.settings.upload_budget_bytes);
+        summarize(lod, baseline, options.settings.memory_budget_bytes, options.settings.upload_budget_bytes,
+                  WorldScale{std::uint64_t(options.width) * std::uint64_t(options.height), world.whole_world_gpu_bytes(),
+                             options.settings.lod.splat_budget});
     SummaryContext context;
     context.world = describe_world(options, world);
     context.settings = describe_settings(options);

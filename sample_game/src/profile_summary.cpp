@@ -185,6 +185,70 @@ void reference_checks(ProfileSummary& s) {
                                   kMaxSeamRatio, within, measured, largest);
 }
 
+void scale_checks(const std::vector<FrameRecord>& lod, const WorldScale& w, ProfileSummary& s) {
+    const auto& ground = s.segments[static_cast<std::size_t>(Segment::ground)];
+    const auto& overview = s.segments[static_cast<std::size_t>(Segment::overview)];
+    // 7: the far view costs no more than the near one.
+    s.scale_time.measured = ground.frames > 0 && overview.frames > 0;
+    s.scale_time.pass = s.scale_time.measured && overview.median_ms <= ground.median_ms;
+    s.scale_time.text = formatted("scale, time: overview median %.1f ms vs ground median %.1f ms (%.2fx)",
+                                  overview.median_ms, ground.median_ms,
+                                  ground.median_ms > 0.0 ? overview.median_ms / ground.median_ms : 0.0);
+    // 8: Gaussians per output pixel.
+    double overview_max = 0.0, path_max = 0.0;
+    int overview_frame = -1, path_frame = -1;
+    for (const auto& r : lod) {
+        if (w.pixels == 0) break;
+        const double per_pixel = static_cast<double>(r.visible) / static_cast<double>(w.pixels);
+        if (per_pixel > path_max) path_max = per_pixel, path_frame = r.frame;
+        if (r.segment == Segment::overview && per_pixel > overview_max) overview_max = per_pixel, overview_frame = r.frame;
+    }
+    s.scale_density.measured = w.pixels > 0 && !lod.empty();
+    s.scale_density.pass = s.scale_density.measured && overview_max <= kMaxOverviewGaussiansPerPixel &&
+                           path_max <= kMaxPathGaussiansPerPixel;
+    s.scale_density.text = formatted(
+        "scale, Gaussians per pixel: overview at most %.2f (frame %d; bar %.1f), path at most %.2f (frame %d; bar %.1f)",
+        overview_max, overview_frame, kMaxOverviewGaussiansPerPixel, path_max, path_frame, kMaxPathGaussiansPerPixel);
+    // 9: work dropped before projection at ground level.
+    double least = 1.0;
+    int ground_frames = 0;
+    for (const auto& r : lod)
+        if (r.segment == Segment::ground && r.considered > 0) {
+            ++ground_frames;
+            least = std::min(least, static_cast<double>(r.culled + r.skipped) / static_cast<double>(r.considered));
+        }
+    s.scale_culling.measured = ground_frames > 0;
+    s.scale_culling.pass = s.scale_culling.measured && least >= kMinGroundCulledShare;
+    s.scale_culling.text = formatted(
+        "scale, culling: at least %.0f%% of the resident Gaussians culled or skipped before projection on every "
+        "ground frame (bar %.0f%%)",
+        100.0 * least, 100.0 * kMinGroundCulledShare);
+    // 10: memory at the overview against the whole world.
+    std::uint64_t peak = 0;
+    for (const auto& r : lod)
+        if (r.segment == Segment::overview) peak = std::max(peak, r.resident_bytes);
+    s.scale_memory.measured = w.world_bytes > 0 && overview.frames > 0;
+    const double share = w.world_bytes > 0 ? static_cast<double>(peak) / static_cast<double>(w.world_bytes) : 0.0;
+    s.scale_memory.pass = s.scale_memory.measured && share <= kMaxOverviewResidentShare;
+    s.scale_memory.text = formatted("scale, memory: at the overview at most %.1f MiB resident, %.1f%% of the world's "
+                                    "%.1f MiB (bar %.0f%%)",
+                                    mib(peak), 100.0 * share, mib(w.world_bytes), 100.0 * kMaxOverviewResidentShare);
+    // 11: the splat budget.
+    std::uint64_t most = 0;
+    int over = 0;
+    for (const auto& r : lod) {
+        most = std::max(most, r.visible);
+        over += w.splat_budget > 0 && r.visible > w.splat_budget ? 1 : 0;
+    }
+    s.splat_budget.measured = w.splat_budget > 0 && !lod.empty();
+    s.splat_budget.pass = s.splat_budget.measured && over == 0;
+    s.splat_budget.text =
+        w.splat_budget == 0
+            ? std::string("splat budget: none set (--splat-budget N)")
+            : formatted("splat budget: at most %llu drawn in a frame, budget %llu; over it on %d frames",
+                        static_cast<unsigned long long>(most), static_cast<unsigned long long>(w.splat_budget), over);
+}
+
 std::string reference_table(const ProfileSummary& s) {
     if (s.reference_frames.empty()) return "";
     const auto cell = [](double v, int digits) { return v < 0.0 ? std::string("-") : formatted("%.*f", digits, v); };
@@ -212,7 +276,8 @@ double median_of(std::vector<double> values) {
 }
 
 ProfileSummary summarize(const std::vector<FrameRecord>& lod, const std::vector<FrameRecord>& baseline,
-                         std::uint64_t memory_budget_bytes, std::uint64_t upload_budget_bytes) {
+                         std::uint64_t memory_budget_bytes, std::uint64_t upload_budget_bytes,
+                         const WorldScale& scale) {
     ProfileSummary s;
     s.frames = static_cast<int>(lod.size());
     s.memory_budget_bytes = memory_budget_bytes;
@@ -222,6 +287,7 @@ ProfileSummary summarize(const std::vector<FrameRecord>& lod, const std::vector<
     overview_check(lod, baseline, s);
     s.reference_frames = reference_frames(lod, baseline);
     reference_checks(s);
+    scale_checks(lod, scale, s);
     return s;
 }
 
@@ -248,6 +314,8 @@ std::string format_summary(const ProfileSummary& s, const SummaryContext& contex
     out += "\nchecks (computed from the measurements)\n";
     out += "  " + verdict(s.memory) + "  " + verdict(s.upload) + "  " + verdict(s.overview);
     out += "  " + verdict(s.reference_loss) + "  " + verdict(s.reference_overview) + "  " + verdict(s.reference_seams);
+    out += "  " + verdict(s.scale_time) + "  " + verdict(s.scale_density) + "  " + verdict(s.scale_culling) + "  " +
+           verdict(s.scale_memory) + "  " + verdict(s.splat_budget);
     out += formatted("\nwall time: %.0f s", context.wall_seconds);
     out += context.timing.empty() ? std::string("\n") : " (" + context.timing + ")\n";
     if (!context.outputs.empty()) {

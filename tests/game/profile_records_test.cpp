@@ -213,3 +213,48 @@ TEST(GameSettings, TheStreamerUsesTheRenderersThresholds) {
     s.upload_budget_bytes = 100;  // below one GPU page
     EXPECT_THROW(validate(s), engine::Error);
 }
+
+namespace {
+
+// The world-scale checks (7–11) from hand-made rows: each passes at its bar and fails just past it.
+TEST(ProfileSummary, ScaleChecksFollowTheirBars) {
+    std::vector<FrameRecord> lod = lod_run(10 * kMiB, 1 * kMiB);  // ground 5–8 ms, overview 10 ms
+    const WorldScale scale{1000, 100 * kMiB, 500};
+    for (auto& r : lod) {
+        r.considered = 1000;
+        r.culled = 550;
+        r.skipped = 50;  // 60 % dropped before projection
+        r.visible = r.segment == Segment::overview ? 1500 : 2500;
+        if (r.segment == Segment::overview) r.resident_bytes = 15 * kMiB;
+    }
+    ProfileSummary s = summarize(lod, {}, 128 * kMiB, 4 * kMiB, scale);
+    EXPECT_FALSE(s.scale_time.pass) << "the overview (10 ms) costs more than the ground (6.5 ms)";
+    EXPECT_TRUE(s.scale_density.pass) << s.scale_density.text;
+    EXPECT_TRUE(s.scale_culling.pass) << s.scale_culling.text;
+    EXPECT_TRUE(s.scale_memory.pass) << s.scale_memory.text;
+    EXPECT_FALSE(s.splat_budget.pass) << "2500 drawn against a budget of 500";
+
+    for (auto& r : lod) {
+        if (r.segment == Segment::overview) {
+            r.frame_ms = 1.0;
+            r.visible = 1501;
+            r.resident_bytes = 16 * kMiB;
+        } else {
+            r.visible = 400;
+        }
+        if (r.segment == Segment::ground && r.frame == 2) r.culled = 540;
+    }
+    s = summarize(lod, {}, 128 * kMiB, 4 * kMiB, scale);
+    EXPECT_TRUE(s.scale_time.pass) << s.scale_time.text;
+    EXPECT_FALSE(s.scale_density.pass) << "1501 per 1000 pixels at the overview";
+    EXPECT_FALSE(s.scale_culling.pass) << "one ground frame dropped only 59 %";
+    EXPECT_FALSE(s.scale_memory.pass) << "16 % of the world resident";
+    EXPECT_FALSE(s.splat_budget.pass) << "1501 drawn against 500";
+
+    const ProfileSummary unmeasured = summarize(lod, {}, 128 * kMiB, 4 * kMiB);
+    EXPECT_FALSE(unmeasured.scale_density.measured);
+    EXPECT_FALSE(unmeasured.scale_memory.measured);
+    EXPECT_FALSE(unmeasured.splat_budget.measured);
+}
+
+}  // namespace

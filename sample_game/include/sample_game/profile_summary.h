@@ -12,7 +12,15 @@
 //   4. the LOD image is never more than kReferenceMaxLossDb worse than the baseline's;
 //   5. on the overview's reference frames the LOD image is at least kReferenceOverviewGainDb better
 //      than the baseline's and at least kReferenceOverviewMinDb;
-//   6. seam_ratio (chunk_borders.h) is at most kMaxSeamRatio on every reference frame.
+//   6. seam_ratio (chunk_borders.h) is at most kMaxSeamRatio on every reference frame;
+// and, given the image size and the world's size (WorldScale), how the LOD scales with the world:
+//   7. the overview's median frame time is at most the ground's;
+//   8. no overview frame draws more than kMaxOverviewGaussiansPerPixel Gaussians per output pixel,
+//      no frame of the path more than kMaxPathGaussiansPerPixel;
+//   9. on every ground frame at least kMinGroundCulledShare of the resident Gaussians are culled by the
+//      frustum or skipped as too small before projection;
+//  10. at the overview at most kMaxOverviewResidentShare of the world's GPU bytes are resident;
+//  11. with a splat budget, no frame draws more than it.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -28,6 +36,17 @@ inline constexpr double kReferenceMaxLossDb = 0.5;
 inline constexpr double kReferenceOverviewGainDb = 3.0;
 inline constexpr double kReferenceOverviewMinDb = 30.0;
 inline constexpr double kMaxSeamRatio = 1.25;
+inline constexpr double kMaxOverviewGaussiansPerPixel = 1.5;
+inline constexpr double kMaxPathGaussiansPerPixel = 2.5;
+inline constexpr double kMinGroundCulledShare = 0.6;
+inline constexpr double kMaxOverviewResidentShare = 0.15;
+
+// What the scale checks (7–11) need beyond the rows; zeros leave those checks unmeasured.
+struct WorldScale {
+    std::uint64_t pixels = 0;         // output pixels per frame
+    std::uint64_t world_bytes = 0;    // the whole world's GPU bytes with every level resident
+    std::uint64_t splat_budget = 0;   // the run's splat budget (0: none)
+};
 
 struct SegmentTimes {
     int frames = 0;
@@ -69,10 +88,12 @@ struct ProfileSummary {
     Check memory, upload, overview;
     std::vector<ReferenceFrameResult> reference_frames;  // empty: no reference
     Check reference_loss, reference_overview, reference_seams;
+    Check scale_time, scale_density, scale_culling, scale_memory, splat_budget;
 };
 
 ProfileSummary summarize(const std::vector<FrameRecord>& lod, const std::vector<FrameRecord>& baseline,
-                         std::uint64_t memory_budget_bytes, std::uint64_t upload_budget_bytes);
+                         std::uint64_t memory_budget_bytes, std::uint64_t upload_budget_bytes,
+                         const WorldScale& scale = {});
 
 // Context lines the summary prints around the numbers.
 struct SummaryContext {
