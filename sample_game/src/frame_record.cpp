@@ -89,7 +89,7 @@ std::vector<FrameColumn> make_columns() {
         {"ssim_vs_reference", "SSIM of this row's image against the reference (-1: no reference for this frame)",
          [](R r) { return r.ssim_vs_reference < 0.0 ? std::string("-1") : decimal(r.ssim_vs_reference, 4); }},
         {"seam_ratio",
-         "LOD rows: mean abs. error vs the reference within 4 px of projected chunk borders / elsewhere (-1: none)",
+         "mean abs. error vs the reference within 4 px of projected chunk borders / elsewhere (-1: none)",
          [](R r) { return r.seam_ratio < 0.0 ? std::string("-1") : decimal(r.seam_ratio, 3); }},
         {"resident_bytes", "streamed GPU bytes resident at the end of the frame (streamer's count, whole pages)",
          [](R r) { return integer(r.resident_bytes); }},

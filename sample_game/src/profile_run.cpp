@@ -81,14 +81,14 @@ struct Run {
         const auto it = cached_reference->frames.find(frame);
         return it == cached_reference->frames.end() ? nullptr : &it->second;
     }
-    // This row's image against the reference (and, for the LOD run, seam_ratio), when it has one.
+    // This row's image against the reference and its seam_ratio, when it has one (the baseline's
+    // seam_ratio tells how much of the LOD's comes from what the borders happen to cross).
     void compare_with_reference(const engine::RenderTarget& target, const engine::CameraView& camera, FrameRecord& r) {
         const splat_lod::eval::FloatImage* truth = reference_of(r.frame);
         if (!truth) return;
         const auto image = splat_lod::eval::to_float(target.read_color());
         r.psnr_vs_reference = splat_lod::eval::psnr(image, *truth);
         r.ssim_vs_reference = splat_lod::eval::ssim(image, *truth);
-        if (r.run != "lod") return;
         if (!ground)
             ground = std::make_unique<HeightGrid>([&](float x, float z) { return world.terrain().height(x, z); },
                                                   world.manifest().size_m);

@@ -67,6 +67,7 @@ struct ReferenceFrameResult {
     int frame = 0;
     Segment segment = Segment::ground;
     double lod_psnr = -1.0, lod_ssim = -1.0, baseline_psnr = -1.0, baseline_ssim = -1.0, seam_ratio = -1.0;
+    double baseline_seam_ratio = -1.0;  // the same measure of the baseline image, for comparison
 };
 
 struct ProfileSummary {
