@@ -171,6 +171,7 @@ struct Run {
         load_seconds = world.load_whole_world([&](std::size_t done, std::size_t) { loading.step(done, ""); });
         plugin_msgs::LodSettings lod = world.settings().lod;
         lod.mode = plugin_msgs::LodMode::baseline;
+        lod.splat_budget = 0;  // the baseline draws everything, whatever the game's budget
         engine.bus().publish(lod);
         const std::vector<std::size_t> chosen = baseline_frame_indices(poses, options, reference_frames());
         engine::RenderTarget target(options.width, options.height);
