@@ -242,15 +242,19 @@ void remove_previous_outputs(const std::filesystem::path& out) {
 
 }  // namespace
 
-void validate(const ProfileOptions& o) {
-    if (o.world.empty())
+void validate_path_run(const std::filesystem::path& world, int width, int height, int frames) {
+    if (world.empty())
         engine::fail("sample_game: --world is required (a folder holding world.json, made by splat_world)");
-    if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
-        engine::fail("sample_game: --width and --height must be 16..16384, got " + std::to_string(o.width) + "x" +
-                     std::to_string(o.height));
-    if (o.frames < 10)
+    if (width < 16 || height < 16 || width > 16384 || height > 16384)
+        engine::fail("sample_game: --width and --height must be 16..16384, got " + std::to_string(width) + "x" +
+                     std::to_string(height));
+    if (frames < 10)
         engine::fail("sample_game: --frames must be at least 10 (every segment of the path needs frames), got " +
-                     std::to_string(o.frames));
+                     std::to_string(frames));
+}
+
+void validate(const ProfileOptions& o) {
+    validate_path_run(o.world, o.width, o.height, o.frames);
     if (o.frames_png_every < 0) engine::fail("sample_game: --frames-png must not be negative");
     if (o.baseline_every < 0) engine::fail("sample_game: --baseline-every must not be negative");
     if (o.baseline_overview_every < 1) engine::fail("sample_game: --baseline-overview-every must be at least 1");

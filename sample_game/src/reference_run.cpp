@@ -7,6 +7,7 @@
 #include "engine/render/render_target.h"
 #include "formatted.h"
 #include "progress.h"
+#include "sample_game/profile_run.h"
 #include "sample_game/game_world.h"
 #include "sample_game/world_path.h"
 #include "splat_lod/splat_lod_plugin.h"
@@ -28,14 +29,7 @@ std::vector<std::pair<int, int>> spans(int length, int max_side) {
 }  // namespace
 
 void validate(const ReferenceOptions& o) {
-    if (o.world.empty())
-        engine::fail("sample_game: --world is required (a folder holding world.json, made by splat_world)");
-    if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
-        engine::fail("sample_game: --width and --height must be 16..16384, got " + std::to_string(o.width) + "x" +
-                     std::to_string(o.height));
-    if (o.frames < 10)
-        engine::fail("sample_game: --frames must be at least 10 (every segment of the path needs frames), got " +
-                     std::to_string(o.frames));
+    validate_path_run(o.world, o.width, o.height, o.frames);
     if (o.supersample < 3 || o.supersample > 8)
         engine::fail("sample_game: --supersample must be 3..8 (pixels per side averaged into one), got " +
                      std::to_string(o.supersample));

@@ -51,6 +51,9 @@ struct ProfileOutcome {
 
 // Throws engine::Error naming the option ("sample_game: --frames must be at least 10") or file.
 void validate(const ProfileOptions& options);
+// The checks every run along the path shares (the profile's and the reference's): a world folder,
+// an image of 16..16384 px per side and at least 10 path frames.
+void validate_path_run(const std::filesystem::path& world, int width, int height, int frames);
 
 // Progress lines ("lod frame 120/400 (flyout), 0.31 s/frame, ETA 1m22s") go to `progress` (may be null).
 ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress);
