@@ -100,7 +100,7 @@ std::vector<FrameColumn> make_columns() {
         {"upload_bytes", "bytes the streamer handed to the GPU this frame (held to the upload budget)",
          [](R r) { return integer(r.stream_upload_bytes); }},
         {"gpu_upload_bytes",
-         "bytes the GPU scene sent this frame: new pages plus a 32-byte cluster record per freed page",
+         "bytes the GPU scene sent this frame: new pages plus a 48-byte cluster record per freed page",
          [](R r) { return integer(r.gpu_upload_bytes); }},
         {"chunks_absent", "chunks whose least advanced needed level is not loaded or requested",
          [](R r) { return integer(r.chunks.absent); }},

@@ -65,8 +65,8 @@ TEST_F(SplatStreamingTest, WhatTheStreamerCountsIsWhatTheGpuHolds) {
         const auto& gpu = pass->scene();
         SCOPED_TRACE("frame " + std::to_string(frame));
         // The GPU uploaded within the streamer's per-frame budget (clusters of freed pages aside,
-        // 32 bytes each), and holds exactly the pages the streamer counts as resident.
-        EXPECT_LE(gpu.last_upload_bytes(), settings.upload_budget_bytes_per_frame + 32u * 64u);
+        // one GpuCluster each), and holds exactly the pages the streamer counts as resident.
+        EXPECT_LE(gpu.last_upload_bytes(), settings.upload_budget_bytes_per_frame + sizeof(splat_lod::gpu::GpuCluster) * 64u);
         EXPECT_EQ(std::uint64_t(gpu.pages_in_use()) * gpu.page_bytes(), streamer.resident_bytes());
         EXPECT_LE(streamer.resident_bytes(), settings.memory_budget_bytes);
         EXPECT_EQ(sink.resident_parts(), root.children().size());

@@ -49,7 +49,7 @@ struct FrameRecord {
     std::uint64_t gpu_total_bytes = 0;  // everything the splat pass holds: scene buffers' capacity + frame buffers
     std::uint64_t stream_upload_bytes =
         0;                               // bytes the streamer handed to the GPU side this frame (the budgeted amount)
-    std::uint64_t gpu_upload_bytes = 0;  // bytes the GPU scene sent this frame (+32 per freed page's cluster record)
+    std::uint64_t gpu_upload_bytes = 0;  // bytes the GPU scene sent this frame (+48 per freed page's cluster record)
     ChunkCensus chunks;
     std::uint64_t failures_total = 0;  // chunk failures so far
     // Baseline rows only: the LOD run's image of the same path frame against this one (every chunk
