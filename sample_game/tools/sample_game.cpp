@@ -50,8 +50,26 @@ E enum_named(const std::array<std::string_view, N>& names, const std::string& te
     return static_cast<E>(0);  // unreachable: CLI::IsMember checked the name
 }
 
-void add_options(CLI::App& app, CommandLine& c) {
+// The LOD rule and raster options (renderer and streamer alike).
+void add_lod_options(CLI::App& app, CommandLine& c) {
     auto& lod = c.settings.lod;
+    app.add_option("--lod-mode", c.mode, "baseline, filter_small, insert_large or full (default)")
+        ->check(CLI::IsMember({"baseline", "filter_small", "insert_large", "full"}));
+    app.add_option("--lod-size-threshold", lod.size_threshold_px, "S_T in pixels")->capture_default_str();
+    app.add_option("--lod-rel-min", lod.rel_min, "S_rel_min")->capture_default_str();
+    app.add_option("--lod-rel-max", lod.rel_max, "S_rel_max")->capture_default_str();
+    app.add_option("--render-scale", lod.render_scale, "Splat raster resolution relative to the output, (0, 1]")
+        ->capture_default_str();
+    app.add_option("--upscaler", c.upscaler, "spline (default), bicubic, bilinear or lanczos3")
+        ->check(CLI::IsMember({"spline", "bicubic", "bilinear", "lanczos3"}));
+    app.add_flag("--level-colouring", lod.level_colouring, "Tint each Gaussian by its LOD level");
+    app.add_option("--splat-budget", lod.splat_budget,
+                   "At most N Gaussians drawn per frame (0: none); above it the LOD cut moves to coarser levels")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+}
+
+void add_options(CLI::App& app, CommandLine& c) {
     app.add_flag("--profile", c.profile,
                  "Run headless: the path with LOD + streaming, then the baseline; write CSV, plots, summary");
     app.add_flag("--soak", c.soak,
@@ -99,20 +117,7 @@ void add_options(CLI::App& app, CommandLine& c) {
                  "Profile: start the walk cold instead of streaming the first view first");
     app.add_flag("--sync-streaming", c.settings.sync_streaming,
                  "Read chunks inside each update (deterministic; tests)");
-    app.add_option("--lod-mode", c.mode, "baseline, filter_small, insert_large or full (default)")
-        ->check(CLI::IsMember({"baseline", "filter_small", "insert_large", "full"}));
-    app.add_option("--lod-size-threshold", lod.size_threshold_px, "S_T in pixels")->capture_default_str();
-    app.add_option("--lod-rel-min", lod.rel_min, "S_rel_min")->capture_default_str();
-    app.add_option("--lod-rel-max", lod.rel_max, "S_rel_max")->capture_default_str();
-    app.add_option("--render-scale", lod.render_scale, "Splat raster resolution relative to the output, (0, 1]")
-        ->capture_default_str();
-    app.add_option("--upscaler", c.upscaler, "spline (default), bicubic, bilinear or lanczos3")
-        ->check(CLI::IsMember({"spline", "bicubic", "bilinear", "lanczos3"}));
-    app.add_flag("--level-colouring", lod.level_colouring, "Tint each Gaussian by its LOD level");
-    app.add_option("--splat-budget", lod.splat_budget,
-                   "At most N Gaussians drawn per frame (0: none); above it the LOD cut moves to coarser levels")
-        ->check(CLI::NonNegativeNumber)
-        ->capture_default_str();
+    add_lod_options(app, c);
     app.add_option("--load-distance-scale", c.settings.load_distance_scale,
                    "Load levels this much earlier than the on-axis bound")
         ->capture_default_str();

@@ -164,6 +164,55 @@ void SplatPass::bind_all(const engine::FrameContext& frame) {
     }
 }
 
+// Step 1 (numbered as in execute): a: cull clusters outside the frustum, skip those too small for
+// the view; b: cull + project + SH colour, tiles touched; under a splat budget c: choose β, d: keep
+// what is selected at it.
+void SplatPass::record_selection(engine::FrameContext& frame, std::uint32_t n) {
+    GpuTimerScope t(frame.timers, "splat.project");
+    bind_all(frame);
+    glUseProgram(program(frame, "splat_clusters.comp.glsl").id());
+    glDispatchCompute(groups(groups(n, SPLAT_PROJECT_WORKGROUP_SIZE), SPLAT_CLUSTER_WORKGROUP_SIZE), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    glUseProgram(program(frame, "splat_project.comp.glsl").id());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, cluster_list_.id());
+    glDispatchComputeIndirect(0);
+    barrier();
+    if (settings.splat_budget > 0) {
+        glUseProgram(program(frame, "splat_budget.comp.glsl").id());
+        glDispatchCompute(1, 1, 1);
+        barrier();
+        glUseProgram(program(frame, "splat_budget_trim.comp.glsl").id());
+        glDispatchComputeIndirect(0);
+        barrier();
+    }
+}
+
+// Steps 6 and 7 of execute.
+void SplatPass::record_raster(engine::FrameContext& frame, const RasterSize& raster) {
+    const std::uint32_t tiles_x = raster.tiles_x, tiles_y = raster.tiles_y;
+    {  // 6. per-tile front-to-back raster, stopping at the mesh depth; composite C + T·mesh, or below
+       //    render scale 1, C and A with their derivatives at low resolution
+        GpuTimerScope t(frame.timers, "splat.raster");
+        bind_all(frame);
+        std::vector<std::string> defines{"RASTER_TILE_SIZE=" + std::to_string(raster.tile_size)};
+        if (raster.upscaled) defines.push_back("SPLAT_GRADIENTS");
+        const auto& raster_program = frame.shaders.program({"splat_lod/splat_tile_raster.comp.glsl"}, defines);
+        glUseProgram(raster_program.id());
+        glDispatchCompute(tiles_x, tiles_y, 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
+                        GL_TEXTURE_UPDATE_BARRIER_BIT);
+    }
+    if (raster.upscaled) {  // 7. upscale to the output and composite over the mesh pass
+        GpuTimerScope t(frame.timers, "splat.upscale");
+        const std::string method = "UPSCALE_METHOD=" + std::to_string(static_cast<int>(settings.upscaler));
+        glUseProgram(frame.shaders.program({"splat_lod/splat_upscale.comp.glsl"}, {method}).id());
+        glDispatchCompute(groups(static_cast<std::uint32_t>(frame.target.width()), SPLAT_UPSCALE_WORKGROUP_SIZE),
+                          groups(static_cast<std::uint32_t>(frame.target.height()), SPLAT_UPSCALE_WORKGROUP_SIZE), 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
+                        GL_TEXTURE_UPDATE_BARRIER_BIT);
+    }
+}
+
 void SplatPass::execute(engine::FrameContext& frame) {
     collect_statistics(frame.bus, false);
     std::vector<const SplatComponent*> components;
@@ -193,26 +242,7 @@ void SplatPass::execute(engine::FrameContext& frame) {
     cluster_list_.upload(0, sizeof(no_clusters), &no_clusters);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 
-    {  // 1. a: cull clusters outside the frustum, skip those too small for the view; b: cull + project
-       //    + SH colour, tiles touched; under a splat budget c: choose β, d: keep what is selected at it
-        GpuTimerScope t(frame.timers, "splat.project");
-        bind_all(frame);
-        glUseProgram(program(frame, "splat_clusters.comp.glsl").id());
-        glDispatchCompute(groups(groups(n, SPLAT_PROJECT_WORKGROUP_SIZE), SPLAT_CLUSTER_WORKGROUP_SIZE), 1, 1);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-        glUseProgram(program(frame, "splat_project.comp.glsl").id());
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, cluster_list_.id());
-        glDispatchComputeIndirect(0);
-        barrier();
-        if (settings.splat_budget > 0) {
-            glUseProgram(program(frame, "splat_budget.comp.glsl").id());
-            glDispatchCompute(1, 1, 1);
-            barrier();
-            glUseProgram(program(frame, "splat_budget_trim.comp.glsl").id());
-            glDispatchComputeIndirect(0);
-            barrier();
-        }
-    }
+    record_selection(frame, n);  // 1. a–d: cull, skip, project, the splat budget
     {  // 2. exclusive scan of tile counts: each splat's key range; the total lands at [n]
         GpuTimerScope t(frame.timers, "splat.scan");
         scan_->record({tile_counts_, count_, 0, n, tile_counts_, std::size_t(n) * sizeof(std::uint32_t)});
@@ -239,27 +269,7 @@ void SplatPass::execute(engine::FrameContext& frame) {
         glDispatchComputeIndirect(0);
         barrier();
     }
-    {  // 6. per-tile front-to-back raster, stopping at the mesh depth; composite C + T·mesh, or below
-       //    render scale 1, C and A with their derivatives at low resolution
-        GpuTimerScope t(frame.timers, "splat.raster");
-        bind_all(frame);
-        std::vector<std::string> defines{"RASTER_TILE_SIZE=" + std::to_string(raster.tile_size)};
-        if (raster.upscaled) defines.push_back("SPLAT_GRADIENTS");
-        const auto& raster_program = frame.shaders.program({"splat_lod/splat_tile_raster.comp.glsl"}, defines);
-        glUseProgram(raster_program.id());
-        glDispatchCompute(tiles_x, tiles_y, 1);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
-                        GL_TEXTURE_UPDATE_BARRIER_BIT);
-    }
-    if (raster.upscaled) {  // 7. upscale to the output and composite over the mesh pass
-        GpuTimerScope t(frame.timers, "splat.upscale");
-        const std::string method = "UPSCALE_METHOD=" + std::to_string(static_cast<int>(settings.upscaler));
-        glUseProgram(frame.shaders.program({"splat_lod/splat_upscale.comp.glsl"}, {method}).id());
-        glDispatchCompute(groups(static_cast<std::uint32_t>(frame.target.width()), SPLAT_UPSCALE_WORKGROUP_SIZE),
-                          groups(static_cast<std::uint32_t>(frame.target.height()), SPLAT_UPSCALE_WORKGROUP_SIZE), 1);
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
-                        GL_TEXTURE_UPDATE_BARRIER_BIT);
-    }
+    record_raster(frame, raster);  // 6. raster; 7. upscale below render scale 1
     glUseProgram(0);
     record_statistics(frame);
 }
