@@ -92,6 +92,43 @@ void pack_sh(const SplatCloud& cloud, int degree, std::uint32_t stride, std::vec
     }
 }
 
+namespace {
+
+// The clusters' spheres, a second pass over each cluster's members: the centre of their bounding
+// box and the largest distance from it (rounded up so float error never leaves a mean outside).
+// Non-finite bounds disable skipping and culling for the cluster.
+void fit_spheres(const std::vector<const SplatCloud*>& clouds, std::vector<GpuCluster>& clusters) {
+    constexpr std::size_t size = SPLAT_PROJECT_WORKGROUP_SIZE;
+    std::size_t global = 0;
+    std::vector<glm::vec3> lo(clusters.size(), glm::vec3(std::numeric_limits<float>::max()));
+    std::vector<glm::vec3> hi(clusters.size(), glm::vec3(std::numeric_limits<float>::lowest()));
+    for (const SplatCloud* cloud : clouds)
+        for (std::size_t i = 0; i < cloud->size(); ++i, ++global)
+            if (drawable(*cloud, i, cloud->sh_rest_stride())) {
+                lo[global / size] = glm::min(lo[global / size], cloud->positions[i]);
+                hi[global / size] = glm::max(hi[global / size], cloud->positions[i]);
+            }
+    global = 0;
+    std::vector<double> radius(clusters.size(), 0.0);
+    for (std::size_t c = 0; c < clusters.size(); ++c)
+        clusters[c].sphere = glm::vec4(lo[c].x <= hi[c].x ? 0.5f * (lo[c] + hi[c]) : glm::vec3(0.0f), 0.0f);
+    for (const SplatCloud* cloud : clouds)
+        for (std::size_t i = 0; i < cloud->size(); ++i, ++global)
+            if (drawable(*cloud, i, cloud->sh_rest_stride())) {
+                const std::size_t c = global / size;
+                radius[c] = std::max(radius[c], glm::length(glm::dvec3(cloud->positions[i]) - glm::dvec3(clusters[c].sphere)));
+            }
+    for (std::size_t c = 0; c < clusters.size(); ++c) {
+        clusters[c].sphere.w = static_cast<float>(radius[c] * (1.0 + 1e-5) + 1e-7);
+        // A non-finite bound (a Gaussian at 1e38, say) disables the cluster rather than culling wrongly.
+        const glm::vec4 v = clusters[c].sphere;
+        if (!std::isfinite(v.x + v.y + v.z + v.w) || !std::isfinite(clusters[c].bounds.x)) clusters[c].bounds.y = -1.0f;
+        if (!std::isfinite(v.x + v.y + v.z + v.w) || !std::isfinite(clusters[c].reach.x)) clusters[c].reach.x = -1.0f;
+    }
+}
+
+}  // namespace
+
 std::vector<GpuCluster> build_clusters(const std::vector<const SplatCloud*>& clouds) {
     constexpr std::size_t size = SPLAT_PROJECT_WORKGROUP_SIZE;
     std::size_t total = 0;
@@ -126,34 +163,7 @@ std::vector<GpuCluster> build_clusters(const std::vector<const SplatCloud*>& clo
             else c.bounds.y = std::max(c.bounds.y, static_cast<float>(extent / cmin) * (1.0f + 1e-6f));
         }
     }
-    // Spheres in a second pass over each cluster's members: the centre of their bounding box and
-    // the largest distance from it (rounded up so float error never leaves a mean outside).
-    global = 0;
-    std::vector<glm::vec3> lo(clusters.size(), glm::vec3(std::numeric_limits<float>::max()));
-    std::vector<glm::vec3> hi(clusters.size(), glm::vec3(std::numeric_limits<float>::lowest()));
-    for (const SplatCloud* cloud : clouds)
-        for (std::size_t i = 0; i < cloud->size(); ++i, ++global)
-            if (drawable(*cloud, i, cloud->sh_rest_stride())) {
-                lo[global / size] = glm::min(lo[global / size], cloud->positions[i]);
-                hi[global / size] = glm::max(hi[global / size], cloud->positions[i]);
-            }
-    global = 0;
-    std::vector<double> radius(clusters.size(), 0.0);
-    for (std::size_t c = 0; c < clusters.size(); ++c)
-        clusters[c].sphere = glm::vec4(lo[c].x <= hi[c].x ? 0.5f * (lo[c] + hi[c]) : glm::vec3(0.0f), 0.0f);
-    for (const SplatCloud* cloud : clouds)
-        for (std::size_t i = 0; i < cloud->size(); ++i, ++global)
-            if (drawable(*cloud, i, cloud->sh_rest_stride())) {
-                const std::size_t c = global / size;
-                radius[c] = std::max(radius[c], glm::length(glm::dvec3(cloud->positions[i]) - glm::dvec3(clusters[c].sphere)));
-            }
-    for (std::size_t c = 0; c < clusters.size(); ++c) {
-        clusters[c].sphere.w = static_cast<float>(radius[c] * (1.0 + 1e-5) + 1e-7);
-        // A non-finite bound (a Gaussian at 1e38, say) disables the cluster rather than culling wrongly.
-        const glm::vec4 v = clusters[c].sphere;
-        if (!std::isfinite(v.x + v.y + v.z + v.w) || !std::isfinite(clusters[c].bounds.x)) clusters[c].bounds.y = -1.0f;
-        if (!std::isfinite(v.x + v.y + v.z + v.w) || !std::isfinite(clusters[c].reach.x)) clusters[c].reach.x = -1.0f;
-    }
+    fit_spheres(clouds, clusters);
     return clusters;
 }
 
