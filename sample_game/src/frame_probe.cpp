@@ -69,6 +69,7 @@ void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::Ca
         record.visible = s->visible;
         record.skipped = s->skipped;
         record.culled = s->culled;
+        record.hidden = s->hidden;
         record.unbudgeted = s->unbudgeted;
         record.budget_threshold_px = s->budget_threshold_px;
         record.tile_splat_pairs = s->tile_splat_pairs;
@@ -85,6 +86,8 @@ void record_streaming(GameWorld& world, FrameRecord& record) {
     record.stream_upload_bytes = streamer.stats().uploaded_bytes_last_update;
     record.failures_total = streamer.stats().failures;
     record.chunks = world.census();
+    record.chunks_drawn = streamer.residency().drawn_chunks;
+    record.groups_drawn = streamer.residency().drawn_groups;
 }
 
 }  // namespace sample_game

@@ -216,13 +216,13 @@ void scale_checks(const std::vector<FrameRecord>& lod, const WorldScale& w, Prof
     for (const auto& r : lod)
         if (r.segment == Segment::ground && r.considered > 0) {
             ++ground_frames;
-            least = std::min(least, static_cast<double>(r.culled + r.skipped) / static_cast<double>(r.considered));
+            least = std::min(least, static_cast<double>(r.culled + r.skipped + r.hidden) / static_cast<double>(r.considered));
         }
     s.scale_culling.measured = ground_frames > 0;
     s.scale_culling.pass = s.scale_culling.measured && least >= kMinGroundCulledShare;
     s.scale_culling.text = formatted(
-        "scale, culling: at least %.0f%% of the resident Gaussians culled or skipped before projection on every "
-        "ground frame (bar %.0f%%)",
+        "scale, culling: at least %.0f%% of the resident Gaussians culled, skipped or outside the cut before "
+        "projection on every ground frame (bar %.0f%%)",
         100.0 * least, 100.0 * kMinGroundCulledShare);
     // 10: memory at the overview against the whole world.
     std::uint64_t peak = 0;

@@ -121,6 +121,10 @@ void add_options(CLI::App& app, CommandLine& c) {
     app.add_option("--load-distance-scale", c.settings.load_distance_scale,
                    "Load levels this much earlier than the on-axis bound")
         ->capture_default_str();
+    app.add_option("--group-cell-px", c.settings.group_cell_px,
+                   "Draw a chunk group instead of its chunks where its cell is at most this many pixels (0: never)")
+        ->check(CLI::Range(0.0, 1000.0))
+        ->capture_default_str();
     app.add_option("--sh-degree", c.settings.sh_degree, "SH degree stored on the GPU (the generated world has 0)")
         ->check(CLI::Range(0, 3))
         ->capture_default_str();

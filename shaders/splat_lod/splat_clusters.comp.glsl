@@ -77,6 +77,12 @@ void main() {
     uint first = cluster * SPLAT_PROJECT_WORKGROUP_SIZE;
     if (first >= count) return;
     if (clusters[cluster].sphere.w < 0.0) return;  // an empty range of the scene (GpuScene): no members
+    // A resident component that is not drawn now (a streamed part the cut does not use).
+    float instance = clusters[cluster].bounds.w;
+    if (instance >= 0.0 && (instances[floatBitsToUint(instance)].info.z & SPLAT_INSTANCE_HIDDEN) != 0u) {
+        atomicAdd(stats.skipping.z, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
+        return;
+    }
     if (cull_cluster(clusters[cluster])) {
         atomicAdd(stats.skipping.y, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
         return;

@@ -134,6 +134,11 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 // keeps the value a normal float (no denormal flushing can change it).
 #define SPLAT_BUDGET_PACK_FLAG 0x40000000u
 
+// GpuInstance::info.z: the SH degree in the low byte; this bit set for a component that is resident
+// but not drawn (SplatComponent::visible false): step 1a drops its clusters before any other test.
+#define SPLAT_INSTANCE_SH_DEGREE_MASK 0xFFu
+#define SPLAT_INSTANCE_HIDDEN 0x100u
+
 // Gaussians with their 3D covariance precomputed (local space of the cloud).
 SPLAT_LOD_STRUCT(GpuGaussian) {
     vec4 position_opacity;  // xyz local mean, w activated opacity
@@ -146,7 +151,8 @@ SPLAT_LOD_STRUCT(GpuGaussian) {
 SPLAT_LOD_STRUCT(GpuInstance) {
     mat4 model;             // local → world
     mat4 rotation_inverse;  // world → local directions (for SH)
-    uvec4 info;             // x first slot of its first page, y count, z SH degree used, w floatBitsToUint(‖M‖₂), M = mat3(model)
+    uvec4 info;             // x first slot of its first page, y count, z SH degree used (bits 0-7) and
+                            // SPLAT_INSTANCE_HIDDEN, w floatBitsToUint(‖M‖₂), M = mat3(model)
 };
 
 // What the project pass knows about the Gaussians one of its workgroups handles (cluster c holds
@@ -196,7 +202,8 @@ SPLAT_LOD_STRUCT(FrameCounters) {
     uint overflowed;    // 1 when keys_needed > key capacity (the frame dropped pairs)
     uvec4 per_level;    // visible Gaussians per LOD level 1..4
     uvec4 skipping;     // x: Gaussians in project workgroups skipped as too small (GpuCluster),
-                        // y: Gaussians in clusters culled by the view frustum; zw unused
+                        // y: Gaussians in clusters culled by the view frustum, z: in clusters of hidden
+                        // instances (SPLAT_INSTANCE_HIDDEN); w unused
     uvec4 budget;       // x: β bin chosen (0: the budget did not bind), y: coverage bin below which the
                         // last cut's Gaussians were dropped (0: none), z: Gaussians the selection
                         // would have drawn without the budget, w unused

@@ -74,7 +74,7 @@ uint project(uint index) {
 
     uint sh_base = index * frame.counts.y;
     vec3 direction = normalize(mat3(inst.rotation_inverse) * (world - frame.camera_position.xyz));
-    vec3 color = evaluate_sh(sh_base, inst.info.z, direction);
+    vec3 color = evaluate_sh(sh_base, inst.info.z & SPLAT_INSTANCE_SH_DEGREE_MASK, direction);
     uint level = clamp(uint(g.lod.z), 1u, 4u);
     if (frame.lod_levels.w != 0u) color = level_colour(level, color);  // debug view
 

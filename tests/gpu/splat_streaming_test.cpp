@@ -9,7 +9,9 @@
 #include "gpu/gpu_scene.h"
 #include "gpu_fixture.h"
 #include "passes/splat_pass.h"
+#include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
+#include "splat_test_scenes.h"
 #include "splat_lod/world/chunk_streamer.h"
 #include "splat_lod/world/stream_scene_sink.h"
 #include "splat_lod/world/world_generator.h"
@@ -82,4 +84,50 @@ TEST_F(SplatStreamingTest, WhatTheStreamerCountsIsWhatTheGpuHolds) {
     streamer.release_all();
     engine.renderer().render(scene, engine::make_look_at_camera({0, 50, 50}, {0, 0, 0}, {0, 1, 0}, 1.0f, w, h, 0.1f, 2000.0f), target);
     EXPECT_EQ(pass->scene().pages_in_use(), 0u);
+}
+
+TEST_F(SplatStreamingTest, AHiddenComponentStaysResidentAndIsNotDrawn) {
+    engine::Engine engine;
+    engine.plugins().add_static(splat_lod::make_plugin());
+    auto* pass = splat_lod::find_splat_pass(engine.renderer());
+    engine::Scene scene;
+    scene.background = {0.2f, 0.3f, 0.4f};
+    auto component = std::make_unique<splat_lod::SplatComponent>();
+    engine::test::GaussianSpec a, b;
+    a.log_scale = glm::vec3(-1.5f);
+    a.color = {1.0f, 0.2f, 0.1f};
+    b.position = {0.4f, 0.2f, 0.0f};
+    b.color = {0.1f, 0.9f, 0.3f};
+    component->cloud = std::make_shared<const splat_lod::SplatCloud>(engine::test::make_cloud({a, b}));
+    splat_lod::SplatComponent& splats = scene.root().add_child("splats").add_component(std::move(component));
+    const int w = 64, h = 48;
+    const auto camera = engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), w, h, 0.1f, 100.0f);
+    engine::RenderTarget target(w, h);
+    const auto draw = [&] {
+        engine.renderer().render(scene, camera, target);
+        pass->wait_for_statistics(engine.bus());
+        return target.read_color().rgba;
+    };
+    const auto shown = draw();
+    EXPECT_EQ(pass->latest_statistics()->visible, 2u);
+    const std::uint32_t pages = pass->scene().pages_in_use();
+
+    splats.visible = false;
+    const auto hidden = draw();
+    EXPECT_EQ(pass->scene().pages_in_use(), pages) << "still resident";
+    EXPECT_EQ(pass->scene().last_upload_bytes(), 0u) << "hiding uploads nothing";
+    EXPECT_EQ(pass->latest_statistics()->visible, 0u);
+    EXPECT_EQ(pass->latest_statistics()->culled, 0u) << "hidden Gaussians are not counted as culled";
+    // Counted by whole clusters (pages of 256 slots, the last one padded), as culled Gaussians are.
+    EXPECT_GE(pass->latest_statistics()->hidden, 2u);
+    EXPECT_LE(pass->latest_statistics()->hidden, 256u);
+    for (std::size_t i = 0; i < hidden.size(); i += 4) {
+        ASSERT_EQ(hidden[i], 51) << "pixel " << i / 4;  // the background, 0.2 · 255
+        ASSERT_EQ(hidden[i + 2], 102) << "pixel " << i / 4;
+    }
+    EXPECT_NE(shown, hidden);
+
+    splats.visible = true;
+    EXPECT_EQ(draw(), shown);
+    EXPECT_EQ(pass->scene().last_upload_bytes(), 0u);
 }

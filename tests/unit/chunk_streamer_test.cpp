@@ -23,6 +23,7 @@
 #include "engine/core/message_bus.h"
 #include "splat_lod/splat_io.h"
 #include "splat_lod/world/chunk_streamer.h"
+#include "splat_lod/world/world_groups.h"
 #include "test_support.h"
 
 namespace sw = splat_lod::world;
@@ -150,6 +151,9 @@ public:
 
     void upload(const sw::LevelPart& p) override {
         calls.push_back({true, p.chunk_id, p.level, p.part, p.bytes});
+        if (shown.count(p.chunk_id) && shown[p.chunk_id] != p.visible)
+            violations.push_back(p.chunk_id + ": a part uploaded with another visibility than last shown");
+        shown[p.chunk_id] = p.visible;
         if (throw_on.count(p.chunk_id + "/" + std::to_string(p.level))) throw engine::Error("out of GPU memory (test)");
         const auto key = std::make_pair(p.chunk_id, p.level);
         for (int l = p.level + 1; l <= 4; ++l)
@@ -176,7 +180,14 @@ public:
         level_bytes.erase(key);
         complete.erase(key);
     }
+    void show(const std::string& chunk, bool visible) override { shown[chunk] = visible; }
     std::uint64_t take_frame_bytes() { return std::exchange(frame_bytes, 0); }
+    // Drawn: something of it uploaded and shown (parts arrive with the visibility last shown).
+    bool drawn(const std::string& id) const {
+        const auto it = shown.find(id);
+        return it != shown.end() && it->second && level_bytes.count({id, 4}) > 0;
+    }
+    std::map<std::string, bool> shown;
 };
 
 sw::StreamerSettings sync_settings() {
@@ -682,4 +693,138 @@ TEST(ChunkStreamer, PagedAccountingSplitsLevelsIntoWholePages) {
     EXPECT_GT(uploads, 4);
     EXPECT_LE(h.max_frame_upload, page);
     EXPECT_TRUE(h.sink.violations.empty()) << h.sink.violations.front();
+}
+
+namespace {
+
+// make_world() with chunk groups: 2 × 2 groups of depth 1 (cells of 0.5 m: drawn from 50 m at
+// f = 100 px and 1 px) and a root of depth 2 (1 m cells: from 100 m), 30 Gaussians each, all of
+// stream level 4.
+sw::WorldManifest make_grouped_world() {
+    sw::WorldManifest world = make_world();
+    const int count = sw::chunks_per_side(world);
+    for (sw::ChunkEntry& c : world.chunks) c.cell -= glm::ivec2(count / 2);  // cells from −count/2, as generated
+    for (int depth = 1; depth <= 2; ++depth) {
+        std::set<std::pair<int, int>> made;
+        for (const sw::ChunkEntry& c : world.chunks) {
+            const glm::ivec2 g = sw::group_of_chunk(c.cell, count, depth);
+            if (!made.insert({g.x, g.y}).second) continue;
+            sw::ChunkEntry e = c;
+            e.id = sw::group_id(depth, g);
+            e.file = e.id + ".ply";
+            e.cell = g;
+            e.depth = depth;
+            e.cell_m = depth == 1 ? 0.5f : 1.0f;
+            e.bounds_min = glm::vec3(1e9f);
+            e.bounds_max = glm::vec3(-1e9f);
+            for (const sw::ChunkEntry& m : world.chunks)
+                if (sw::group_of_chunk(m.cell, count, depth) == g) {
+                    e.bounds_min = glm::min(e.bounds_min, m.bounds_min);
+                    e.bounds_max = glm::max(e.bounds_max, m.bounds_max);
+                }
+            e.prefix_count = {30, 30, 30, 30};
+            e.levels = {};
+            e.file_bytes = e.prefix_bytes(1);
+            world.groups.push_back(e);
+        }
+    }
+    return world;
+}
+
+// Over every chunk, how many nodes on its path to the root are drawn: exactly one means no hole and
+// nothing drawn twice over the same ground.
+std::vector<std::string> coverage_problems(const Harness& h, const sw::WorldManifest& world) {
+    std::vector<std::string> problems;
+    const int count = sw::chunks_per_side(world);
+    for (const sw::ChunkEntry& c : world.chunks) {
+        int drawn = h.sink.drawn(c.id) ? 1 : 0;
+        for (int depth = 1; depth <= 2; ++depth) drawn += h.sink.drawn(sw::group_id(depth, sw::group_of_chunk(c.cell, count, depth))) ? 1 : 0;
+        if (drawn != 1) problems.push_back(c.id + " is drawn " + std::to_string(drawn) + " times");
+    }
+    return problems;
+}
+
+}  // namespace
+
+TEST(ChunkStreamerGroups, FarViewLoadsTheRootOnly) {
+    Harness h(sync_settings(), nullptr, make_grouped_world());
+    h.steps({20.0f, 400.0f, 20.0f}, 4);
+    EXPECT_TRUE(h.sink.drawn("group_2_+000_+000"));
+    EXPECT_EQ(h.sink.total, 30u * kPerGaussian) << "only the root is resident";
+    EXPECT_EQ(h.streamer.residency().drawn_groups, 1u);
+    EXPECT_EQ(h.streamer.residency().drawn_chunks, 0u);
+    EXPECT_TRUE(h.status("group_2_+000_+000").in_cut);
+    EXPECT_FALSE(h.status("chunk_0_0").in_cut);
+    EXPECT_TRUE(h.sink.violations.empty());
+    EXPECT_TRUE(coverage_problems(h, make_grouped_world()).empty());
+}
+
+TEST(ChunkStreamerGroups, FlyingInAndOutNeverLeavesAHoleOrDrawsTwice) {
+    sw::StreamerSettings settings = sync_settings();
+    settings.upload_budget_bytes_per_frame = 200 * kPerGaussian;  // levels arrive over several frames
+    settings.unload_delay_frames = 3;
+    const sw::WorldManifest world = make_grouped_world();
+    Harness h(settings, nullptr, world);
+    glm::vec3 eye{20.0f, 400.0f, 20.0f};
+    h.steps(eye, 3);
+    std::set<std::string> seen_drawn;
+    for (int k = 0; k < 160; ++k) {  // down to the ground in the corner chunk and back up
+        const float t = k < 80 ? static_cast<float>(k) / 79.0f : static_cast<float>(159 - k) / 79.0f;
+        eye = glm::mix(glm::vec3(20.0f, 400.0f, 20.0f), glm::vec3(2.0f, 1.5f, 2.0f), std::pow(t, 0.4f));
+        h.step(eye);
+        for (const std::string& problem : coverage_problems(h, world)) ADD_FAILURE() << "step " << k << ": " << problem;
+        for (const auto& [id, visible] : h.sink.shown)
+            if (h.sink.drawn(id)) seen_drawn.insert(id);
+    }
+    EXPECT_TRUE(seen_drawn.count("chunk_0_0"));
+    EXPECT_TRUE(seen_drawn.count("group_1_+001_+001"));
+    EXPECT_TRUE(seen_drawn.count("group_1_+000_+000"));
+    EXPECT_TRUE(seen_drawn.count("group_2_+000_+000"));
+    EXPECT_TRUE(h.sink.violations.empty()) << h.sink.violations.front();
+}
+
+TEST(ChunkStreamerGroups, NearViewDrawsChunksAndReleasesGroups) {
+    sw::StreamerSettings settings = sync_settings();
+    Harness h(settings, nullptr, make_grouped_world());
+    h.steps({20.0f, 400.0f, 20.0f}, 3);
+    h.steps({5.0f, 1.0f, 5.0f}, 6);  // inside chunk_0_0: its group 1 is 0 m away
+    EXPECT_TRUE(h.sink.drawn("chunk_0_0"));
+    EXPECT_FALSE(h.sink.drawn("group_2_+000_+000"));
+    EXPECT_EQ(h.sink.level_bytes.count({"group_2_+000_+000", 4}), 0u) << "released once replaced";
+    // Chunks more than 50 m away are drawn from their depth-1 group... none here (the world is 40 m):
+    EXPECT_EQ(h.streamer.residency().drawn_groups, 0u);
+    EXPECT_EQ(h.streamer.residency().drawn_chunks, 16u);
+}
+
+TEST(ChunkStreamerGroups, AMissingGroupIsReportedAndItsChunksDrawn) {
+    Harness h(sync_settings(), nullptr, make_grouped_world());
+    h.source.missing.insert("group_2_+000_+000.ply");
+    h.steps({20.0f, 400.0f, 20.0f}, 6);
+    const auto failed = h.of(StreamEventType::failed, "group_2_+000_+000");
+    ASSERT_EQ(failed.size(), 1u);
+    EXPECT_NE(failed[0].second.message.find("group_2_+000_+000.ply"), std::string::npos);
+    EXPECT_FALSE(h.sink.drawn("group_2_+000_+000"));
+    EXPECT_EQ(h.streamer.residency().drawn_groups, 4u) << "the depth-1 groups stand in for the root";
+    EXPECT_TRUE(coverage_problems(h, make_grouped_world()).empty());
+}
+
+TEST(ChunkStreamerGroups, GroupsOffStreamsChunksOnly) {
+    sw::StreamerSettings settings = sync_settings();
+    settings.group_cell_px = 0.0f;
+    Harness h(settings, nullptr, make_grouped_world());
+    h.steps({20.0f, 400.0f, 20.0f}, 4);
+    EXPECT_EQ(h.streamer.residency().drawn_chunks, 16u);
+    EXPECT_EQ(h.streamer.residency().groups.resident, 0u);
+    for (const auto& [key, bytes] : h.sink.level_bytes) EXPECT_EQ(key.first.rfind("chunk_", 0), 0u) << key.first;
+}
+
+TEST(ChunkStreamerGroups, MemoryBudgetHoldsWhileTheCutMoves) {
+    sw::StreamerSettings settings = sync_settings();
+    settings.memory_budget_bytes = 4 * (10 + 40) * kPerGaussian + 60 * kPerGaussian;
+    settings.upload_budget_bytes_per_frame = 100 * kPerGaussian;
+    Harness h(settings, nullptr, make_grouped_world());
+    for (int k = 0; k < 60; ++k)
+        h.step(glm::mix(glm::vec3(20.0f, 400.0f, 20.0f), glm::vec3(5.0f, 2.0f, 5.0f), static_cast<float>(k) / 59.0f));
+    EXPECT_TRUE(h.sink.violations.empty());
+    EXPECT_GT(h.streamer.residency().drawn_chunks, 0u);
 }

@@ -111,10 +111,11 @@ TEST(WorldOutputSafety, ACommittedRunRemovesThePreviousGenerationAndLeftoversBut
     const auto after = folder_bytes(dir);
     std::set<std::string> expected = {"world.json", "notes.txt", "chunks/readme.txt", "gen-x/keep.txt"};
     for (const ChunkEntry& c : world.manifest.chunks) expected.insert(c.file.generic_string());
+    for (const ChunkEntry& g : world.manifest.groups) expected.insert(g.file.generic_string());
     for (const char* mesh : {"house", "fence", "post", "terrain"})  // all written, placed or not
         expected.insert("gen-6/meshes/" + std::string(mesh) + ".glb");
     EXPECT_EQ(names(after), expected);
-    EXPECT_EQ(expected.size(), 4u + 9u + 4u);
+    EXPECT_EQ(expected.size(), 4u + 9u + 4u + 5u);
     EXPECT_EQ(world.manifest.chunks[0].file.begin()->string(), "gen-6");
     EXPECT_FALSE(fs::exists(dir / "meshes")) << "emptied, so removed";
 }
@@ -136,26 +137,41 @@ TEST(WorldOutputSafety, ACachedRunRemovesWhatARunKilledAfterItsCommitLeft) {
 TEST(WorldOutputSafety, WorldsOfTheFlatLayoutStillReadAndAreReplaced) {
     WorldOptions options = fresh_world();
     const fs::path dir = options.output;
-    // What earlier versions wrote: chunks/ and meshes/ beside world.json, the manifest naming them.
+    // What earlier versions wrote: chunks/ and meshes/ beside world.json, the manifest naming them,
+    // and no chunk groups.
     fs::rename(dir / "gen-1/chunks", dir / "chunks");
     fs::rename(dir / "gen-1/meshes", dir / "meshes");
-    fs::remove(dir / "gen-1");
+    fs::remove_all(dir / "gen-1");
     WorldManifest m = read_world_manifest(dir / kManifestFileName);
     for (ChunkEntry& c : m.chunks) c.file = c.file.lexically_relative("gen-1");
     for (Prop& p : m.props) p.mesh = p.mesh.lexically_relative("gen-1");
     m.terrain_mesh = m.terrain_mesh.lexically_relative("gen-1");
+    m.groups.clear();
+    m.group_generator.clear();
     write_world_manifest(dir / kManifestFileName, m);
     const auto flat = folder_bytes(dir);
     ASSERT_TRUE(flat.count("chunks/chunk_+000_+000.lod.ply"));
 
+    // The cached chunks and meshes stay where they are; only the groups are made, in a generation.
+    const WorldResult cached = generate_world(options);
+    EXPECT_TRUE(cached.summary.cached);
+    EXPECT_TRUE(cached.summary.groups_rebuilt);
+    const auto with_groups = folder_bytes(dir);
+    for (const auto& [name, bytes] : flat) {
+        if (name == kManifestFileName) continue;
+        EXPECT_TRUE(with_groups.count(name) && with_groups.at(name) == bytes) << name;
+    }
+    EXPECT_TRUE(fs::is_directory(dir / "gen-1/groups"));
     EXPECT_TRUE(generate_world(options).summary.cached);
-    EXPECT_TRUE(folder_bytes(dir) == flat);
+    EXPECT_TRUE(folder_bytes(dir) == with_groups);
     options.force = true;
     EXPECT_FALSE(generate_world(options).summary.cached);
-    EXPECT_TRUE(fs::is_directory(dir / "gen-1"));
+    EXPECT_TRUE(fs::is_directory(dir / "gen-2"));
+    EXPECT_FALSE(fs::exists(dir / "gen-1"));
     EXPECT_FALSE(fs::exists(dir / "chunks"));
     EXPECT_FALSE(fs::exists(dir / "meshes"));
-    EXPECT_TRUE(without_generation(folder_bytes(dir)) == flat) << "the same world, moved into gen-1";
+    EXPECT_TRUE(without_generation(folder_bytes(dir)) == without_generation(with_groups))
+        << "the same world, moved into gen-2";
 }
 
 TEST(WorldOutputSafety, ASecondRunIntoALockedFolderFailsAndTheCacheStillServes) {

@@ -286,7 +286,7 @@ TEST(WorldGenerator, SameSeedSameBytesForAnyThreadCountAndAnotherSeedDiffers) {
     EXPECT_GT(a.summary.gaussians, 1000u);
     EXPECT_GT(a.summary.props, 0u);
     const auto first = folder_bytes(dir / "a"), same = folder_bytes(dir / "b"), other = folder_bytes(dir / "c");
-    EXPECT_EQ(first.size(), 1u + 9u + 4u);  // manifest, chunks, house/fence/post/terrain meshes
+    EXPECT_EQ(first.size(), 1u + 9u + 4u + 5u);  // manifest, chunks, house/fence/post/terrain meshes, groups
     EXPECT_TRUE(first == same);
     EXPECT_NE(first.at("world.json"), other.at("world.json"));
     EXPECT_NE(first.at("gen-1/chunks/chunk_+000_+000.lod.ply"), other.at("gen-1/chunks/chunk_+000_+000.lod.ply"));

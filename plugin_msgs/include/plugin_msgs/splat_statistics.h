@@ -18,6 +18,7 @@ struct SplatStatistics {
     std::array<std::uint64_t, 4> per_level{0, 0, 0, 0};  // visible per LOD level 1..4
     std::uint64_t skipped = 0;             // not projected: in clusters too small to select (LOD modes)
     std::uint64_t culled = 0;              // not projected: in clusters outside the view frustum
+    std::uint64_t hidden = 0;              // not projected: of components resident but not drawn (a streamer's cut)
     // The splat budget (LodSettings::splat_budget; 0: none). `unbudgeted` is what the selection would
     // have drawn without it; the frame selected with coverage divided by `budget_scale` (β ≥ 1), i.e.
     // with a size threshold of `budget_threshold_px` = β·S_T and coverage ranges β times larger, and
@@ -37,7 +38,7 @@ struct SplatStatistics {
 };
 
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(SplatStatistics, frame_index, considered, visible, per_level,
-                                                skipped, culled, splat_budget, unbudgeted, budget_scale,
+                                                skipped, culled, hidden, splat_budget, unbudgeted, budget_scale,
                                                 budget_threshold_px, budget_coverage_cut_px, tile_splat_pairs,
                                                 key_capacity, overflowed, resident_bytes)
 

@@ -83,6 +83,9 @@ struct ResidencyReport {
     std::uint64_t resident_bytes = 0;  // may briefly exceed the budget until evictions catch up
     std::uint64_t budget_bytes = 0;
     ChunkStateCounts chunks;
+    ChunkStateCounts groups;          // chunk groups (coarse Gaussians standing for squares of chunks)
+    std::uint32_t drawn_chunks = 0;   // chunks and groups the renderer draws this frame: the LOD cut
+    std::uint32_t drawn_groups = 0;
 
     friend bool operator==(const ResidencyReport&, const ResidencyReport&) = default;
 };
@@ -105,19 +108,26 @@ inline void to_json(nlohmann::json& json, const ResidencyReport& r) {
     json = nlohmann::json{{"frame_index", r.frame_index},
                           {"resident_bytes", r.resident_bytes},
                           {"budget_bytes", r.budget_bytes},
-                          {"chunks", r.chunks}};
+                          {"chunks", r.chunks},
+                          {"groups", r.groups},
+                          {"drawn_chunks", r.drawn_chunks},
+                          {"drawn_groups", r.drawn_groups}};
 }
 
 inline void from_json(const nlohmann::json& json, ResidencyReport& r) {
     constexpr auto kind = ResidencyReport::kind;
     detail::require_object(json, kind);
-    detail::only_keys(json, kind, {"frame_index", "resident_bytes", "budget_bytes", "chunks"});
+    detail::only_keys(json, kind,
+                      {"frame_index", "resident_bytes", "budget_bytes", "chunks", "groups", "drawn_chunks", "drawn_groups"});
     ResidencyReport read;
     detail::read(json, kind, "frame_index", read.frame_index);
     detail::read(json, kind, "resident_bytes", read.resident_bytes);
     detail::read(json, kind, "budget_bytes", read.budget_bytes);
     // The nested reader's message already names "residency.chunks.<key>".
     if (const auto it = json.find("chunks"); it != json.end()) from_json(*it, read.chunks);
+    if (const auto it = json.find("groups"); it != json.end()) from_json(*it, read.groups);
+    if (json.contains("drawn_chunks")) detail::read(json, kind, "drawn_chunks", read.drawn_chunks);
+    if (json.contains("drawn_groups")) detail::read(json, kind, "drawn_groups", read.drawn_groups);
     r = read;
 }
 

@@ -49,6 +49,13 @@ std::string duration(double seconds) {
 void print_progress(const splat_lod::world::WorldProgress& p) {
     static auto last = std::chrono::steady_clock::time_point{};
     const auto now = std::chrono::steady_clock::now();
+    if (p.stage == "groups") {
+        if (p.chunks_total > 16 && p.chunks_done != p.chunks_total && now - last < std::chrono::seconds(2)) return;
+        last = now;
+        std::fprintf(stderr, "splat_world: chunk groups %zu/%zu, %s elapsed\n", p.chunks_done, p.chunks_total,
+                     duration(p.elapsed_seconds).c_str());
+        return;
+    }
     if (p.stage != "chunks") {
         std::fprintf(stderr, "splat_world: %s (%s elapsed)\n", p.stage.c_str(), duration(p.elapsed_seconds).c_str());
         return;
@@ -104,6 +111,11 @@ int main(int argc, char** argv) {
     app.add_option("--bake-height", options.bake_height, "chunk bake camera height (a multiple of 64)")
         ->check(CLI::Range(64, 8192));
     app.add_flag("--no-terrain-mesh", no_terrain_mesh, "do not write the coarse terrain mesh");
+    bool no_groups = false;
+    app.add_flag("--no-groups", no_groups, "no chunk groups (the far field is then drawn from every chunk)");
+    app.add_option("--group-cell", options.groups.base_cell_m,
+                   "the chunk groups' pooling cell at depth 1 in metres, doubling per depth; 0.5 by default")
+        ->check(CLI::Range(0.01, 1000.0));
     app.add_flag("--force", options.force, "regenerate even when the cached world matches");
     auto* count_flag = app.add_flag("--count-only", count_only,
                                     "only generate the content and print its Gaussian counts (no bake, no files)");
@@ -125,6 +137,7 @@ int main(int argc, char** argv) {
         options.seed = engine::parse_u64(seed_text, "--seed");
         options.output = out;
         options.terrain_mesh = !no_terrain_mesh;
+        options.groups.enabled = !no_groups;
         options.progress = print_progress;
         if (count_only) {
             const auto summary = splat_lod::world::count_world_content(options);

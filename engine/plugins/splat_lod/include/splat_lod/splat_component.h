@@ -22,6 +22,9 @@ struct SplatComponent : engine::Component {
     std::filesystem::path asset;
     std::shared_ptr<const SplatCloud> cloud;
     int sh_degree_cap = kMaxShDegree;  // 0..3; the cloud's own degree limits it further
+    // False: kept on the GPU but not drawn (its clusters are dropped before any per-Gaussian work),
+    // so that a streamer can switch between coarse and fine parts of a world without re-uploading.
+    bool visible = true;
 };
 
 // Registers the "splat" type (asset path resolved against the scene file, loads cached).

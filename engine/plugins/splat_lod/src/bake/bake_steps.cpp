@@ -193,10 +193,6 @@ double sigmoid(double logit) {
 
 }  // namespace
 
-namespace {
-
-// Eigen-decomposition of a symmetric 3×3 matrix by cyclic Jacobi rotations: the columns of
-// `vectors` are orthonormal eigenvectors, `values` the eigenvalues.
 void symmetric_eigen(glm::dmat3 a, glm::dvec3& values, glm::dmat3& vectors) {
     vectors = glm::dmat3(1.0);
     for (int sweep = 0; sweep < 32; ++sweep) {
@@ -227,8 +223,6 @@ glm::dmat3 rotation_of(const Rotation& q) {
                       2.0 * (x * y - w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z + w * x),
                       2.0 * (x * z + w * y), 2.0 * (y * z - w * x), 1.0 - 2.0 * (x * x + y * y));
 }
-
-}  // namespace
 
 void pool_moments(const SplatCloud& source, std::span<const std::uint32_t> members, SplatCloud& target, std::size_t out) {
     pool(source, members, target, out);

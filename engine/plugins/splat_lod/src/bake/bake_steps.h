@@ -79,6 +79,12 @@ std::uint64_t grid_cell(const glm::dvec3& normalised, int cells);
 std::uint64_t cell_key(const glm::dvec3& p, int level, int grid_cells, const Normaliser& normaliser,
                        const std::vector<reference::ReferenceCamera>& cameras, const BakeOptions& options);
 
+// Eigen-decomposition of a symmetric 3×3 matrix by cyclic Jacobi rotations: the columns of
+// `vectors` are orthonormal eigenvectors, `values` the eigenvalues.
+void symmetric_eigen(glm::dmat3 a, glm::dvec3& values, glm::dmat3& vectors);
+// The rotation matrix of a unit quaternion (w, x, y, z).
+glm::dmat3 rotation_of(const Rotation& q);
+
 // Step 4: the pooled Gaussian of `members` (indices into `source`), written at `out` of `target`
 // (which has the same SH degree and extras): mean position, quaternions flipped to the first member's
 // hemisphere then averaged and renormalised, mean log-scales, mean activated opacity (back to a

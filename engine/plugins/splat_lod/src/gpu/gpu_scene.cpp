@@ -394,7 +394,9 @@ bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
         inst.rotation_inverse = inverse_rotation(inst.model);
         // x: its first page's first slot (informational: the pages need not be adjacent).
         inst.info = glm::uvec4(slot.pages.empty() ? 0u : slot.pages.front() * kCluster,
-                               static_cast<std::uint32_t>(slot.cloud->size()), static_cast<std::uint32_t>(slot.sh_degree),
+                               static_cast<std::uint32_t>(slot.cloud->size()),
+                               static_cast<std::uint32_t>(slot.sh_degree) |
+                                   (components[i]->visible ? 0u : std::uint32_t{SPLAT_INSTANCE_HIDDEN}),
                                std::bit_cast<std::uint32_t>(spectral_norm(glm::mat3(inst.model))));
     }
     const std::size_t bytes = std::max<std::size_t>(instances.size(), 1) * sizeof(GpuInstance);

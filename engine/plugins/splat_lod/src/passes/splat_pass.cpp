@@ -304,6 +304,7 @@ void SplatPass::collect_statistics(engine::MessageBus& bus, bool wait) {
         for (int l = 0; l < 4; ++l) s.per_level[static_cast<std::size_t>(l)] = c.per_level[l];
         s.skipped = c.skipping.x;
         s.culled = c.skipping.y;
+        s.hidden = c.skipping.z;
         s.splat_budget = r.splat_budget;
         s.unbudgeted = r.splat_budget > 0 ? c.budget.z : c.visible;
         s.budget_scale = r.splat_budget > 0 ? std::exp2(static_cast<double>(c.budget.x) / SPLAT_BUDGET_BINS_PER_OCTAVE) : 1.0;

@@ -67,6 +67,8 @@ void validate(const StreamerSettings& s) {
         settings_error("unload_distance_factor must be finite and at least 1");
     if (s.unload_delay_frames < 0) settings_error("unload_delay_frames must not be negative");
     if (s.retry_failed_after_frames < 0) settings_error("retry_failed_after_frames must not be negative");
+    if (!(s.group_cell_px >= 0.0f) || !std::isfinite(s.group_cell_px))
+        settings_error("group_cell_px must be 0 (no groups) or positive, and finite");
 }
 
 std::string_view to_string(DropReason reason) {
@@ -105,10 +107,12 @@ ChunkStreamer::State::State(WorldManifest world, std::filesystem::path root, Str
                             ResidencySink& snk, engine::MessageBus* message_bus)
     : manifest(std::move(world)), folder(std::move(root)), settings(s), sink(snk), bus(message_bus) {
     validate(settings);
-    chunks.resize(manifest.chunks.size());
+    chunks.resize(manifest.chunks.size() + manifest.groups.size());
     for (std::size_t c = 0; c < chunks.size(); ++c) {
         ChunkSlot& slot = chunks[c];
-        slot.entry = &manifest.chunks[c];
+        const bool group = c >= manifest.chunks.size();
+        slot.entry = group ? &manifest.groups[c - manifest.chunks.size()] : &manifest.chunks[c];
+        slot.depth = slot.entry->depth;
         slot.file = folder / slot.entry->file;
         if (std::string problem = check_chunk_entry(*slot.entry); !problem.empty()) {
             slot.failed = slot.failure_permanent = true;
@@ -118,6 +122,7 @@ ChunkStreamer::State::State(WorldManifest world, std::filesystem::path root, Str
         }
         layout_levels(slot);
     }
+    link_groups();
     report.budget_bytes = settings.memory_budget_bytes;
     // Decoded parts are checked on the reader's thread, off the frame.
     reader = std::make_unique<StreamReader>(
@@ -277,9 +282,15 @@ void ChunkStreamer::State::upload_loaded() {
             // Strict priority: the first part that does not fit ends this frame's uploads.
             if (frame_uploaded + part.bytes > settings.upload_budget_bytes_per_frame) return;
             if (!make_room(part.bytes)) return;
-            const LevelPart upload{
-                slot.entry->id,  p.level,        i,         static_cast<std::uint32_t>(s.parts.size()), part.first,
-                s.end - s.begin, part.gaussians, part.bytes};
+            const LevelPart upload{slot.entry->id,
+                                   p.level,
+                                   i,
+                                   static_cast<std::uint32_t>(s.parts.size()),
+                                   part.first,
+                                   s.end - s.begin,
+                                   part.gaussians,
+                                   part.bytes,
+                                   slot.shown};
             try {
                 sink.upload(upload);
             } catch (const std::exception& e) {
@@ -340,10 +351,12 @@ void ChunkStreamer::State::publish_report(std::uint64_t frame_index) {
             loaded += s.parts_in(PartPhase::loaded);
         }
         const LevelSlot& coarse = slot.level(kLevels);
-        r.chunks.requested += requested > 0 ? 1u : 0u;
-        r.chunks.loaded += loaded > 0 ? 1u : 0u;
-        r.chunks.resident += !coarse.parts.empty() && coarse.complete() ? 1u : 0u;
-        r.chunks.failed += slot.failed ? 1u : 0u;
+        plugin_msgs::ChunkStateCounts& counts = slot.depth == 0 ? r.chunks : r.groups;
+        counts.requested += requested > 0 ? 1u : 0u;
+        counts.loaded += loaded > 0 ? 1u : 0u;
+        counts.resident += !coarse.parts.empty() && coarse.complete() ? 1u : 0u;
+        counts.failed += slot.failed ? 1u : 0u;
+        (slot.depth == 0 ? r.drawn_chunks : r.drawn_groups) += slot.drawn ? 1u : 0u;
     }
     report = r;
     if (bus) bus->publish(report);
@@ -380,6 +393,7 @@ void ChunkStreamer::update(const StreamView& view) {
     s.collect_reads();
     s.enforce_memory_budget();
     s.upload_loaded();
+    s.decide_drawn();
     s.request_reads();
     ++s.stats.updates;
     s.stats.uploaded_bytes_last_update = s.frame_uploaded;
@@ -395,6 +409,7 @@ void ChunkStreamer::release_all() {
     State& s = *state_;
     s.events.clear();
     for (std::size_t c = 0; c < s.chunks.size(); ++c) s.drop_levels(c, kLevels, DropReason::release_all);
+    for (ChunkSlot& slot : s.chunks) slot.drawn = slot.shown = false;
 }
 
 void ChunkStreamer::set_settings(const StreamerSettings& settings) {
@@ -414,7 +429,10 @@ std::uint64_t ChunkStreamer::resident_bytes() const {
     return state_->resident;
 }
 std::size_t ChunkStreamer::chunk_count() const {
-    return state_->chunks.size();
+    return state_->manifest.chunks.size();
+}
+std::size_t ChunkStreamer::group_count() const {
+    return state_->manifest.groups.size();
 }
 const plugin_msgs::ResidencyReport& ChunkStreamer::residency() const {
     return state_->report;
@@ -427,8 +445,8 @@ const StreamerStats& ChunkStreamer::stats() const {
 }
 
 std::optional<std::size_t> ChunkStreamer::find_chunk(std::string_view id) const {
-    const auto& chunks = state_->manifest.chunks;
-    const auto it = std::find_if(chunks.begin(), chunks.end(), [&](const ChunkEntry& e) { return e.id == id; });
+    const auto& chunks = state_->chunks;
+    const auto it = std::find_if(chunks.begin(), chunks.end(), [&](const ChunkSlot& e) { return e.entry->id == id; });
     if (it == chunks.end()) return std::nullopt;
     return static_cast<std::size_t>(it - chunks.begin());
 }
@@ -441,6 +459,9 @@ ChunkStatus ChunkStreamer::chunk_status(std::size_t index) const {
     status.finest_needed_level = slot.finest_needed;
     status.failed = slot.failed;
     status.failure = slot.failure;
+    status.depth = slot.depth;
+    status.in_cut = slot.in_cut;
+    status.drawn = slot.drawn;
     bool prefix_resident = true;
     for (int l = kLevels; l >= 1; --l) {
         const LevelSlot& s = slot.level(l);

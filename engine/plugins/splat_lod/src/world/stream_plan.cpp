@@ -29,7 +29,7 @@ bool LevelRank::operator<(const LevelRank& o) const {
 LevelRank ChunkStreamer::State::rank(std::size_t chunk, int level) const {
     const ChunkSlot& slot = chunks[chunk];
     LevelRank r;
-    r.tier = level == kLevels ? 0 : 1;
+    r.tier = level != kLevels ? 1 : slot.in_cut ? 0 : 2;
     r.distance = slot.distance;
     r.primary = level == kLevels ? r.distance : -slot.level(level).margin;
     r.coarseness = -level;
@@ -40,20 +40,22 @@ LevelRank ChunkStreamer::State::rank(std::size_t chunk, int level) const {
 void ChunkStreamer::State::plan(const StreamView& view) {
     const double keep_factor = settings.unload_distance_factor;
     order.clear();
+    for (ChunkSlot& slot : chunks) slot.distance = nearest_distance(*slot.entry, view.camera_position);
+    choose_cut(view);
     for (std::size_t c = 0; c < chunks.size(); ++c) {
         ChunkSlot& slot = chunks[c];
-        slot.distance = nearest_distance(*slot.entry, view.camera_position);
-        // Prefix semantics: a level is needed when it or any finer level could be selected.
+        // Prefix semantics: a level is needed when it or any finer level could be selected. Nothing
+        // of a node outside the cut is needed, but what is drawn stays (chunk_streamer.h, "the cut").
         double finer = 0.0;
         for (int l = 1; l < kLevels; ++l) {
-            const double load = slot.failure_permanent
+            const double load = slot.failure_permanent || !slot.in_cut
                                     ? 0.0
                                     : level_load_distance(*slot.entry, l, view.focal_length_px, settings.lod) *
                                           settings.load_distance_scale;
             finer = std::max(finer, margin(load, slot.distance));
             slot.level(l).margin = finer;
         }
-        slot.level(kLevels).margin = kInfinity;
+        slot.level(kLevels).margin = slot.in_cut || slot.drawn ? kInfinity : 0.0;
         slot.finest_needed = kLevels;
         for (int l = kLevels - 1; l >= 1; --l)
             if (slot.level(l).margin >= 1.0) slot.finest_needed = l;

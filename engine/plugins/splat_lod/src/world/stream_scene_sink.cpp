@@ -16,6 +16,7 @@ void SceneResidencySink::upload(const LevelPart& part) {
     auto component = std::make_unique<SplatComponent>();
     component->cloud = part.gaussians;
     component->sh_degree_cap = sh_degree_cap_;
+    component->visible = part.visible;
     node.attach(std::move(component));
     nodes_[{part.chunk_id, part.level}].push_back(&node);
 }
@@ -25,6 +26,12 @@ void SceneResidencySink::release(const std::string& chunk_id, int level) {
     if (it == nodes_.end()) return;
     for (engine::Node* node : it->second) root_.remove_child(*node);
     nodes_.erase(it);
+}
+
+void SceneResidencySink::show(const std::string& chunk_id, bool visible) {
+    for (auto it = nodes_.lower_bound({chunk_id, 0}); it != nodes_.end() && it->first.first == chunk_id; ++it)
+        for (engine::Node* node : it->second)
+            if (auto* component = node->find_component<SplatComponent>()) component->visible = visible;
 }
 
 std::size_t SceneResidencySink::resident_parts() const {

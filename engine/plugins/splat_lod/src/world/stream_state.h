@@ -56,7 +56,15 @@ struct ChunkSlot {
     int failed_level = 0;  // levels ≤ this are not loaded while failed
     std::uint64_t failed_frame = 0;
     std::string failure;
+    // The quadtree of chunk groups (chunk_streamer.h, "the cut"); chunks have depth 0.
+    int depth = 0;
+    std::size_t parent = kNoSlot;
+    std::vector<std::size_t> children;
+    bool in_cut = true;
+    bool drawn = false;  // decided after this update's uploads
+    bool shown = false;  // what the sink was last told (ResidencySink::show)
 
+    static constexpr std::size_t kNoSlot = static_cast<std::size_t>(-1);
     LevelSlot& level(int l) { return levels[static_cast<std::size_t>(l - 1)]; }
     const LevelSlot& level(int l) const { return levels[static_cast<std::size_t>(l - 1)]; }
     bool blocked(int l) const { return failed && l <= failed_level; }
@@ -65,7 +73,7 @@ struct ChunkSlot {
 // Importance of one level of one chunk: smaller ranks first (loading), larger ranks are evicted
 // first. Level 4 of every chunk (by distance) before any finer level (by margin, largest first).
 struct LevelRank {
-    int tier = 0;          // 0: the coarsest level, 1: finer levels
+    int tier = 0;          // 0: the coarsest level of a node in the cut, 1: finer levels, 2: level 4 outside the cut
     double primary = 0.0;  // tier 0: distance; tier 1: −margin
     double distance = 0.0;
     int coarseness = 0;  // −level: coarser first on ties
@@ -92,7 +100,7 @@ struct ChunkStreamer::State {
     std::optional<StreamerSettings> pending_settings;
     ResidencySink& sink;
     engine::MessageBus* bus;
-    std::vector<ChunkSlot> chunks;
+    std::vector<ChunkSlot> chunks;  // the manifest's chunks, then its groups
     std::vector<PlannedLevel> order;  // this update's wanted levels in priority order
     std::uint64_t resident = 0;
     std::uint64_t frame = 0;
@@ -107,6 +115,10 @@ struct ChunkStreamer::State {
     LevelRank rank(std::size_t chunk, int level) const;
     bool make_room(std::uint64_t bytes);  // evicts levels outside the target set only
     void enforce_memory_budget();         // evicts anything, worst first, down to the budget
+
+    void link_groups();                          // parents and children of the quadtree
+    void choose_cut(const StreamView& view);     // ChunkSlot::in_cut
+    void decide_drawn();                         // ChunkSlot::drawn, then ResidencySink::show for changes
 
     // chunk_streamer.cpp
     void layout_levels(ChunkSlot& slot) const;

@@ -178,6 +178,20 @@ void add_chunk_results(std::vector<ChunkResult>& chunks, WorldManifest& m, World
     fill_counts(counts, s);
 }
 
+void add_groups(const WorldOptions& o, const fs::path& generation, WorldManifest& m, WorldSummary& s,
+                Clock::time_point start) {
+    m.groups.clear();
+    m.group_generator = group_generator_settings(o.groups);
+    if (!o.groups.enabled) return;
+    const auto stage_start = Clock::now();
+    const auto progress = [&](const GroupProgress& p) {
+        if (o.progress) o.progress({"groups", p.done, p.total, 0, seconds_since(start), -1.0});
+    };
+    m.groups = build_groups(o.output, generation, m.chunks, o.size_m, o.chunk_size_m, o.groups, stream_level_rule(o),
+                            o.threads, progress);
+    s.stages.push_back({"chunk groups", seconds_since(stage_start)});
+}
+
 void fill_counts(const ContentCounts& counts, WorldSummary& s) {
     s.ground = counts.ground;
     s.water = counts.water;
@@ -198,6 +212,13 @@ void summarise_manifest(const WorldManifest& m, const fs::path& folder, WorldSum
             s.gaussians_per_stream_level[static_cast<std::size_t>(l - 1)] += c.prefix_count[static_cast<std::size_t>(l - 1)] - next;
         }
         s.chunk_bytes += c.file_bytes;
+    }
+    s.groups = m.groups.size();
+    s.group_gaussians = 0;
+    s.group_bytes = 0;
+    for (const auto& g : m.groups) {
+        s.group_gaussians += g.prefix_count[0];
+        s.group_bytes += g.file_bytes;
     }
     std::set<fs::path> meshes;
     for (const auto& p : m.props) meshes.insert(p.mesh);

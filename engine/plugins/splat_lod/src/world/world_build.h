@@ -62,6 +62,11 @@ WorldManifest manifest_without_chunks(const WorldOptions& options, const WorldLa
 // Appends the chunks' entries (moved out) to `m` and adds their counts, stages and PSNRs to `s`.
 void add_chunk_results(std::vector<ChunkResult>& chunks, WorldManifest& m, WorldSummary& s);
 
+// Builds the chunk groups of m.chunks (files relative to options.output) into `generation` (relative
+// to options.output) and sets m.groups and m.group_generator; none when groups are off.
+void add_groups(const WorldOptions& options, const std::filesystem::path& generation, WorldManifest& m,
+                WorldSummary& s, Clock::time_point start);
+
 void fill_counts(const ContentCounts& counts, WorldSummary& s);
 
 // Chunks, props, Gaussians per stream level and bytes of a manifest's files below `folder`.

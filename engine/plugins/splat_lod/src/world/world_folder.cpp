@@ -97,6 +97,7 @@ std::string staging_folder_name(std::uint64_t seed, float size_m, float chunk_si
 void remove_unnamed_files(const fs::path& folder, const WorldManifest& m) {
     std::set<fs::path> named;
     for (const auto& c : m.chunks) named.insert(c.file.lexically_normal());
+    for (const auto& g : m.groups) named.insert(g.file.lexically_normal());
     for (const auto& p : m.props) named.insert(p.mesh.lexically_normal());
     if (!m.terrain_mesh.empty()) named.insert(m.terrain_mesh.lexically_normal());
     std::set<std::string> named_tops;
@@ -111,6 +112,11 @@ void remove_unnamed_files(const fs::path& folder, const WorldManifest& m) {
         const fs::path path = folder / name;
         if (generation_number(name) > 0 && !named_tops.count(name)) {
             fs::remove_all(path, ignored);
+        } else if (generation_number(name) > 0 && fs::is_directory(path / "groups", ignored)) {
+            // A generation whose chunks are still named may hold groups that newer ones replaced.
+            for (const std::string& file : entry_names(path / "groups"))
+                if (!named.count(fs::path(name) / "groups" / file)) fs::remove(path / "groups" / file, ignored);
+            fs::remove(path / "groups", ignored);  // only when empty
         } else if (!flat_world && (name == "chunks" || name == "meshes") && fs::is_directory(path, ignored)) {
             for (const std::string& file : entry_names(path)) {
                 if (flat_layout_file(name, file) && !named.count(fs::path(name) / file))
@@ -131,7 +137,9 @@ void remove_generation_unless_committed(const fs::path& output, const fs::path& 
     try {
         if (fs::exists(output / kManifestFileName, ec)) {
             const WorldManifest current = read_world_manifest(output / kManifestFileName);
-            if (!current.chunks.empty() && *current.chunks.front().file.begin() == generation) return;
+            for (const auto* list : {&current.chunks, &current.groups})
+                for (const auto& entry : *list)
+                    if (*entry.file.begin() == generation) return;
         }
     } catch (const engine::Error&) {
         return;  // unreadable: keep the files, the next run removes them if they are not named

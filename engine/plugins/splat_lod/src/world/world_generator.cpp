@@ -55,6 +55,22 @@ std::optional<WorldManifest> find_cached_world(const WorldOptions& o, std::strin
     return m;
 }
 
+bool groups_current(const WorldManifest& m, const WorldOptions& o, std::string* why_not) {
+    const auto no = [&](const std::string& why) {
+        if (why_not) *why_not = why;
+        return false;
+    };
+    const fs::path path = o.output / kManifestFileName;
+    if (m.group_generator != group_generator_settings(o.groups))
+        return no(path.string() + ": its chunk groups were made with other settings (or it has none)");
+    std::error_code ec;
+    for (const auto& g : m.groups) {
+        const auto size = fs::file_size(o.output / g.file, ec);
+        if (ec || size != g.file_bytes) return no((o.output / g.file).string() + ": missing or not the recorded size");
+    }
+    return true;
+}
+
 WorldSummary count_world_content(const WorldOptions& o) {
     validate(o);
     const auto start = Clock::now();
@@ -97,9 +113,43 @@ WorldManifest build_world(const WorldOptions& o, const fs::path& generation, Clo
     std::vector<ChunkResult> chunks = build_chunks(o, content_context(o, terrain, layout), generation, chunk_slots(o), start);
     s.stages.push_back({"chunks (content, bake, write)", seconds_since(stage_start)});
 
-    if (o.progress) o.progress({"manifest", chunks.size(), chunks.size(), 0, seconds_since(start), 0.0});
     WorldManifest m = manifest_without_chunks(o, layout, generation);
     add_chunk_results(chunks, m, s);
+    add_groups(o, generation, m, s, start);
+    if (o.progress) o.progress({"manifest", m.chunks.size(), m.chunks.size(), 0, seconds_since(start), 0.0});
+    return m;
+}
+
+// Writes the manifest (the commit) naming the files of `generation`, then removes what it does not name.
+void commit(const WorldOptions& o, const fs::path& generation, const WorldManifest& m, WorldSummary& s,
+            Clock::time_point start) {
+    const auto stage_start = Clock::now();
+    try {
+        write_world_manifest(o.output / kManifestFileName, m);  // the commit
+    } catch (...) {
+        remove_generation_unless_committed(o.output, generation);
+        throw;
+    }
+    if (o.progress) o.progress({"clean-up", m.chunks.size(), m.chunks.size(), 0, seconds_since(start), 0.0});
+    remove_unnamed_files(o.output, m);
+    s.stages.push_back({"manifest and clean-up", seconds_since(stage_start)});
+}
+
+// A cached world whose chunks match but whose groups do not: new groups in a new generation, the
+// chunks and meshes named where they are.
+WorldManifest rebuild_groups(const WorldOptions& o, WorldManifest cached, WorldSummary& s, Clock::time_point start) {
+    const fs::path generation = new_generation(o.output);
+    WorldManifest m = std::move(cached);
+    m.version = kManifestVersion;
+    try {
+        add_groups(o, generation, m, s, start);
+    } catch (...) {
+        std::error_code ec;
+        fs::remove_all(o.output / generation, ec);
+        throw;
+    }
+    commit(o, generation, m, s, start);
+    s.groups_rebuilt = true;
     return m;
 }
 
@@ -117,9 +167,14 @@ WorldResult generate_world(const WorldOptions& o) {
     const WorldFolderLock lock(o.output, WorldFolderLock::Mode::write);
     if (!o.force) {
         if (auto cached = find_cached_world(o, &s.cache_note)) {
-            // What a run killed between its commit and its clean-up left (unless a run is busy here).
-            if (lock.held()) remove_unnamed_files(o.output, *cached);
-            result.manifest = std::move(*cached);
+            if (groups_current(*cached, o, &s.cache_note)) {
+                // What a run killed between its commit and its clean-up left (unless a run is busy here).
+                if (lock.held()) remove_unnamed_files(o.output, *cached);
+                result.manifest = std::move(*cached);
+            } else {
+                lock.require();
+                result.manifest = rebuild_groups(o, std::move(*cached), s, start);
+            }
             s.cached = true;
             summarise_manifest(result.manifest, o.output, s);
             s.seconds = seconds_since(start);
@@ -137,17 +192,7 @@ WorldResult generate_world(const WorldOptions& o) {
         fs::remove_all(o.output / generation, ec);
         throw;
     }
-    const auto stage_start = Clock::now();
-    try {
-        write_world_manifest(o.output / kManifestFileName, result.manifest);  // the commit
-    } catch (...) {
-        remove_generation_unless_committed(o.output, generation);
-        throw;
-    }
-    const std::size_t count = result.manifest.chunks.size();
-    if (o.progress) o.progress({"clean-up", count, count, 0, seconds_since(start), 0.0});
-    remove_unnamed_files(o.output, result.manifest);
-    s.stages.push_back({"manifest and clean-up", seconds_since(stage_start)});
+    commit(o, generation, result.manifest, s, start);
 
     summarise_manifest(result.manifest, o.output, s);
     s.fine_gaussians = s.gaussians_per_level[0];

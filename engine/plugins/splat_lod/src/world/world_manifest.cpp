@@ -1,5 +1,5 @@
 // world.json: reading with a check of every value, and the atomic writer (world/world_manifest.h).
-//   { "version": 3, "seed": 7, "size_m": 1024, "chunk_size_m": 64, "up": [0, 1, 0],
+//   { "version": 4, "seed": 7, "size_m": 1024, "chunk_size_m": 64, "up": [0, 1, 0],
 //     "gaussians": 10400000, "density": 1, "generator": "…",
 //     "stream_levels": { "size_threshold_px": 2, "rel_min": 0.5, "reach_min": [0.4, 0.12, 0.04] },
 //     "chunks": [ { "id": "chunk_-008_-008", "file": "gen-1/chunks/chunk_-008_-008.lod.ply", "cell": [-8, -8],
@@ -9,7 +9,8 @@
 //                   "header_crc32": c, "record_crc32": [c0, c1, …] } … ],
 //     "props": [ { "mesh": "gen-1/meshes/house.glb", "translation": [x, y, z], "rotation_euler_deg": [0, yaw, 0],
 //                  "scale": [1, 1, 1] } … ],
-//     "terrain_mesh": "gen-1/meshes/terrain.glb" }
+//     "terrain_mesh": "gen-1/meshes/terrain.glb",
+//     "groups": [ { …the keys of a chunk…, "depth": 1, "cell_m": 0.5 } … ], "group_generator": "…" }
 // File paths are relative to the manifest's folder; the generator puts each run's files in its own
 // gen-<n>/ folder (world_generator.h: output safety), worlds of earlier versions have chunks/ and
 // meshes/ beside world.json. Both read the same way. The reader is strict (unknown keys are errors,
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <tuple>
 #include <utility>
 
 #include <nlohmann/json.hpp>
@@ -131,7 +133,8 @@ public:
     WorldManifest manifest(const json& document) const;
 
 private:
-    ChunkEntry chunk(const json& object, const std::string& key) const;
+    ChunkEntry chunk(const json& object, const std::string& key, bool group) const;
+    void groups(const json& list, WorldManifest& m) const;
     ChunkLevel level(const json& object, const std::string& key) const;
     StreamLevelRule stream_level_rule(const json& object, const std::string& key) const;
     Prop prop(const json& object, const std::string& key) const;
@@ -166,10 +169,20 @@ void ManifestReader::check_chunk_counts(const ChunkEntry& c, const std::string& 
                                        "vertex_bytes");
 }
 
-ChunkEntry ManifestReader::chunk(const json& object, const std::string& key) const {
-    only_keys(object, key, {"id", "file", "cell", "bounds_min", "bounds_max", "prefix_count", "levels", "header_bytes",
-                            "vertex_bytes", "file_bytes", "header_crc32", "record_crc32"});
+ChunkEntry ManifestReader::chunk(const json& object, const std::string& key, bool group) const {
+    if (group)
+        only_keys(object, key, {"id", "file", "cell", "bounds_min", "bounds_max", "prefix_count", "levels", "header_bytes",
+                                "vertex_bytes", "file_bytes", "header_crc32", "record_crc32", "depth", "cell_m"});
+    else
+        only_keys(object, key, {"id", "file", "cell", "bounds_min", "bounds_max", "prefix_count", "levels",
+                                "header_bytes", "vertex_bytes", "file_bytes", "header_crc32", "record_crc32"});
     ChunkEntry c;
+    if (group) {
+        const std::uint64_t depth = whole(member(object, key, "depth"), join(key, "depth"));
+        if (depth < 1 || depth > 30) error(join(key, "depth"), "must be 1 to 30");
+        c.depth = static_cast<int>(depth);
+        c.cell_m = positive(member(object, key, "cell_m"), join(key, "cell_m"));
+    }
     c.id = text(member(object, key, "id"), join(key, "id"));
     if (c.id.empty()) error(join(key, "id"), "must not be empty");
     c.file = relative_path(member(object, key, "file"), join(key, "file"), false);
@@ -239,11 +252,17 @@ WorldManifest ManifestReader::manifest(const json& document) const {
     WorldManifest m;
     // The version first: another version may well have other keys, and saying so is more useful.
     const std::uint64_t version = whole(member(document, "", "version"), "version");
-    if (version != static_cast<std::uint64_t>(kManifestVersion))
-        error("version", "expected " + std::to_string(kManifestVersion) + ", got " + std::to_string(version) +
+    if (version < static_cast<std::uint64_t>(kOldestManifestVersion) || version > static_cast<std::uint64_t>(kManifestVersion))
+        error("version", "expected " + std::to_string(kOldestManifestVersion) + " to " + std::to_string(kManifestVersion) +
+                             ", got " + std::to_string(version) +
                              " (written by another version of the generator: generate the world again)");
-    only_keys(document, "", {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density", "generator",
-                             "stream_levels", "chunks", "props", "terrain_mesh"});
+    if (version >= 4)
+        only_keys(document, "", {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density", "generator",
+                                 "stream_levels", "chunks", "props", "terrain_mesh", "groups", "group_generator"});
+    else
+        only_keys(document, "", {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density",
+                                 "generator", "stream_levels", "chunks", "props", "terrain_mesh"});
+    m.version = static_cast<int>(version);
     m.seed = whole(member(document, "", "seed"), "seed");
     m.size_m = positive(member(document, "", "size_m"), "size_m");
     m.chunk_size_m = positive(member(document, "", "chunk_size_m"), "chunk_size_m");
@@ -263,7 +282,7 @@ WorldManifest ManifestReader::manifest(const json& document) const {
     std::uint64_t total = 0;
     for (std::size_t i = 0; i < chunks.size(); ++i) {
         const std::string key = index("chunks", i);
-        m.chunks.push_back(chunk(chunks[i], key));
+        m.chunks.push_back(chunk(chunks[i], key, false));
         const ChunkEntry& c = m.chunks.back();
         if (!ids.insert(c.id).second) error(join(key, "id"), "\"" + c.id + "\" is used by an earlier chunk");
         if (!cells.insert({c.cell.x, c.cell.y}).second) error(join(key, "cell"), "is used by an earlier chunk");
@@ -271,12 +290,32 @@ WorldManifest ManifestReader::manifest(const json& document) const {
     }
     if (total != m.gaussians)
         error("gaussians", std::to_string(m.gaussians) + " but the chunks hold " + std::to_string(total));
+    if (document.contains("groups")) groups(document["groups"], m);
+    if (document.contains("group_generator")) m.group_generator = text(document["group_generator"], "group_generator");
     if (document.contains("props")) {
         const json& props = document["props"];
         if (!props.is_array()) error("props", "expected an array");
         for (std::size_t i = 0; i < props.size(); ++i) m.props.push_back(prop(props[i], index("props", i)));
     }
     return m;
+}
+
+void ManifestReader::groups(const json& list, WorldManifest& m) const {
+    if (!list.is_array()) error("groups", "expected an array");
+    std::set<std::string> ids;
+    for (const ChunkEntry& c : m.chunks) ids.insert(c.id);
+    std::set<std::tuple<int, int, int>> cells;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const std::string key = index("groups", i);
+        m.groups.push_back(chunk(list[i], key, true));
+        const ChunkEntry& g = m.groups.back();
+        if (!ids.insert(g.id).second) error(join(key, "id"), "\"" + g.id + "\" is used by an earlier chunk or group");
+        if (!cells.insert({g.depth, g.cell.x, g.cell.y}).second)
+            error(join(key, "cell"), "is used by an earlier group of the same depth");
+        for (int l = 1; l < kLevels; ++l)
+            if (g.prefix_count[static_cast<std::size_t>(l)] != g.prefix_count[0])
+                error(join(key, "prefix_count"), "a group's Gaussians are all of stream level 4: the counts must be equal");
+    }
 }
 
 json vec3_json(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
@@ -300,8 +339,14 @@ json chunk_json(const ChunkEntry& c) {
 }
 
 json manifest_json(const WorldManifest& m) {
-    json chunks = json::array(), props = json::array();
+    json chunks = json::array(), props = json::array(), groups = json::array();
     for (const ChunkEntry& c : m.chunks) chunks.push_back(chunk_json(c));
+    for (const ChunkEntry& g : m.groups) {
+        json entry = chunk_json(g);
+        entry["depth"] = g.depth;
+        entry["cell_m"] = g.cell_m;
+        groups.push_back(std::move(entry));
+    }
     for (const Prop& p : m.props)
         props.push_back({{"mesh", p.mesh.generic_string()},
                          {"translation", vec3_json(p.translation)},
@@ -315,7 +360,8 @@ json manifest_json(const WorldManifest& m) {
                                {"rel_min", m.stream_levels.rel_min},
                                {"reach_min", m.stream_levels.reach_min}}},
             {"chunks", chunks},           {"props", props},
-            {"terrain_mesh", m.terrain_mesh.generic_string()}};
+            {"terrain_mesh", m.terrain_mesh.generic_string()},
+            {"groups", groups},           {"group_generator", m.group_generator}};
 }
 
 // The stream levels' record ranges in file order (stream level 4 first): [starts[k], starts[k + 1]).

@@ -50,6 +50,8 @@ void validate(const WorldOptions& o) {
         bad("bake camera images must be 64..8192 pixels per side");
     if (o.output.empty()) bad("no output folder");
     bake::validate(o.bake);
+    if (const std::string problem = check_group_options(o.groups, o.chunk_size_m); !problem.empty())
+        bad("chunk groups: " + problem);
     if (const std::string problem = check_stream_level_rule(stream_level_rule(o)); !problem.empty())
         bad("stream levels: " + problem);
 }
@@ -121,6 +123,10 @@ std::string format_summary(const WorldSummary& s) {
     }
     std::snprintf(line, sizeof line, "  bytes: chunks %.1f MiB, meshes %.2f MiB\n",
                   static_cast<double>(s.chunk_bytes) / (1024.0 * 1024.0), static_cast<double>(s.mesh_bytes) / (1024.0 * 1024.0));
+    out << line;
+    std::snprintf(line, sizeof line, "  chunk groups: %zu%s, %llu Gaussians, %.1f MiB\n", s.groups,
+                  s.groups_rebuilt ? " (built for the cached chunks)" : "",
+                  static_cast<unsigned long long>(s.group_gaussians), static_cast<double>(s.group_bytes) / (1024.0 * 1024.0));
     out << line;
     for (const auto& stage : s.stages) {
         std::snprintf(line, sizeof line, "  %-28s %9.1f s\n", stage.stage.c_str(), stage.seconds);

@@ -342,6 +342,15 @@ WorldResult merge_world_shards(const WorldOptions& o) {
     prune_staged_generation(staging, staged);
     s.stages.push_back({"layout and meshes", seconds_since(stage_start)});
 
+    // The chunk groups need every chunk: they are pooled here, from the checked chunk files.
+    stage_start = Clock::now();
+    const auto group_progress = [&](const GroupProgress& p) {
+        if (o.progress) o.progress({"groups", p.done, p.total, 0, seconds_since(start), -1.0});
+    };
+    staged.groups = build_groups(staging, kStagedGeneration, staged.chunks, o.size_m, o.chunk_size_m, o.groups,
+                                 stream_level_rule(o), o.threads, group_progress);
+    s.stages.push_back({"chunk groups", seconds_since(stage_start)});
+
     stage_start = Clock::now();
     if (o.progress) o.progress({"manifest", staged.chunks.size(), staged.chunks.size(), 0, seconds_since(start), 0.0});
     const fs::path generation = new_generation(o.output);
@@ -352,6 +361,11 @@ WorldResult merge_world_shards(const WorldOptions& o) {
         m.gaussians += c.prefix_count[0];
         m.chunks.push_back(std::move(c));
     }
+    for (ChunkEntry& g : staged.groups) {
+        g.file = generation / g.file.lexically_relative(kStagedGeneration);
+        m.groups.push_back(std::move(g));
+    }
+    m.group_generator = group_generator_settings(o.groups);
     commit_staged(o, staging, generation, m);
     staging_lock.reset();  // the clean-up takes it again to remove the staging folder
     if (o.progress) o.progress({"clean-up", m.chunks.size(), m.chunks.size(), 0, seconds_since(start), 0.0});

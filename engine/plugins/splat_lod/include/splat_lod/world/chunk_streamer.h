@@ -31,6 +31,23 @@
 //     max_requests_in_flight parts requested or waiting for upload.
 //  7. publish the ResidencyReport.
 //
+// Chunk groups and the cut (world_groups.h): when the manifest has groups, every chunk and group is a
+// node of a quadtree (a chunk's parent is its depth-1 group, a group's the group one depth up), and
+// step 1 first chooses the cut, top-down from the roots: a group is drawn instead of everything below
+// it when its pooling cell projects to at most group_cell_px pixels at the group's nearest distance
+// (cell_m · f / z ≤ group_cell_px; z only grows and the cell only shrinks going down, so exactly one
+// node on every root-to-chunk path is in the cut) and it has not failed; a chunk is in the cut when no
+// group above it is. Only nodes in the cut are needed (a group as its single level 4, a chunk as
+// before); the rest are released after the hysteresis delay. Level 4 of nodes outside the cut ranks
+// after every finer level (evicted first).
+//   After the uploads (step 5b) the streamer decides what is drawn, through ResidencySink::show():
+// a node of the cut is drawn when its level 4 is complete; until then what it replaces stays drawn
+// (a group whose cut descendants are not all complete is drawn instead of them, and a cut group that
+// is not complete yet leaves its resident descendants drawn), and whatever is drawn is held resident.
+// So a camera that moves never sees a hole or a node drawn twice over the same ground where memory
+// allows, and a failed chunk shows its group where that is resident. group_cell_px = 0 or a manifest
+// without groups: every chunk is always in the cut (the behaviour without groups).
+//
 // Oversized levels: a level is read and uploaded in parts of at most
 // floor(upload_budget / bytes per Gaussian) Gaussians, so no frame ever uploads more than the
 // budget; the constructor rejects a budget below one Gaussian.
@@ -75,6 +92,10 @@ struct StreamerSettings {
     int unload_delay_frames = 30;          // ... and for this many further frames
     int retry_failed_after_frames = 0;     // a failed chunk is tried again after this many frames; 0: never
     bool background_thread = true;         // false: reads run inside update() (tests, tools); same behaviour
+    // A chunk group replaces its chunks where its pooling cell projects to at most this many pixels
+    // (output pixels); 0: groups are never used. 1 px: a group's Gaussians are about as wide as the
+    // finest Gaussians the per-Gaussian selection draws at S_T = 2 px (docs/world_lod.md).
+    float group_cell_px = 1.0f;
 };
 
 // What update() needs from the camera. The focal length is in pixels of the output image (LOD
@@ -102,6 +123,9 @@ struct ChunkStatus {
     std::uint64_t resident_bytes = 0;          // GPU bytes uploaded for this chunk
     bool failed = false;
     std::string failure;  // the message of the last failure
+    int depth = 0;        // 0: a chunk; ≥ 1: a chunk group of that depth
+    bool in_cut = true;   // chosen to be drawn at the last update (see "the cut")
+    bool drawn = false;   // drawn after the last update
 };
 
 struct StreamerStats {
@@ -143,8 +167,11 @@ public:
     const StreamerSettings& settings() const;
 
     std::uint64_t resident_bytes() const;
-    std::size_t chunk_count() const;
+    std::size_t chunk_count() const;  // the manifest's chunks
+    std::size_t group_count() const;  // the manifest's groups
+    // A chunk's index (0 … chunk_count − 1) or a group's (chunk_count + its index in the manifest).
     std::optional<std::size_t> find_chunk(std::string_view id) const;
+    // index < chunk_count() + group_count(): chunks, then groups.
     ChunkStatus chunk_status(std::size_t index) const;
     // The report published by the last update (all zero before the first).
     const plugin_msgs::ResidencyReport& residency() const;

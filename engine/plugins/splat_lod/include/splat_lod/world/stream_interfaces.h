@@ -43,6 +43,7 @@ struct LevelPart {
     std::uint64_t level_gaussians = 0;            // Gaussians in the whole level
     std::shared_ptr<const SplatCloud> gaussians;  // the sink may keep it
     std::uint64_t bytes = 0;                      // gpu_bytes(gaussians->size(), settings.gpu_sh_degree)
+    bool visible = true;  // whether the renderer draws it now (the last show() of its chunk or group)
 
     bool completes_level() const { return part + 1 == part_count; }
 };
@@ -59,6 +60,14 @@ public:
     // Frees every uploaded part of that level. Finer levels of the chunk are always released
     // before coarser ones, so what stays resident is always a coarse prefix.
     virtual void release(const std::string& chunk_id, int level) = 0;
+    // Draws (or stops drawing) every uploaded part of a chunk or group without freeing it: the
+    // streamer keeps a coarse group drawn until the finer chunks that replace it are resident, and the
+    // other way round (chunk_streamer.h, "the cut"). Parts uploaded later carry the same state in
+    // LevelPart::visible. A sink that draws everything it holds may ignore it.
+    virtual void show(const std::string& chunk_id, bool visible) {
+        (void)chunk_id;
+        (void)visible;
+    }
 };
 
 }  // namespace splat_lod::world

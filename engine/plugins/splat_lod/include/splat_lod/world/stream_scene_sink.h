@@ -19,6 +19,8 @@ public:
     explicit SceneResidencySink(engine::Node& root, int sh_degree_cap = kMaxShDegree);
     void upload(const LevelPart& part) override;
     void release(const std::string& chunk_id, int level) override;
+    // Sets SplatComponent::visible of every node of the chunk or group.
+    void show(const std::string& chunk_id, bool visible) override;
 
     std::size_t resident_parts() const;
 

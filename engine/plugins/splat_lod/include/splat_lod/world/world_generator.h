@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "splat_lod/bake/bake.h"
+#include "splat_lod/world/world_groups.h"
 #include "splat_lod/world/world_manifest.h"
 
 namespace splat_lod::world {
@@ -90,6 +91,7 @@ struct WorldOptions {
     // Smallest reach (metres per pixel of focal length) of stream levels 4, 3, 2 (stream_levels.h);
     // the reaches are computed with the bake's S_T and S_rel_min.
     std::array<float, 3> stream_reach_min = StreamLevelRule{}.reach_min;
+    GroupOptions groups;             // the chunk groups pooled from the chunks (world_groups.h)
     std::filesystem::path output;    // the world's folder (created)
     bool force = false;              // regenerate even when the cached world matches
     std::function<void(const WorldProgress&)> progress;
@@ -106,9 +108,14 @@ std::string generator_settings(const WorldOptions& options);
 StreamLevelRule stream_level_rule(const WorldOptions& options);
 
 // The world already in options.output when its manifest reads back, matches the options (version,
-// seed, size, chunk size, density, generator settings) and every file it names exists with its
-// recorded size; otherwise nullopt and, in `why_not`, the reason.
+// seed, size, chunk size, density, generator settings) and every chunk and mesh file it names exists
+// with its recorded size; otherwise nullopt and, in `why_not`, the reason. Its chunk groups may still
+// be stale (groups_current()).
 std::optional<WorldManifest> find_cached_world(const WorldOptions& options, std::string* why_not = nullptr);
+// True when the manifest's groups are those of the options (group_generator_settings) and every group
+// file exists with its recorded size; otherwise false and, in `why_not`, the reason. A cached world
+// whose groups are stale gets new groups only (its chunks are kept where they are).
+bool groups_current(const WorldManifest& manifest, const WorldOptions& options, std::string* why_not = nullptr);
 
 struct StageSeconds {
     std::string stage;
@@ -125,6 +132,9 @@ struct WorldSummary {
     std::array<std::uint64_t, kLevels> gaussians_per_stream_level{};  // on disk by stream level, [l − 1]
     std::uint64_t gaussians = 0;                               // on disk, all levels
     std::uint64_t chunk_bytes = 0, mesh_bytes = 0;
+    std::size_t groups = 0;                  // chunk groups (world_groups.h) and their Gaussians and bytes
+    std::uint64_t group_gaussians = 0, group_bytes = 0;
+    bool groups_rebuilt = false;             // a cached world's chunks with new groups
     // Generated (level-1) Gaussians by kind; trees are counted as objects (empty for a cached world).
     std::uint64_t ground = 0, water = 0, trees = 0, tree_gaussians = 0, grass = 0, rocks = 0, fences = 0;
     // The bakes' quality, per level l = 2..4 ([l − 1]; [0] unused): the mean over the chunks of the

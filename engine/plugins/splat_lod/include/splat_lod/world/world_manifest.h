@@ -43,7 +43,9 @@
 
 namespace splat_lod::world {
 
-inline constexpr int kManifestVersion = 3;
+// Version 4 adds chunk groups (world_groups.h); version 3 manifests (no groups) still read.
+inline constexpr int kManifestVersion = 4;
+inline constexpr int kOldestManifestVersion = 3;
 inline constexpr int kLevels = 4;
 inline constexpr const char* kManifestFileName = "world.json";
 inline constexpr std::uint64_t kChecksumBlockRecords = 1024;
@@ -69,6 +71,11 @@ struct ChunkEntry {
     std::uint32_t header_crc32 = 0;        // CRC-32 of the header_bytes header bytes
     std::vector<std::uint32_t> record_crc32;  // one per record block (record_block_count), file order
 
+    // Chunk groups only (world_groups.h): the quadtree depth (≥ 1; 0 for a chunk) and the pooling
+    // cell (metres). A group's `cell` is its index at that depth.
+    int depth = 0;
+    float cell_m = 0.0f;
+
     std::uint64_t prefix_bytes(int level) const { return header_bytes + prefix_count[level - 1] * vertex_bytes; }
 };
 
@@ -92,6 +99,10 @@ struct WorldManifest {
     std::string generator;
     StreamLevelRule stream_levels;         // how the chunk files were split into stream levels
     std::vector<ChunkEntry> chunks;
+    // The chunk groups (world_groups.h), depth 1 first; every Gaussian of a group is of stream level 4.
+    // `group_generator` says how they were pooled (empty when the world has none).
+    std::vector<ChunkEntry> groups;
+    std::string group_generator;
     std::vector<Prop> props;
     std::filesystem::path terrain_mesh;    // optional glTF ground under the splats (may be empty)
 };
