@@ -67,7 +67,7 @@ std::vector<std::size_t> reference_frame_indices(const std::vector<PathPose>& po
 std::string ReferenceKey::json() const {
     nlohmann::ordered_json j;
     j["format_version"] = version;
-    j["world_json_crc32"] = formatted("%08x", world_checksum);
+    j["world_chunks_crc32"] = formatted("%08x", world_checksum);
     j["width"] = width;
     j["height"] = height;
     j["path_frames"] = frames;
@@ -87,9 +87,10 @@ std::string ReferenceKey::folder_name() const {
 
 ReferenceKey reference_key(const fs::path& world, int width, int height, const std::vector<PathPose>& poses,
                            double fov_y_deg, int supersample) {
-    const std::vector<std::uint8_t> manifest = engine::read_binary_file(world / splat_lod::world::kManifestFileName);
+    // The chunks and meshes, not the chunk groups: the reference draws every chunk and no group.
     ReferenceKey key;
-    key.world_checksum = splat_lod::world::checksum(manifest);
+    key.world_checksum =
+        splat_lod::world::chunks_checksum(splat_lod::world::read_world_manifest(world / splat_lod::world::kManifestFileName));
     key.width = width;
     key.height = height;
     key.frames = static_cast<int>(poses.size());

@@ -198,6 +198,7 @@ sw::StreamerSettings sync_settings() {
     s.memory_budget_bytes = 1ull << 30;
     s.max_requests_in_flight = 64;
     s.unload_delay_frames = 0;
+    s.group_cell_px = 1.0f;  // the grouped world's switch distances below assume 1 px
     return s;
 }
 

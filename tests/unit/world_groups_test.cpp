@@ -67,8 +67,8 @@ TEST(WorldGroups, QuadtreeIndices) {
     EXPECT_EQ(sw::group_of_chunk({1, 1}, 3, 1), glm::ivec2(1, 1));  // odd grids: cells −1 … 1
     EXPECT_EQ(sw::group_id(2, {1, 3}), "group_2_+001_+003");
     const sw::GroupOptions options;
-    EXPECT_EQ(sw::group_cell_size(options, 1), 0.5f);
-    EXPECT_EQ(sw::group_cell_size(options, 4), 4.0f);
+    EXPECT_EQ(sw::group_cell_size(options, 1), 1.0f);
+    EXPECT_EQ(sw::group_cell_size(options, 4), 8.0f);
     EXPECT_EQ(sw::check_group_options(options, 64.0f), "");
     EXPECT_NE(sw::check_group_options({true, 0.3f}, 64.0f), "");
     EXPECT_NE(sw::check_group_options({true, -1.0f}, 64.0f), "");
@@ -176,7 +176,7 @@ TEST(WorldGroups, TinyWorldHasGroupsAndRebuildsThemAlone) {
     EXPECT_EQ(reread.groups.size(), 5u);
 
     // Other group settings: the same chunk files stay, only the groups are new.
-    options.groups.base_cell_m = 1.0f;
+    options.groups.base_cell_m = 2.0f;
     const sw::WorldResult second = sw::generate_world(options);
     EXPECT_TRUE(second.summary.cached);
     EXPECT_TRUE(second.summary.groups_rebuilt);
@@ -189,4 +189,24 @@ TEST(WorldGroups, TinyWorldHasGroupsAndRebuildsThemAlone) {
     const sw::WorldResult third = sw::generate_world(options);
     EXPECT_TRUE(third.summary.cached);
     EXPECT_FALSE(third.summary.groups_rebuilt);
+}
+
+TEST(WorldGroups, FillWidensTheSpreadAxesAndKeepsTheCoveredArea) {
+    SplatCloud cloud;
+    add(cloud, {0.3f, 0.5f, 0.5f}, {0.1f, 0.001f, 0.15f}, 0.4, {1, 0, 0});  // flat in y: that axis stays thin
+    add(cloud, {0.7f, 0.5f, 0.5f}, {0.1f, 0.001f, 0.15f}, 0.4, {1, 0, 0});
+    const std::vector<SplatCloud> members{cloud};
+    const SplatCloud plain = sw::pool_group(members, glm::vec3(0.0f), 1.0f, 1.0f);
+    const SplatCloud filled = sw::pool_group(members, glm::vec3(0.0f), 1.0f, 2.0f);
+    ASSERT_EQ(plain.size(), 1u);
+    ASSERT_EQ(filled.size(), 1u);
+    const glm::dmat3 a = covariance(plain, 0), b = covariance(filled, 0);
+    EXPECT_NEAR(b[0][0], 4.0 * a[0][0], 1e-6);
+    EXPECT_NEAR(b[2][2], 4.0 * a[2][2], 1e-6);
+    EXPECT_NEAR(b[1][1], a[1][1], 1e-9) << "the thin axis is not widened";
+    // Each member covers less of the wider Gaussian: α·A of the two members, spread over 4× the area.
+    const double member = 0.4 * area(covariance(cloud, 0));
+    const double expected = 1.0 - std::pow(1.0 - member / area(b), 2.0);
+    EXPECT_NEAR(sigmoid(filled.opacity_logits[0]), expected, 1e-5);
+    EXPECT_LT(sigmoid(filled.opacity_logits[0]), sigmoid(plain.opacity_logits[0]));
 }

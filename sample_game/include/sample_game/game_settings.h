@@ -29,7 +29,7 @@ struct GameSettings {
     float load_distance_scale = 1.5f;
     // Chunk groups replace their chunks where their pooling cell projects to at most this many pixels
     // (StreamerSettings::group_cell_px; 0: never, every chunk drawn from its own levels).
-    float group_cell_px = 1.0f;
+    float group_cell_px = 2.0f;
     // A chunk whose file could not be read (missing, cut short, replaced by a patcher or a running
     // regeneration) is tried again after this many frames, so that it comes back once its file does.
     int retry_failed_after_frames = 120;

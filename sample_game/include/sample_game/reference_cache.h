@@ -4,8 +4,8 @@
 // chunk resident and area-averaged down to the profile's size. It lives beside the world:
 //   <world>/reference/<key>/frame_<NNNN>.png   one per chosen path frame, 8-bit lossless
 //   <world>/reference/<key>/reference.json     the key's inputs (below), written last
-// The key names everything the images depend on: the world (CRC-32 of world.json's bytes, the
-// checksum of world_manifest.h), width, height, path frame count, vertical field of view,
+// The key names everything the images depend on: the world (chunks_checksum of world_manifest.h:
+// world.json without its chunk groups, which the reference does not draw), width, height, path frame count, vertical field of view,
 // supersampling factor, the chosen frames and the format version; its folder name is readable and
 // ends with the CRC-32 of reference.json's text, so different inputs never share a folder. A folder
 // appears complete or not at all: it is written under a temporary name and renamed. splat_world
@@ -25,7 +25,7 @@
 
 namespace sample_game {
 
-inline constexpr int kReferenceFormatVersion = 1;
+inline constexpr int kReferenceFormatVersion = 2;  // 2: the world by chunks_checksum
 inline constexpr int kDefaultReferenceSupersample = 3;
 // The largest side of one render; a larger supersampled frame is drawn in tiles of at most this.
 inline constexpr int kReferenceMaxRenderSide = 2048;

@@ -114,8 +114,11 @@ int main(int argc, char** argv) {
     bool no_groups = false;
     app.add_flag("--no-groups", no_groups, "no chunk groups (the far field is then drawn from every chunk)");
     app.add_option("--group-cell", options.groups.base_cell_m,
-                   "the chunk groups' pooling cell at depth 1 in metres, doubling per depth; 0.5 by default")
+                   "the chunk groups' pooling cell at depth 1 in metres, doubling per depth; 1 by default")
         ->check(CLI::Range(0.01, 1000.0));
+    app.add_option("--group-fill", options.groups.fill,
+                   "widens the chunk groups' pooled Gaussians so that neighbours overlap, 1 to 4; 1.5 by default")
+        ->check(CLI::Range(1.0, 4.0));
     app.add_flag("--force", options.force, "regenerate even when the cached world matches");
     auto* count_flag = app.add_flag("--count-only", count_only,
                                     "only generate the content and print its Gaussian counts (no bake, no files)");

@@ -40,20 +40,31 @@ void ChunkStreamer::State::link_groups() {
 
 void ChunkStreamer::State::choose_cut(const StreamView& view) {
     const bool groups_on = settings.group_cell_px > 0.0f && !manifest.groups.empty();
-    // covered: a group above is in the cut.
-    std::function<void(std::size_t, bool)> mark = [&](std::size_t k, bool covered) {
-        ChunkSlot& slot = chunks[k];
-        if (slot.depth == 0) {
-            slot.in_cut = !covered;
-        } else {
-            const double pixels = static_cast<double>(slot.entry->cell_m) * view.focal_length_px / slot.distance;
-            const bool coarse_enough = slot.distance > 0.0f && pixels <= settings.group_cell_px;
-            slot.in_cut = groups_on && !covered && coarse_enough && !slot.failed && !slot.failure_permanent;
-        }
-        for (const std::size_t c : slot.children) mark(c, covered || slot.in_cut);
+    // The cut for a switch of `pixels_max`; `covered`: a group above is in it.
+    const auto cut = [&](double pixels_max, auto&& assign) {
+        std::function<void(std::size_t, bool)> mark = [&](std::size_t k, bool covered) {
+            const ChunkSlot& slot = chunks[k];
+            bool in = !covered;
+            if (slot.depth > 0) {
+                const double pixels = static_cast<double>(slot.entry->cell_m) * view.focal_length_px / slot.distance;
+                const bool coarse_enough = slot.distance > 0.0f && pixels <= pixels_max;
+                in = groups_on && !covered && coarse_enough && !slot.failed && !slot.failure_permanent;
+            }
+            assign(k, in);
+            for (const std::size_t c : slot.children) mark(c, covered || in);
+        };
+        for (std::size_t k = 0; k < chunks.size(); ++k)
+            if (chunks[k].parent == ChunkSlot::kNoSlot) mark(k, false);
     };
-    for (std::size_t k = 0; k < chunks.size(); ++k)
-        if (chunks[k].parent == ChunkSlot::kNoSlot) mark(k, false);
+    const double switch_px = settings.group_cell_px, band = settings.unload_distance_factor;
+    cut(switch_px, [&](std::size_t k, bool in) {
+        chunks[k].in_cut = in;
+        chunks[k].near_cut = false;
+    });
+    // The hysteresis band: what would be in the cut if the camera were `band` times nearer or
+    // farther stays resident (not drawn) once loaded, so that small moves do not reload it.
+    for (const double pixels_max : {switch_px * band, switch_px / band})
+        cut(pixels_max, [&](std::size_t k, bool in) { chunks[k].near_cut = chunks[k].near_cut || (in && !chunks[k].in_cut); });
 }
 
 void ChunkStreamer::State::decide_drawn() {

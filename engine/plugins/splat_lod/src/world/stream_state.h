@@ -61,7 +61,8 @@ struct ChunkSlot {
     std::size_t parent = kNoSlot;
     std::vector<std::size_t> children;
     bool in_cut = true;
-    bool drawn = false;  // decided after this update's uploads
+    bool near_cut = false;  // in the cut of a camera unload_distance_factor times nearer or farther
+    bool drawn = false;     // decided after this update's uploads
     bool shown = false;  // what the sink was last told (ResidencySink::show)
 
     static constexpr std::size_t kNoSlot = static_cast<std::size_t>(-1);

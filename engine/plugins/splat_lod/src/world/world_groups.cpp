@@ -102,7 +102,8 @@ void copy_gaussian(const SplatCloud& from, std::size_t i, SplatCloud& to, std::s
 }
 
 // The moment-matched Gaussian of one cell's members (see world_groups.h), written at `out`.
-void pool_cell(std::span<const SplatCloud> members, std::span<const Entry> cell, SplatCloud& to, std::size_t out) {
+void pool_cell(std::span<const SplatCloud> members, std::span<const Entry> cell, double cell_m, double fill,
+               SplatCloud& to, std::size_t out) {
     std::vector<Activated> a(cell.size());
     double total = 0.0;
     glm::dvec3 mean(0.0);
@@ -126,15 +127,18 @@ void pool_cell(std::span<const SplatCloud> members, std::span<const Entry> cell,
         dc += w * glm::dvec3(m.sh_dc[i]);
         for (std::size_t j = 0; j < std::min(stride, member_stride); ++j) rest[j] += w * m.sh_rest[i * member_stride + j];
     }
-    const double area = std::max(projected_area(covariance), 1e-30);
-    double log_transmittance = 0.0;
-    for (const Activated& m : a) log_transmittance += std::log1p(-std::min(0.99, m.opacity * m.area / area));
-    const double opacity = std::clamp(1.0 - std::exp(log_transmittance), 1.01 / 255.0, 0.99);
-
     glm::dvec3 values;
     glm::dmat3 vectors;
     bake::detail::symmetric_eigen(covariance, values, vectors);
     if (glm::determinant(vectors) < 0.0) vectors[2] = -vectors[2];
+    for (int axis = 0; axis < 3; ++axis)
+        if (values[axis] > 0.01 * cell_m * cell_m) values[axis] *= fill * fill;
+    const glm::dmat3 widened = vectors * glm::dmat3(values.x, 0, 0, 0, values.y, 0, 0, 0, values.z) * glm::transpose(vectors);
+    const double area = std::max(projected_area(widened), 1e-30);
+    double log_transmittance = 0.0;
+    for (const Activated& m : a) log_transmittance += std::log1p(-std::min(0.99, m.opacity * m.area / area));
+    const double opacity = std::clamp(1.0 - std::exp(log_transmittance), 1.01 / 255.0, 0.99);
+
     const glm::dquat q = glm::normalize(glm::quat_cast(vectors));
     to.positions[out] = glm::vec3(mean);
     to.rotations[out] = {static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
@@ -184,6 +188,7 @@ std::vector<Entry> cell_entries(std::span<const SplatCloud> members, const glm::
 std::string check_group_options(const GroupOptions& o, float chunk_size_m) {
     if (!o.enabled) return {};
     if (!(o.base_cell_m > 0.0f) || !std::isfinite(o.base_cell_m)) return "the group cell must be positive";
+    if (!(o.fill >= 1.0f && o.fill <= 4.0f)) return "the group fill must be 1 to 4";
     const double cells = 2.0 * chunk_size_m / o.base_cell_m;
     if (std::abs(cells - std::round(cells)) > 1e-6 * cells)
         return "two chunks of " + std::to_string(chunk_size_m) + " m are not a whole number of group cells of " +
@@ -216,7 +221,7 @@ float group_cell_size(const GroupOptions& o, int depth) {
     return o.base_cell_m * static_cast<float>(1 << (depth - 1));
 }
 
-SplatCloud pool_group(std::span<const SplatCloud> members, const glm::vec3& origin, float cell_m) {
+SplatCloud pool_group(std::span<const SplatCloud> members, const glm::vec3& origin, float cell_m, float fill) {
     int degree = 0;
     for (const SplatCloud& m : members) degree = std::max(degree, m.sh_degree);
     const std::vector<Entry> entries = cell_entries(members, glm::dvec3(origin), static_cast<double>(cell_m));
@@ -241,7 +246,7 @@ SplatCloud pool_group(std::span<const SplatCloud> members, const glm::vec3& orig
         std::size_t pooled_end = b;
         while (pooled_end < e && !entries[pooled_end].keep) ++pooled_end;
         if (pooled_end > b)
-            pool_cell(members, std::span<const Entry>(entries.data() + b, pooled_end - b), out, next++);
+            pool_cell(members, std::span<const Entry>(entries.data() + b, pooled_end - b), cell_m, fill, out, next++);
         for (std::size_t k = pooled_end; k < e; ++k) copy_gaussian(members[entries[k].member], entries[k].index, out, next++);
     }
     std::fill(out.lod_level.begin(), out.lod_level.end(), std::uint8_t{4});
@@ -253,7 +258,8 @@ SplatCloud pool_group(std::span<const SplatCloud> members, const glm::vec3& orig
 std::string group_generator_settings(const GroupOptions& o) {
     if (!o.enabled) return {};
     std::ostringstream s;
-    s << "groups 1; moments pooling of level 1 on a world grid, cell " << o.base_cell_m << " m at depth 1, x2 per depth";
+    s << "groups 1; moments pooling of level 1 on a world grid, cell " << o.base_cell_m
+      << " m at depth 1, x2 per depth, fill " << o.fill;
     return s.str();
 }
 
@@ -308,7 +314,7 @@ std::vector<ChunkEntry> build_groups(const fs::path& folder, const fs::path& gen
             members.reserve(task.members.size());
             for (const std::size_t k : task.members)
                 members.push_back(read_chunk_range(folder / chunks[k].file, chunks[k], 0, chunks[k].prefix_count[0]));
-            SplatCloud pooled = pool_group(members, origin, group_cell_size(options, task.depth));
+            SplatCloud pooled = pool_group(members, origin, group_cell_size(options, task.depth), options.fill);
             members.clear();
             const fs::path file = generation / "groups" / (id + ".lod.ply");
             write_inria_ply(folder / file, pooled);

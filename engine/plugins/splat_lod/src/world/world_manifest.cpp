@@ -421,6 +421,13 @@ std::string chunk_id(const glm::ivec2& cell) {
     return text;
 }
 
+std::uint32_t chunks_checksum(const WorldManifest& manifest) {
+    json document = manifest_json(manifest);
+    for (const char* key : {"version", "groups", "group_generator"}) document.erase(key);
+    const std::string text = document.dump();
+    return checksum(std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+}
+
 WorldManifest read_world_manifest(const std::filesystem::path& path) {
     return parse_world_manifest(engine::read_text_file(path), path.string());
 }

@@ -38,8 +38,11 @@
 // (cell_m · f / z ≤ group_cell_px; z only grows and the cell only shrinks going down, so exactly one
 // node on every root-to-chunk path is in the cut) and it has not failed; a chunk is in the cut when no
 // group above it is. Only nodes in the cut are needed (a group as its single level 4, a chunk as
-// before); the rest are released after the hysteresis delay. Level 4 of nodes outside the cut ranks
-// after every finer level (evicted first).
+// before). Hysteresis: a loaded node that would be in the cut if the camera were
+// unload_distance_factor times nearer or farther (the cuts for group_cell_px × and ÷ that factor) is
+// kept, not drawn; any other node outside the cut is released at once, unless drawn (below): with
+// the band, the frame delay would only hold memory that the view does not use. Level 4 of nodes
+// outside the cut ranks after every finer level (evicted first).
 //   After the uploads (step 5b) the streamer decides what is drawn, through ResidencySink::show():
 // a node of the cut is drawn when its level 4 is complete; until then what it replaces stays drawn
 // (a group whose cut descendants are not all complete is drawn instead of them, and a cut group that
@@ -93,9 +96,10 @@ struct StreamerSettings {
     int retry_failed_after_frames = 0;     // a failed chunk is tried again after this many frames; 0: never
     bool background_thread = true;         // false: reads run inside update() (tests, tools); same behaviour
     // A chunk group replaces its chunks where its pooling cell projects to at most this many pixels
-    // (output pixels); 0: groups are never used. 1 px: a group's Gaussians are about as wide as the
-    // finest Gaussians the per-Gaussian selection draws at S_T = 2 px (docs/world_lod.md).
-    float group_cell_px = 1.0f;
+    // (output pixels); 0: groups are never used. Chosen on the default world (docs/world_lod.md): 2 px
+    // keeps the overview at 1.2 Gaussians per pixel and 31–32 dB against the reference; 1 px draws
+    // 3–4 per pixel there, 3 px loses 5 dB.
+    float group_cell_px = 2.0f;
 };
 
 // What update() needs from the camera. The focal length is in pixels of the output image (LOD

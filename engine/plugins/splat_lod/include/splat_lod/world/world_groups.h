@@ -21,10 +21,12 @@
 // Pooling a cell (moment matching, weights wᵢ = αᵢ·Aᵢ with Aᵢ the Gaussian's mean axis-projected area
 // √det of Σᵢ's three 2×2 projections, i.e. how much it covers):
 //   μ = Σ wᵢ μᵢ / W,  Σ = Σ wᵢ (Σᵢ + (μᵢ − μ)(μᵢ − μ)ᵀ) / W,  SH = Σ wᵢ SHᵢ / W,
-//   α = 1 − Π (1 − min(0.99, αᵢ·Aᵢ / A)), A the pooled Gaussian's own area,
+//   α = 1 − Π (1 − min(0.99, αᵢ·Aᵢ / A)), A the pooled Gaussian's own area (after the fill below),
 // so the pooled Gaussian covers the region its members fill, with their mean colour, and is as opaque
 // as the members would be if each covered its share of that region independently (one member gives
-// back itself; many faint ones add up; overlapping opaque ones saturate at 0.99). A Gaussian whose
+// back itself; many faint ones add up; overlapping opaque ones saturate at 0.99). Its spread axes are
+// then widened by GroupOptions::fill so that the pooled Gaussians of a surface overlap instead of
+// leaving seams at every cell border. A Gaussian whose
 // largest standard deviation is at least the cell (large ground splats, trunks at depth 1) is kept
 // as it is: merging it with the small ones in its cell would only smear it.
 //
@@ -49,9 +51,16 @@ namespace splat_lod::world {
 struct GroupOptions {
     bool enabled = true;
     // The pooling cell at depth 1 (metres); depth d pools at base_cell_m · 2^(d − 1). With the
-    // streamer's default switch (a cell at most 1 px) and a 312 px focal length, depth 1 replaces its
-    // chunks from 156 m, depth 2 from 312 m, depth 3 from 624 m.
-    float base_cell_m = 0.5f;
+    // streamer's default switch (a cell at most 2 px) and a 312 px focal length (640 × 360, 60°),
+    // depth 1 replaces its chunks from 156 m, depth 2 from 312 m, depth 3 from 624 m, depth 4 from
+    // 1248 m. 0.5 m was measured too: its depth 1 holds more Gaussians than the ground it pools
+    // (docs/world_lod.md).
+    float base_cell_m = 1.0f;
+    // The pooled Gaussian's spread axes (standard deviation above a tenth of the cell) are widened by
+    // this factor, its opacity lowered to keep the covered area (the α·A sum): a moment-matched
+    // Gaussian of a uniformly filled cell has σ ≈ 0.29 cell, so neighbours leave a gap between them
+    // where a surface runs on (docs/world_lod.md has the measurement that chose the default).
+    float fill = 1.5f;
 };
 
 // An empty string when the options can be used with chunks of `chunk_size_m`, otherwise what is
@@ -80,7 +89,7 @@ float group_cell_size(const GroupOptions& options, int depth);
 // the members'. Every output Gaussian has bake level 4 and coverage −1; output in Morton order of the
 // cells. Gaussians that are not drawable (non-finite values, zero rotation, opacity ≤ 1/255) are
 // left out. Empty when no member has a drawable level-1 Gaussian.
-SplatCloud pool_group(std::span<const SplatCloud> members, const glm::vec3& origin, float cell_m);
+SplatCloud pool_group(std::span<const SplatCloud> members, const glm::vec3& origin, float cell_m, float fill = 1.0f);
 
 struct GroupProgress {
     int depth = 0;

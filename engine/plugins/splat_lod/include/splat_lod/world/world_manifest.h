@@ -116,6 +116,12 @@ struct RecordBlock {
 // The checksum the manifest records of a header or a record block: zlib's CRC-32 of the bytes.
 std::uint32_t checksum(std::span<const std::uint8_t> bytes);
 
+// A checksum of everything the manifest says but its chunk groups and its version: what a render
+// with every chunk resident and no group depends on (the chunks' bytes through their checksums, the
+// props, the terrain mesh, the settings). New groups or a version-3 manifest rewritten as version 4
+// keep it.
+std::uint32_t chunks_checksum(const WorldManifest& manifest);
+
 // How many record blocks the entry's prefix counts make (what record_crc32 must hold).
 std::uint64_t record_block_count(const ChunkEntry& entry);
 // The blocks that hold a record of [begin, end), in file order (none for an empty range). The
