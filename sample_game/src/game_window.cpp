@@ -216,9 +216,11 @@ bool Game::draw_frame(bool last, double frame_ms) {
     world_->update_streaming(camera, frame_++);
     engine_.renderer().render(world_->scene(), camera, *target_);
     auto& streamer = world_->streamer();
+    const plugin_msgs::ResidencyReport& residency = streamer.residency();
     streaming_->record({world_->census(), streamer.chunk_count(), streamer.resident_bytes(),
                         streamer.settings().memory_budget_bytes, streamer.stats().uploaded_bytes_last_update,
-                        streamer.settings().upload_budget_bytes_per_frame, frame_ms});
+                        streamer.settings().upload_budget_bytes_per_frame, frame_ms, residency.drawn_chunks,
+                        residency.drawn_groups, residency.groups.resident, streamer.group_count()});
     present(*target_, size);
     if (show_ui_) {
         overlay_->new_frame();

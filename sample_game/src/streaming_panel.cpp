@@ -60,6 +60,8 @@ bool StreamingPanel::draw(int& memory_budget_mib, float& upload_budget_mib) {
     ImGui::Text("finest level resident: L1 %u  L2 %u  L3 %u  L4 %u  none %u", s.chunks.finest_resident[1],
                 s.chunks.finest_resident[2], s.chunks.finest_resident[3], s.chunks.finest_resident[4],
                 s.chunks.finest_resident[0]);
+    ImGui::Text("LOD cut: %u chunks and %u of %zu chunk groups drawn (%u groups resident)", s.chunks_drawn,
+                s.groups_drawn, s.group_count, s.groups_resident);
     ImGui::TextUnformatted("resident GPU memory");
     budget_bar(mib(s.resident_bytes), mib(s.memory_budget_bytes), "MiB");
     ImGui::TextUnformatted("uploaded this frame");

@@ -55,7 +55,8 @@ void check_round_trip(const sw::WorldManifest& m) {
     require(r.seed == m.seed && r.size_m == m.size_m && r.chunk_size_m == m.chunk_size_m && r.up == m.up &&
                 r.gaussians == m.gaussians && r.density == m.density && r.generator == m.generator &&
                 r.terrain_mesh == m.terrain_mesh && r.chunks.size() == m.chunks.size() &&
-                r.props.size() == m.props.size(),
+                r.props.size() == m.props.size() && r.groups.size() == m.groups.size() &&
+                r.group_generator == m.group_generator && r.version == sw::kManifestVersion,
             "the manifest reads back as written");
     for (std::size_t i = 0; i < m.chunks.size(); ++i) {
         const auto &a = m.chunks[i], &b = r.chunks[i];
@@ -63,6 +64,12 @@ void check_round_trip(const sw::WorldManifest& m) {
                     a.file_bytes == b.file_bytes && a.header_crc32 == b.header_crc32 &&
                     a.record_crc32 == b.record_crc32 && a.bounds_min == b.bounds_min && a.bounds_max == b.bounds_max,
                 "chunk " + std::to_string(i) + " reads back as written");
+    }
+    for (std::size_t i = 0; i < m.groups.size(); ++i) {
+        const auto &a = m.groups[i], &b = r.groups[i];
+        require(a.id == b.id && a.file == b.file && a.cell == b.cell && a.depth == b.depth && a.cell_m == b.cell_m &&
+                    a.prefix_count == b.prefix_count && a.record_crc32 == b.record_crc32,
+                "group " + std::to_string(i) + " reads back as written");
     }
 }
 

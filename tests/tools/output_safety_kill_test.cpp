@@ -230,17 +230,19 @@ WorldSnapshot snapshot(const fs::path& world) {
         s.paths.insert(file.generic_string());
     };
     for (const sw::ChunkEntry& c : m.chunks) add(c.id, c.file);
+    for (const sw::ChunkEntry& g : m.groups) add(g.id, g.file);
     for (const sw::Prop& p : m.props) add(p.mesh.filename().string(), p.mesh);
     if (!m.terrain_mesh.empty()) add(m.terrain_mesh.filename().string(), m.terrain_mesh);
     return s;
 }
 
-// The world loads as a reader would: every chunk whole through the chunk reader, every mesh through
+// The world loads as a reader would: every chunk and group whole through the chunk reader, every mesh through
 // the engine's glTF loader.
 void expect_loads(const fs::path& world) {
     const sw::WorldManifest m = sw::read_world_manifest(world / sw::kManifestFileName);
-    for (const sw::ChunkEntry& c : m.chunks)
-        EXPECT_EQ(sw::read_chunk_range(world / c.file, c, 0, c.prefix_count[0]).size(), c.prefix_count[0]) << c.id;
+    for (const auto* list : {&m.chunks, &m.groups})
+        for (const sw::ChunkEntry& c : *list)
+            EXPECT_EQ(sw::read_chunk_range(world / c.file, c, 0, c.prefix_count[0]).size(), c.prefix_count[0]) << c.id;
     std::set<fs::path> meshes;
     for (const sw::Prop& p : m.props) meshes.insert(p.mesh);
     if (!m.terrain_mesh.empty()) meshes.insert(m.terrain_mesh);

@@ -829,3 +829,23 @@ TEST(ChunkStreamerGroups, MemoryBudgetHoldsWhileTheCutMoves) {
     EXPECT_TRUE(h.sink.violations.empty());
     EXPECT_GT(h.streamer.residency().drawn_chunks, 0u);
 }
+
+TEST(ChunkStreamerGroups, ABindingSplatBudgetMakesTheCutCoarser) {
+    EXPECT_EQ(sw::next_group_cell_scale(1.0f, 500, 0), 1.0f) << "no budget";
+    EXPECT_EQ(sw::next_group_cell_scale(1.0f, 150, 200), 1.0f) << "within the budget, at 1";
+    EXPECT_NEAR(sw::next_group_cell_scale(1.0f, 210, 200), std::sqrt(210.0f / 200.0f), 1e-6f);
+    EXPECT_NEAR(sw::next_group_cell_scale(1.0f, 2000, 200), std::exp2(0.25f), 1e-6f) << "at most 2^(1/4) a step";
+    EXPECT_EQ(sw::next_group_cell_scale(3.0f, 180, 200), 3.0f) << "between 70 % and 100 %: held";
+    EXPECT_NEAR(sw::next_group_cell_scale(3.0f, 100, 200), 3.0f / std::exp2(0.125f), 1e-6f);
+    EXPECT_EQ(sw::next_group_cell_scale(1.01f, 0, 200), 1.0f);
+
+    // 60 m above the middle of the world (the boxes 60 m away): the depth-1 groups (0.5 m cells,
+    // 0.83 px) are the cut at 1 px, the root (1 m cells, 1.67 px) once the switch is scaled by 2.
+    Harness h(sync_settings(), nullptr, make_grouped_world());
+    h.steps({20.0f, 62.0f, 20.0f}, 4);
+    EXPECT_EQ(h.streamer.residency().drawn_groups, 4u);
+    for (std::uint64_t k = 0; k < 4; ++k) h.streamer.update({{20.0f, 62.0f, 20.0f}, kFocal, h.frame++, 2.0f});
+    EXPECT_TRUE(h.status("group_2_+000_+000").in_cut);
+    EXPECT_TRUE(h.sink.drawn("group_2_+000_+000"));
+    EXPECT_EQ(h.streamer.residency().drawn_groups, 1u);
+}

@@ -23,6 +23,9 @@ struct StreamingSnapshot {
     std::uint64_t resident_bytes = 0, memory_budget_bytes = 0;
     std::uint64_t upload_bytes = 0, upload_budget_bytes = 0;
     double frame_ms = 0.0;  // the whole frame: streaming update, render, overlay
+    // The LOD cut (docs/world_lod.md): chunks and chunk groups drawn, groups in the world and resident.
+    std::uint32_t chunks_drawn = 0, groups_drawn = 0, groups_resident = 0;
+    std::size_t group_count = 0;
 };
 
 class StreamingPanel {

@@ -1,5 +1,7 @@
 // The chunk streamer's LOD cut over the quadtree of chunk groups (chunk_streamer.h, "the cut"): which
 // nodes the view wants drawn (step 1) and which are drawn now, given what is resident (step 5b).
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <map>
 #include <tuple>
@@ -56,7 +58,8 @@ void ChunkStreamer::State::choose_cut(const StreamView& view) {
         for (std::size_t k = 0; k < chunks.size(); ++k)
             if (chunks[k].parent == ChunkSlot::kNoSlot) mark(k, false);
     };
-    const double switch_px = settings.group_cell_px, band = settings.unload_distance_factor;
+    const double scale = std::isfinite(view.group_cell_scale) ? std::max(1.0, double{view.group_cell_scale}) : 1.0;
+    const double switch_px = settings.group_cell_px * scale, band = settings.unload_distance_factor;
     cut(switch_px, [&](std::size_t k, bool in) {
         chunks[k].in_cut = in;
         chunks[k].near_cut = false;

@@ -54,4 +54,15 @@ std::string check_chunk_entry(const ChunkEntry& chunk) {
     return {};
 }
 
+float next_group_cell_scale(float scale, std::uint64_t unbudgeted, std::uint64_t budget) {
+    if (budget == 0 || !std::isfinite(scale) || scale < 1.0f) return 1.0f;
+    const double ratio = static_cast<double>(unbudgeted) / static_cast<double>(budget);
+    if (ratio > 1.0) {
+        const double wanted = static_cast<double>(scale) * std::sqrt(ratio);
+        return static_cast<float>(std::min({wanted, static_cast<double>(scale) * std::exp2(0.25), 1024.0}));
+    }
+    if (ratio < 0.7) return std::max(1.0f, scale / static_cast<float>(std::exp2(0.125)));
+    return scale;
+}
+
 }  // namespace splat_lod::world

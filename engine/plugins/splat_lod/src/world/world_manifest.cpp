@@ -444,9 +444,13 @@ WorldManifest parse_world_manifest(const std::string& text, const std::string& n
 }
 
 void write_world_manifest(const std::filesystem::path& path, const WorldManifest& manifest) {
-    if (manifest.version != kManifestVersion)
-        engine::fail(path.string() + ": version: this program writes version " + std::to_string(kManifestVersion));
-    const json document = manifest_json(manifest);
+    if (manifest.version < kOldestManifestVersion || manifest.version > kManifestVersion)
+        engine::fail(path.string() + ": version: this program writes version " + std::to_string(kManifestVersion) +
+                     " (and reads " + std::to_string(kOldestManifestVersion) + " to " +
+                     std::to_string(kManifestVersion) + ")");
+    // A version-3 manifest is a version-4 one without groups: always written as the newest.
+    json document = manifest_json(manifest);
+    document["version"] = kManifestVersion;
     // The reader's rules, applied before anything is written: a manifest this writer accepts
     // always reads back.
     ManifestReader(path.string()).manifest(document);

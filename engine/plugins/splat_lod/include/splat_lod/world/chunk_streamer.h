@@ -108,6 +108,9 @@ struct StreamView {
     glm::vec3 camera_position{0.0f};
     float focal_length_px = 1000.0f;
     std::uint64_t frame_index = 0;
+    // Multiplies group_cell_px for this frame's cut (values below 1 count as 1): what a splat budget
+    // that binds asks of the streamer, so that coarser groups replace more chunks (next_group_cell_scale).
+    float group_cell_scale = 1.0f;
 };
 
 enum class LevelState {

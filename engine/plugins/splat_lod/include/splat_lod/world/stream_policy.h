@@ -61,6 +61,15 @@ float nearest_distance(const ChunkEntry& chunk, const glm::vec3& point);
 // (every chunk keeps its coarse prefix), so asking for it is a programming error.
 double level_load_distance(const ChunkEntry& chunk, int level, double focal_length_px, const LodThresholds& lod);
 
+// The splat budget and the cut (chunk_streamer.h): the renderer meets a per-frame splat budget on the
+// GPU by raising its size threshold, which moves the per-Gaussian cut inside chunks but cannot make a
+// chunk group coarser (group Gaussians are drawn whole). Fed each frame with the renderer's latest
+// statistics (a few frames late), this returns the next StreamView::group_cell_scale: when the
+// selection wanted `unbudgeted` > `budget` Gaussians it grows toward scale·√(unbudgeted / budget) (a
+// group's count falls with the square of its switch), at most 2^(1/4) per call; below 70 % of the
+// budget it shrinks by 2^(1/8) per call, never below 1; in between it stays. 1 without a budget.
+float next_group_cell_scale(float scale, std::uint64_t unbudgeted, std::uint64_t budget);
+
 // An empty string when the entry can be streamed, otherwise what is wrong with it (prefix counts
 // not ordered coarse to fine, no bytes per record, counts beyond the file size). The streamer marks
 // such a chunk failed without reading it.

@@ -143,6 +143,8 @@ WorldManifest parse_world_manifest(const std::string& text, const std::string& n
 
 // Writes the manifest through a temporary file and a rename (engine::write_file_atomic): a reader
 // sees the old manifest or the new one, never a part. Checks the same rules as the reader first.
+// Always writes version kManifestVersion (a manifest read as version 3 has no groups, which version 4
+// allows).
 void write_world_manifest(const std::filesystem::path& path, const WorldManifest& manifest);
 
 // The manifest entry of a baked chunk already written to `folder / file` (an INRIA PLY by
