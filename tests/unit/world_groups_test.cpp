@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <vector>
 
-#include <glm/gtc/quaternion.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/quaternion.hpp>
 
 #include "splat_lod/splat_io.h"
 #include "splat_lod/world/chunk_reader.h"
@@ -20,7 +20,9 @@ using splat_lod::SplatCloud;
 
 namespace {
 
-double sigmoid(double x) { return 1.0 / (1.0 + std::exp(-x)); }
+double sigmoid(double x) {
+    return 1.0 / (1.0 + std::exp(-x));
+}
 
 // One axis-aligned Gaussian: mean p, standard deviations s, opacity a, DC colour c, level 1.
 void add(SplatCloud& cloud, glm::vec3 p, glm::vec3 s, double a, glm::vec3 c, std::uint8_t level = 1) {
@@ -103,7 +105,8 @@ TEST(WorldGroups, MomentsOfACell) {
                                 f1 * (covariance(cloud, 1) + glm::outerProduct(m1 - mean, m1 - mean));
     expect_near(covariance(out, 0), expected, 1e-7);
     const double a = area(expected);
-    const double opacity = 1.0 - (1.0 - 0.9 * area(covariance(cloud, 0)) / a) * (1.0 - 0.3 * area(covariance(cloud, 1)) / a);
+    const double opacity =
+        1.0 - (1.0 - 0.9 * area(covariance(cloud, 0)) / a) * (1.0 - 0.3 * area(covariance(cloud, 1)) / a);
     EXPECT_NEAR(sigmoid(out.opacity_logits[0]), opacity, 1e-5);
     EXPECT_NEAR(out.sh_dc[0].x, f0, 1e-5);
     EXPECT_NEAR(out.sh_dc[0].y, f1, 1e-5);
@@ -120,7 +123,8 @@ TEST(WorldGroups, ChunkBordersDoNotCutCells) {
     add(right, d, glm::vec3(0.3f), 0.8, {1, 1, 0});
     for (const SplatCloud* part : {&left, &right})
         for (std::size_t i = 0; i < part->size(); ++i)
-            add(both, part->positions[i], glm::exp(part->log_scales[i]), sigmoid(part->opacity_logits[i]), part->sh_dc[i]);
+            add(both, part->positions[i], glm::exp(part->log_scales[i]), sigmoid(part->opacity_logits[i]),
+                part->sh_dc[i]);
     const SplatCloud split = sw::pool_group(std::vector<SplatCloud>{left, right}, glm::vec3(0.0f), 2.0f);
     const SplatCloud whole = sw::pool_group(std::vector<SplatCloud>{both}, glm::vec3(0.0f), 2.0f);
     ASSERT_EQ(split.size(), 1u);

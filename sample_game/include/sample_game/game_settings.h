@@ -18,9 +18,9 @@ struct GameSettings {
     plugin_msgs::LodSettings lod;  // mode, S_T, S_rel_min/max, render scale, upscaler, level colouring
     // GPU bytes of streamed Gaussians resident at the end of any frame, and uploaded in any frame.
     // Chosen on the default world along the walkthrough at 640x360 (sample_game/README.md,
-    // "Budgets"): stream level 4 of every chunk alone takes ~280 MiB and the path asks for up to
-    // ~560 MiB without a limit, so 384 MiB keeps the whole world drawable and binds on the finer
-    // levels; 8 MiB per frame lets a chunk's fine level arrive within a frame or two.
+    // "Budgets"), before chunk groups: stream level 4 of every chunk alone took ~280 MiB. With the
+    // groups the path needs at most ~250 MiB and the overview 31 MiB, so 384 MiB leaves room; 8 MiB per
+    // frame lets a chunk's fine level arrive within a frame or two.
     std::uint64_t memory_budget_bytes = 384 * kMiB;
     std::uint64_t upload_budget_bytes = 8 * kMiB;
     int sh_degree = 0;  // SH degree the GPU stores (the generated world carries degree 0)

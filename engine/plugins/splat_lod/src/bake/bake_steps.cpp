@@ -335,9 +335,6 @@ void set_coverage_ranges(SplatCloud& cloud, const CoverageTable& table, double l
     }
 }
 
-namespace {
-
-// Spreads the low 21 bits of v to every third bit.
 std::uint64_t spread_bits(std::uint64_t v) {
     v &= 0x1fffff;
     v = (v | v << 32) & 0x1f00000000ffffULL;
@@ -347,8 +344,6 @@ std::uint64_t spread_bits(std::uint64_t v) {
     v = (v | v << 2) & 0x1249249249249249ULL;
     return v;
 }
-
-}  // namespace
 
 std::vector<std::uint32_t> output_order(const SplatCloud& cloud, const Normaliser& normaliser) {
     std::vector<std::uint64_t> morton(cloud.size());

@@ -84,6 +84,8 @@ std::uint64_t cell_key(const glm::dvec3& p, int level, int grid_cells, const Nor
 void symmetric_eigen(glm::dmat3 a, glm::dvec3& values, glm::dmat3& vectors);
 // The rotation matrix of a unit quaternion (w, x, y, z).
 glm::dmat3 rotation_of(const Rotation& q);
+// Spreads the low 21 bits of v to every third bit (one axis of a 63-bit Morton code).
+std::uint64_t spread_bits(std::uint64_t v);
 
 // Step 4: the pooled Gaussian of `members` (indices into `source`), written at `out` of `target`
 // (which has the same SH degree and extras): mean position, quaternions flipped to the first member's

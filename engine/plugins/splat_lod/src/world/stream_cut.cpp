@@ -67,7 +67,8 @@ void ChunkStreamer::State::choose_cut(const StreamView& view) {
     // The hysteresis band: what would be in the cut if the camera were `band` times nearer or
     // farther stays resident (not drawn) once loaded, so that small moves do not reload it.
     for (const double pixels_max : {switch_px * band, switch_px / band})
-        cut(pixels_max, [&](std::size_t k, bool in) { chunks[k].near_cut = chunks[k].near_cut || (in && !chunks[k].in_cut); });
+        cut(pixels_max,
+            [&](std::size_t k, bool in) { chunks[k].near_cut = chunks[k].near_cut || (in && !chunks[k].in_cut); });
 }
 
 void ChunkStreamer::State::decide_drawn() {
@@ -98,8 +99,10 @@ void ChunkStreamer::State::decide_drawn() {
     std::function<void(std::size_t)> draw = [&](std::size_t k) {
         ChunkSlot& slot = chunks[k];
         if (slot.in_cut) {
-            if (level4_complete(slot) || (level4_any(slot) && !any_below(k))) slot.drawn = true;
-            else for (const std::size_t c : slot.children) fallback(c);
+            if (level4_complete(slot) || (level4_any(slot) && !any_below(k)))
+                slot.drawn = true;
+            else
+                for (const std::size_t c : slot.children) fallback(c);
             return;
         }
         if (!ready(k) && level4_complete(slot)) {

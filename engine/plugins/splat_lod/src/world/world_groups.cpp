@@ -44,17 +44,6 @@ double projected_area(const glm::dmat3& s) {
     return (std::sqrt(std::max(xy, 0.0)) + std::sqrt(std::max(xz, 0.0)) + std::sqrt(std::max(yz, 0.0))) / 3.0;
 }
 
-// Spreads the low 21 bits of v to every third bit.
-std::uint64_t spread_bits(std::uint64_t v) {
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffULL;
-    v = (v | v << 16) & 0x1f0000ff0000ffULL;
-    v = (v | v << 8) & 0x100f00f00f00f00fULL;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-    v = (v | v << 2) & 0x1249249249249249ULL;
-    return v;
-}
-
 // One drawable level-1 Gaussian of a member, with its cell.
 struct Entry {
     std::uint64_t morton = 0;
@@ -125,7 +114,8 @@ void pool_cell(std::span<const SplatCloud> members, std::span<const Entry> cell,
         const SplatCloud& m = members[cell[k].member];
         const std::size_t i = cell[k].index, member_stride = m.sh_rest_stride();
         dc += w * glm::dvec3(m.sh_dc[i]);
-        for (std::size_t j = 0; j < std::min(stride, member_stride); ++j) rest[j] += w * m.sh_rest[i * member_stride + j];
+        for (std::size_t j = 0; j < std::min(stride, member_stride); ++j)
+            rest[j] += w * m.sh_rest[i * member_stride + j];
     }
     glm::dvec3 values;
     glm::dmat3 vectors;
@@ -133,7 +123,8 @@ void pool_cell(std::span<const SplatCloud> members, std::span<const Entry> cell,
     if (glm::determinant(vectors) < 0.0) vectors[2] = -vectors[2];
     for (int axis = 0; axis < 3; ++axis)
         if (values[axis] > 0.01 * cell_m * cell_m) values[axis] *= fill * fill;
-    const glm::dmat3 widened = vectors * glm::dmat3(values.x, 0, 0, 0, values.y, 0, 0, 0, values.z) * glm::transpose(vectors);
+    const glm::dmat3 widened =
+        vectors * glm::dmat3(values.x, 0, 0, 0, values.y, 0, 0, 0, values.z) * glm::transpose(vectors);
     const double area = std::max(projected_area(widened), 1e-30);
     double log_transmittance = 0.0;
     for (const Activated& m : a) log_transmittance += std::log1p(-std::min(0.99, m.opacity * m.area / area));
@@ -141,7 +132,8 @@ void pool_cell(std::span<const SplatCloud> members, std::span<const Entry> cell,
 
     const glm::dquat q = glm::normalize(glm::quat_cast(vectors));
     to.positions[out] = glm::vec3(mean);
-    to.rotations[out] = {static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
+    to.rotations[out] = {static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y),
+                         static_cast<float>(q.z)};
     for (int axis = 0; axis < 3; ++axis)
         to.log_scales[out][axis] = static_cast<float>(0.5 * std::log(std::max(values[axis], 1e-30)));
     to.opacity_logits[out] = static_cast<float>(std::log(opacity / (1.0 - opacity)));
@@ -170,7 +162,8 @@ std::vector<Entry> cell_entries(std::span<const SplatCloud> members, const glm::
     for (const Entry& e : entries) low = glm::min(low, e.cell);
     for (Entry& e : entries) {
         const glm::u64vec3 d(e.cell - low);
-        e.morton = spread_bits(d.x) | spread_bits(d.y) << 1 | spread_bits(d.z) << 2;
+        e.morton =
+            bake::detail::spread_bits(d.x) | bake::detail::spread_bits(d.y) << 1 | bake::detail::spread_bits(d.z) << 2;
     }
     // Cells in Morton order, a cell's kept Gaussians after its pooled one, members in file order.
     std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
@@ -247,7 +240,8 @@ SplatCloud pool_group(std::span<const SplatCloud> members, const glm::vec3& orig
         while (pooled_end < e && !entries[pooled_end].keep) ++pooled_end;
         if (pooled_end > b)
             pool_cell(members, std::span<const Entry>(entries.data() + b, pooled_end - b), cell_m, fill, out, next++);
-        for (std::size_t k = pooled_end; k < e; ++k) copy_gaussian(members[entries[k].member], entries[k].index, out, next++);
+        for (std::size_t k = pooled_end; k < e; ++k)
+            copy_gaussian(members[entries[k].member], entries[k].index, out, next++);
     }
     std::fill(out.lod_level.begin(), out.lod_level.end(), std::uint8_t{4});
     std::fill(out.coverage_min.begin(), out.coverage_min.end(), -1.0f);
