@@ -55,8 +55,9 @@ void ChunkStreamer::State::plan(const StreamView& view) {
             finer = std::max(finer, margin(load, slot.distance));
             slot.level(l).margin = finer;
         }
-        slot.level(kLevels).margin = slot.in_cut || slot.drawn ? kInfinity : slot.near_cut ? 1.0 / keep_factor : 0.0;
+        slot.level(kLevels).margin = slot.in_cut || slot.drawn ? kInfinity : 0.0;
         // Outside the cut and beyond its hysteresis band nothing is held: the band is the hysteresis.
+        // Within the band level 4 is kept (not loaded) like a finer level within its unload distance.
         const bool may_hold = slot.in_cut || slot.drawn || slot.near_cut;
         slot.finest_needed = kLevels;
         for (int l = kLevels - 1; l >= 1; --l)
@@ -65,7 +66,7 @@ void ChunkStreamer::State::plan(const StreamView& view) {
         for (int l = kLevels; l >= 1; --l) {
             LevelSlot& s = slot.level(l);
             const bool needed = s.margin >= 1.0;
-            const bool within_keep = s.margin * keep_factor >= 1.0;
+            const bool within_keep = s.margin * keep_factor >= 1.0 || (l == kLevels && slot.near_cut);
             s.frames_outside_keep = s.active() && !within_keep ? s.frames_outside_keep + 1 : 0;
             const bool held = s.active() && may_hold && s.frames_outside_keep <= settings.unload_delay_frames;
             s.wanted = (needed || held) && !slot.failure_permanent && !slot.blocked(l) &&
