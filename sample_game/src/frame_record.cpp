@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cstdio>
 #include <sstream>
+#include <utility>
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
@@ -25,9 +26,10 @@ std::string milliseconds(double value) {
     return value < 0.0 ? std::string() : decimal(value, 3);
 }
 
-std::vector<FrameColumn> make_columns() {
+// Where the frame is on the path.
+std::vector<FrameColumn> pose_columns() {
     using R = const FrameRecord&;
-    std::vector<FrameColumn> c{
+    return {
         {"run", "lod: streamed with the LOD mode of the settings; baseline: every chunk resident, mode baseline",
          [](R r) { return r.run; }},
         {"frame", "index of the pose along the path (0-based)", [](R r) { return std::to_string(r.frame); }},
@@ -40,6 +42,13 @@ std::vector<FrameColumn> make_columns() {
         {"height_m", "camera height above the terrain (m)", [](R r) { return decimal(r.height_above_ground_m, 2); }},
         {"centre_distance_m", "distance from the camera to the world's centre on the ground (m)",
          [](R r) { return decimal(r.distance_to_centre_m, 2); }},
+    };
+}
+
+// What the frame cost: wall clock, CPU and GPU timers.
+std::vector<FrameColumn> time_columns() {
+    using R = const FrameRecord&;
+    return {
         {"frame_ms", "render() until glFinish() returned, wall clock (the frame's whole cost here)",
          [](R r) { return decimal(r.frame_ms, 3); }},
         {"stream_ms", "ChunkStreamer::update() on the main thread (with --sync-streaming: includes the reads)",
@@ -64,6 +73,13 @@ std::vector<FrameColumn> make_columns() {
          [](R r) { return milliseconds(r.gpu_upscale_ms); }},
         {"redraws", "times the frame was drawn again after a key-buffer overflow (timing is of the complete draw)",
          [](R r) { return std::to_string(r.redraws); }},
+    };
+}
+
+// What the splat pass drew and left out, and the LOD cut.
+std::vector<FrameColumn> count_columns() {
+    using R = const FrameRecord&;
+    return {
         {"considered", "Gaussians resident in the scene", [](R r) { return integer(r.considered); }},
         {"visible", "Gaussians drawn (after culling and LOD selection)", [](R r) { return integer(r.visible); }},
         {"drawn_l1", "Gaussians drawn of LOD level 1 (finest)", [](R r) { return integer(r.drawn_per_level[0]); }},
@@ -84,6 +100,13 @@ std::vector<FrameColumn> make_columns() {
         {"budget_threshold_px", "the size threshold the frame selected with: S_T times the splat budget's factor (S_T without one)",
          [](R r) { return decimal(r.budget_threshold_px, 3); }},
         {"tile_splat_pairs", "keys sorted: (Gaussian, tile) pairs", [](R r) { return integer(r.tile_splat_pairs); }},
+    };
+}
+
+// The image against the baseline's and the reference.
+std::vector<FrameColumn> image_columns() {
+    using R = const FrameRecord&;
+    return {
         {"psnr_lod_vs_baseline", "baseline rows: PSNR (dB) of the LOD run's image of this frame against this one (empty: not compared)",
          [](R r) { return r.psnr_lod_vs_baseline < 0.0 ? std::string() : decimal(r.psnr_lod_vs_baseline, 3); }},
         {"ssim_lod_vs_baseline", "baseline rows: SSIM of the LOD run's image of this frame against this one (empty: not compared)",
@@ -96,6 +119,13 @@ std::vector<FrameColumn> make_columns() {
         {"seam_ratio",
          "mean abs. error vs the reference within 4 px of projected chunk borders / elsewhere (-1: none)",
          [](R r) { return r.seam_ratio < 0.0 ? std::string("-1") : decimal(r.seam_ratio, 3); }},
+    };
+}
+
+// GPU memory and uploads.
+std::vector<FrameColumn> memory_columns() {
+    using R = const FrameRecord&;
+    return {
         {"resident_bytes", "streamed GPU bytes resident at the end of the frame (streamer's count, whole pages)",
          [](R r) { return integer(r.resident_bytes); }},
         {"gpu_page_bytes", "GPU scene pages in use x bytes per page (equals resident_bytes)",
@@ -107,6 +137,13 @@ std::vector<FrameColumn> make_columns() {
         {"gpu_upload_bytes",
          "bytes the GPU scene sent this frame: new pages plus a 48-byte cluster record per freed page",
          [](R r) { return integer(r.gpu_upload_bytes); }},
+    };
+}
+
+// Chunks by state (the census).
+std::vector<FrameColumn> chunk_state_columns() {
+    using R = const FrameRecord&;
+    return {
         {"chunks_absent", "chunks whose least advanced needed level is not loaded or requested",
          [](R r) { return integer(r.chunks.absent); }},
         {"chunks_requested", "... is being read", [](R r) { return integer(r.chunks.requested); }},
@@ -114,6 +151,13 @@ std::vector<FrameColumn> make_columns() {
         {"chunks_partial", "... is partly uploaded", [](R r) { return integer(r.chunks.partial); }},
         {"chunks_resident", "chunks with every needed level resident", [](R r) { return integer(r.chunks.resident); }},
     };
+}
+
+std::vector<FrameColumn> make_columns() {
+    using R = const FrameRecord&;
+    std::vector<FrameColumn> c;
+    for (auto part : {pose_columns, time_columns, count_columns, image_columns, memory_columns, chunk_state_columns})
+        for (FrameColumn& column : part()) c.push_back(std::move(column));
     for (int level = 0; level <= 4; ++level)
         c.push_back({"chunks_finest_l" + std::to_string(level),
                      level == 0 ? std::string("chunks with nothing resident")

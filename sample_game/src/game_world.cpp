@@ -132,12 +132,7 @@ engine::CameraView GameWorld::camera(const PathPose& pose, int width, int height
 
 double GameWorld::update_streaming(const engine::CameraView& camera, std::uint64_t frame) {
     const auto start = Clock::now();
-    // A splat budget that binds makes the cut coarser too (stream_policy.h), from the newest statistics.
-    if (const auto& stats = pass_->latest_statistics(); stats && stats->frame_index != budget_frame_seen_) {
-        budget_frame_seen_ = stats->frame_index;
-        group_cell_scale_ = sw::next_group_cell_scale(group_cell_scale_, stats->unbudgeted, stats->splat_budget);
-    }
-    streamer_->update({camera.position, camera.focal_length(), frame, group_cell_scale_});
+    streamer_->update({camera.position, camera.focal_length(), frame});
     return milliseconds_since(start);
 }
 

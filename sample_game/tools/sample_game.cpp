@@ -69,7 +69,8 @@ void add_lod_options(CLI::App& app, CommandLine& c) {
         ->capture_default_str();
 }
 
-void add_options(CLI::App& app, CommandLine& c) {
+// What to run headless: the profile, the soak or the reference, and their own settings.
+void add_mode_options(CLI::App& app, CommandLine& c) {
     app.add_flag("--profile", c.profile,
                  "Run headless: the path with LOD + streaming, then the baseline; write CSV, plots, summary");
     app.add_flag("--soak", c.soak,
@@ -86,21 +87,34 @@ void add_options(CLI::App& app, CommandLine& c) {
         ->capture_default_str();
     app.add_option("--laps", c.laps, "Soak: laps of the path (default 10)")->check(CLI::Range(2, 100000));
     app.add_flag("--no-faults", c.no_faults, "Soak: leave the chunk files alone (stream the world itself)");
+}
+
+// The streamer: budgets, retries, load distances, the chunk groups' switch, the GPU's SH degree.
+void add_streaming_options(CLI::App& app, CommandLine& c) {
     app.add_option("--retry-after-frames", c.settings.retry_failed_after_frames,
                    "Try a chunk that failed to load again after N frames (0: never)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
-    app.add_option("--world", c.world, "The world's folder (world.json; made by splat_world)")->capture_default_str();
-    app.add_option("--out", c.out, "Profile output folder (the soak's default is out/soak)")->capture_default_str();
-    app.add_option("--width", c.width, "Image width (profile default 640, window 1280)")->check(CLI::Range(16, 16384));
-    app.add_option("--height", c.height, "Image height (profile default 360, window 720)")
-        ->check(CLI::Range(16, 16384));
-    app.add_option("--frames", c.frames, "Profile: poses along the path (default 400); soak: per lap (default 200); window: quit after N frames")
-        ->check(CLI::PositiveNumber);
     app.add_option("--memory-budget-mib", c.memory_budget_mib, "Streamed GPU memory budget (default 384)")
         ->check(CLI::Range(0.01, 1e6));
     app.add_option("--upload-budget-mib", c.upload_budget_mib, "Upload budget per frame (default 8)")
         ->check(CLI::Range(0.01, 1e5));
+    app.add_flag("--sync-streaming", c.settings.sync_streaming,
+                 "Read chunks inside each update (deterministic; tests)");
+    app.add_option("--load-distance-scale", c.settings.load_distance_scale,
+                   "Load levels this much earlier than the on-axis bound")
+        ->capture_default_str();
+    app.add_option("--group-cell-px", c.settings.group_cell_px,
+                   "Draw a chunk group instead of its chunks where its cell is at most this many pixels (0: never)")
+        ->check(CLI::Range(0.0, 1000.0))
+        ->capture_default_str();
+    app.add_option("--sh-degree", c.settings.sh_degree, "SH degree stored on the GPU (the generated world has 0)")
+        ->check(CLI::Range(0, 3))
+        ->capture_default_str();
+}
+
+// The profile's baseline run, frames written and preload.
+void add_profile_options(CLI::App& app, CommandLine& c) {
     app.add_option("--frames-png", c.frames_png,
                    "Profile: write every K-th frame as PNG, and a contact sheet (0: none)")
         ->check(CLI::NonNegativeNumber);
@@ -115,19 +129,20 @@ void add_options(CLI::App& app, CommandLine& c) {
         ->capture_default_str();
     app.add_flag("--no-preload", c.no_preload,
                  "Profile: start the walk cold instead of streaming the first view first");
-    app.add_flag("--sync-streaming", c.settings.sync_streaming,
-                 "Read chunks inside each update (deterministic; tests)");
+}
+
+void add_options(CLI::App& app, CommandLine& c) {
+    add_mode_options(app, c);
+    add_streaming_options(app, c);
+    add_profile_options(app, c);
+    app.add_option("--world", c.world, "The world's folder (world.json; made by splat_world)")->capture_default_str();
+    app.add_option("--out", c.out, "Profile output folder (the soak's default is out/soak)")->capture_default_str();
+    app.add_option("--width", c.width, "Image width (profile default 640, window 1280)")->check(CLI::Range(16, 16384));
+    app.add_option("--height", c.height, "Image height (profile default 360, window 720)")
+        ->check(CLI::Range(16, 16384));
+    app.add_option("--frames", c.frames, "Profile: poses along the path (default 400); soak: per lap (default 200); window: quit after N frames")
+        ->check(CLI::PositiveNumber);
     add_lod_options(app, c);
-    app.add_option("--load-distance-scale", c.settings.load_distance_scale,
-                   "Load levels this much earlier than the on-axis bound")
-        ->capture_default_str();
-    app.add_option("--group-cell-px", c.settings.group_cell_px,
-                   "Draw a chunk group instead of its chunks where its cell is at most this many pixels (0: never)")
-        ->check(CLI::Range(0.0, 1000.0))
-        ->capture_default_str();
-    app.add_option("--sh-degree", c.settings.sh_degree, "SH degree stored on the GPU (the generated world has 0)")
-        ->check(CLI::Range(0, 3))
-        ->capture_default_str();
     app.add_option("--fov-y", c.settings.fov_y_deg, "Vertical field of view in degrees")->capture_default_str();
     app.add_option("--path-frames", c.path_frames, "Window: poses of the looping path")
         ->check(CLI::Range(10, 1000000))

@@ -1,14 +1,14 @@
 // Pixel coverage and the LOD selection rule, the GLSL twin of splat_lod/lod_selection.h (the
 // tests compare them Gaussian for Gaussian). Needs `frame` (FrameUniforms).
 
-// ALGORITHMS §2: S = 2·min(sqrt(L/Σ⁻¹ₓₓ), sqrt(L/Σ⁻¹ᵧᵧ)), L = 2·ln(255·o), undilated Σ2D.
+// docs/algorithms.md §2: S = 2·min(sqrt(L/Σ⁻¹ₓₓ), sqrt(L/Σ⁻¹ᵧᵧ)), L = 2·ln(255·o), undilated Σ2D.
 float pixel_coverage(mat2 cov, float det, float opacity) {
     if (!(opacity > 1.0 / 255.0) || !(det > 0.0) || !(cov[0][0] > 0.0) || !(cov[1][1] > 0.0)) return 0.0;
     float level_set = 2.0 * log(255.0 * opacity);
     return 2.0 * min(sqrt(level_set * det / cov[1][1]), sqrt(level_set * det / cov[0][0]));
 }
 
-// ALGORITHMS §3 (paper Eq. 6); bounds of −1 are unset.
+// docs/algorithms.md §3 (paper Eq. 6); bounds of −1 are unset.
 bool lod_selected(uint level, float coverage, float coverage_min, float coverage_max) {
     uint mode = frame.lod_levels.x, finest = frame.lod_levels.y, coarsest = frame.lod_levels.z;
     bool all_levels = mode == SPLAT_LOD_MODE_INSERT_LARGE || mode == SPLAT_LOD_MODE_FULL;

@@ -11,7 +11,7 @@ vec3 sh_coefficient(uint base, uint k) {
     return vec3(sh[base + k * 3u], sh[base + k * 3u + 1u], sh[base + k * 3u + 2u]);
 }
 
-// ALGORITHMS §1: SH in the direction from the camera centre to the Gaussian, + 0.5, clamped at 0.
+// docs/algorithms.md §1: SH in the direction from the camera centre to the Gaussian, + 0.5, clamped at 0.
 vec3 evaluate_sh(uint base, uint degree, vec3 d) {
     vec3 c = SH_C0 * sh_coefficient(base, 0u);
     if (degree >= 1u) {

@@ -15,7 +15,7 @@ layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) buffer ClusterList { uvec4 
 
 const mat3 VIEW_TO_CAMERA = mat3(1, 0, 0, 0, -1, 0, 0, 0, -1);
 
-// True when no Gaussian of the cluster can pass "not too small" (ALGORITHMS §3) this frame. For a
+// True when no Gaussian of the cluster can pass "not too small" (docs/algorithms.md §3) this frame. For a
 // member with extent e = sqrt(2·ln(255·o))·min(σ_max, √2·σ_mid), coverage S ≤ 2·e·‖M‖₂·‖J‖₂ (the
 // shorter chord of the α = 1/255 ellipse; see build_clusters in gpu_scene.cpp), and ‖J‖₂ ≤ ‖J‖_F ≤ sqrt(fx²(1 + lx²) + fy²(1 + ly²)) / z
 // with lx, ly the Jacobian's clamp of x/z, y/z; z is at least the sphere's nearest depth. If for

@@ -108,7 +108,7 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 #define SPLAT_UNIFORM_FRAME 0          // FrameUniforms (uniform block binding)
 #define SPLAT_IMAGE_COLOR 0            // the frame's display-space colour (rgba8), read and written
 #define SPLAT_TEXTURE_VIEW_DEPTH 1     // the mesh pass's view depth (r32f), +inf where no mesh
-// Below render scale 1 (ALGORITHMS §5) the raster writes these low-resolution images (rgba32f:
+// Below render scale 1 (docs/algorithms.md §5) the raster writes these low-resolution images (rgba32f:
 // premultiplied colour C and alpha A, and their ∂/∂x, ∂/∂y, ∂²/∂x∂y per low-res pixel; r32f: the
 // view depth where the transmittance first falls below ½, else the depth the texel was cut at),
 // which the upscale pass reads.
@@ -159,7 +159,7 @@ SPLAT_LOD_STRUCT(GpuInstance) {
 // Gaussians [c·SPLAT_PROJECT_WORKGROUP_SIZE, (c + 1)·SPLAT_PROJECT_WORKGROUP_SIZE)). Baked files
 // are sorted by level and along a Morton curve, so a cluster is one level of one small region: when
 // even its largest member would be too small to draw at the cluster's nearest depth, the whole
-// workgroup skips its Gaussians (ALGORITHMS §3 "not too small", bounded from above).
+// workgroup skips its Gaussians (docs/algorithms.md §3 "not too small", bounded from above).
 SPLAT_LOD_STRUCT(GpuCluster) {
     vec4 sphere;  // local-space centre xyz and radius w of the members' means; w < 0: an empty
                   // cluster (a freed or padding range of the scene), never projected

@@ -1,4 +1,4 @@
-// Step 1b, cull + project + colour (ALGORITHMS §1): one invocation per Gaussian of the clusters
+// Step 1b, cull + project + colour (docs/algorithms.md §1): one invocation per Gaussian of the clusters
 // step 1a kept. Survivors get
 // their projected form at their own index and the number of 16×16 tiles their extent touches;
 // culled ones get 0 tiles. A scan of the counts then gives every splat its key range.
@@ -46,7 +46,7 @@ uint project(uint index) {
     mat2 cov = mat2(j * sigma * transpose(j));
     float det_undilated = cov[0][0] * cov[1][1] - cov[0][1] * cov[0][1];
     // Selected by the coverage at the output resolution (what the viewer sees), also when the
-    // splats are rasterised smaller for upscaling (ALGORITHMS §5).
+    // splats are rasterised smaller for upscaling (docs/algorithms.md §5).
     float coverage = pixel_coverage(cov, det_undilated, opacity) * frame.lod_rule.w;
     // Under a splat budget every Gaussian selected at some β is projected; the budget pass then
     // picks β and the trim pass keeps those selected at it.
@@ -61,7 +61,7 @@ uint project(uint index) {
     if (frame.params.z > 0.5) opacity *= sqrt(max(det_undilated, 0.0) / det);  // optional 2D mip filter
     if (!(opacity > 1.0 / 255.0)) return 0u;
 
-    // Extent: the ellipse where α reaches 1/255 (ALGORITHMS §1), as pixel-centre bounds.
+    // Extent: the ellipse where α reaches 1/255 (docs/algorithms.md §1), as pixel-centre bounds.
     vec2 mean = vec2(frame.focal_principal.z + fx * cam.x / z, frame.focal_principal.w + fy * cam.y / z);
     float level_set = 2.0 * log(255.0 * opacity);
     vec2 radius = sqrt(level_set * vec2(cov[0][0], cov[1][1]));

@@ -1,10 +1,11 @@
 // Step 6, raster + composite: one workgroup per 16×16 tile, one invocation per pixel, reading the
 // tile's splats (sorted front to back) straight from the buffers. Staging batches in shared
 // memory with barriers was measured 1.8× slower on llvmpipe (biker, 1280×720: 1360 ms against
-// 740 ms). Per pixel (ALGORITHMS §1): α = min(0.99, o·exp(−½ dᵀ Σ⁻¹ d)), skip α < 1/255, stop before T would fall
-// below 1e−4, stop at the mesh surface; output C + T·mesh_colour (display space).
+// 740 ms). Per pixel (docs/algorithms.md §1): α = min(0.99, o·exp(−½ dᵀ Σ⁻¹ d)), skip α < 1/255,
+// stop before T would fall below 1e−4, stop at the mesh surface; output C + T·mesh_colour (display
+// space).
 //
-// With SPLAT_GRADIENTS defined (render scale below 1, ALGORITHMS §5) the pixels are low-resolution
+// With SPLAT_GRADIENTS defined (render scale below 1, docs/algorithms.md §5) the pixels are low-resolution
 // texels and nothing is composited here: the pass writes C and A with their analytic ∂/∂x, ∂/∂y and
 // ∂²/∂x∂y (paper Eqs. 8–14) and a front depth for the upscale pass. A texel is cut at the FARTHEST
 // mesh depth among the output pixels it stands for, so no splat is lost where any of them would
@@ -53,7 +54,7 @@ void main() {
     vec2 centre = vec2(pixel) + 0.5;
 #ifdef SPLAT_GRADIENTS
     float mesh_depth = inside ? footprint_mesh_depth(pixel) : 0.0;
-    // ∂x, ∂y, ∂²xy of (C, A) (ALGORITHMS §5); .w holds the accumulated alpha's derivatives.
+    // ∂x, ∂y, ∂²xy of (C, A) (docs/algorithms.md §5); .w holds the accumulated alpha's derivatives.
     vec4 grad_x = vec4(0.0), grad_y = vec4(0.0), grad_xy = vec4(0.0);
     float front = mesh_depth;
 #else

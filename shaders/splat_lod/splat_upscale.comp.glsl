@@ -1,4 +1,4 @@
-// Step 7 below render scale 1, upscale + composite (ALGORITHMS §5): one invocation per output
+// Step 7 below render scale 1, upscale + composite (docs/algorithms.md §5): one invocation per output
 // pixel. Output pixel (x, y) samples the low-resolution splat image at u = (x + 0.5)·s − 0.5,
 // v = (y + 0.5)·s − 0.5 (texel centres at integers), clamped to the outermost texel centres, with
 // the method chosen by UPSCALE_METHOD (0 spline, 1 bicubic, 2 bilinear, 3 lanczos3, the order of

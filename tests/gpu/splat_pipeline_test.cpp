@@ -1,4 +1,4 @@
-// The GPU splat pipeline against the double-precision CPU reference (ALGORITHMS §1).
+// The GPU splat pipeline against the double-precision CPU reference (docs/algorithms.md §1).
 #include <chrono>
 #include <map>
 #include <cmath>
@@ -105,7 +105,7 @@ TEST_F(SplatPipelineTest, SeveralComponentsAreSortedTogether) {
     EXPECT_GT(engine::compare_images(merged, moved).max_channel_difference, 50);
 }
 
-// ALGORITHMS §7 hard cases through the GPU path: nothing crashes, nothing undefined is drawn,
+// docs/algorithms.md §7 hard cases through the GPU path: nothing crashes, nothing undefined is drawn,
 // and the image agrees with the reference, which documents each case's behaviour.
 TEST_F(SplatPipelineTest, HardCasesAgreeWithTheReference) {
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
@@ -193,7 +193,7 @@ TEST_F(SplatPipelineTest, KeyBufferGrowsAfterAnOverflowedFrame) {
     EXPECT_GE(d.psnr_db, 40.0);
 }
 
-// Compositing by depth (ALGORITHMS §1): a textured box in front of the biker's legs and a box
+// Compositing by depth (docs/algorithms.md §1): a textured box in front of the biker's legs and a box
 // behind him. The GPU frame equals the reference composited over the GPU mesh layer, and matches
 // a golden image.
 TEST_F(SplatPipelineTest, MeshesAndSplatsCompositeByDepth) {

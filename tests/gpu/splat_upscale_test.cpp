@@ -1,4 +1,4 @@
-// Gradient-aware upscaling on the GPU (ALGORITHMS §5): the low-resolution raster's analytic
+// Gradient-aware upscaling on the GPU (docs/algorithms.md §5): the low-resolution raster's analytic
 // derivatives against the CPU reference, the upscale pass against the CPU upscalers, compositing
 // with meshes, LOD selection at the output's coverage, and the hard cases.
 #include <cmath>
@@ -157,7 +157,7 @@ TEST_F(SplatUpscaleTest, UpscalePassMatchesTheCpuUpscalers) {
 }
 
 // At 3× the spline keeps close to the native render of small, detailed content, and beats the
-// bicubic: resolution-consistent dilation plus exact derivatives (ALGORITHMS §5).
+// bicubic: resolution-consistent dilation plus exact derivatives (docs/algorithms.md §5).
 TEST_F(SplatUpscaleTest, SplineAtThreeTimesIsCloseToNativeAndBeatsBicubic) {
     const auto cloud = shared(smooth_cloud(400, -3.6f));
     const auto camera = front_camera(192, 144);

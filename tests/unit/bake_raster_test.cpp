@@ -1,4 +1,4 @@
-// The bake's differentiable rasteriser (ALGORITHMS §1 and §4 step 7): its forward against the
+// The bake's differentiable rasteriser (docs/algorithms.md §1 and §4 step 7): its forward against the
 // reference renderer, its backward against central differences, the chain rule to the stored
 // parameters, determinism across thread counts, and the §7 hard cases that concern it.
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The LOD bake (ALGORITHMS §4): each step on hand-made input with closed-form answers, the hard
+// The LOD bake (docs/algorithms.md §4): each step on hand-made input with closed-form answers, the hard
 // cases of §7, bad input, and small end-to-end bakes (determinism, order, what the levels hold).
 #include <gtest/gtest.h>
 

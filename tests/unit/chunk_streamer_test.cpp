@@ -21,6 +21,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/message_bus.h"
+#include "plugin_msgs/splat_statistics.h"
 #include "splat_lod/splat_io.h"
 #include "splat_lod/world/chunk_streamer.h"
 #include "splat_lod/world/world_groups.h"
@@ -840,11 +841,24 @@ TEST(ChunkStreamerGroups, ABindingSplatBudgetMakesTheCutCoarser) {
     EXPECT_EQ(sw::next_group_cell_scale(1.01f, 0, 200), 1.0f);
 
     // 60 m above the middle of the world (the boxes 60 m away): the depth-1 groups (0.5 m cells,
-    // 0.83 px) are the cut at 1 px, the root (1 m cells, 1.67 px) once the switch is scaled by 2.
-    Harness h(sync_settings(), nullptr, make_grouped_world());
+    // 0.83 px) are the cut at 1 px, the root (1 m cells, 1.67 px) once the switch is scaled by 2. The
+    // renderer's statistics reach the streamer on the bus: a budget drawn 4× over scales it by √4 = 2
+    // in steps of at most 2^(1/4).
+    engine::MessageBus bus;
+    Harness h(sync_settings(), &bus, make_grouped_world());
     h.steps({20.0f, 62.0f, 20.0f}, 4);
     EXPECT_EQ(h.streamer.residency().drawn_groups, 4u);
-    for (std::uint64_t k = 0; k < 4; ++k) h.streamer.update({{20.0f, 62.0f, 20.0f}, kFocal, h.frame++, 2.0f});
+    EXPECT_EQ(h.streamer.group_cell_scale(), 1.0f);
+    plugin_msgs::SplatStatistics over;
+    over.splat_budget = 100;
+    over.unbudgeted = 400;
+    for (int k = 0; k < 4; ++k) {
+        bus.publish(over);
+        h.step({20.0f, 62.0f, 20.0f});
+    }
+    EXPECT_NEAR(h.streamer.group_cell_scale(), 2.0f, 1e-5f);
+    h.steps({20.0f, 62.0f, 20.0f}, 3);  // no new statistics: the scale holds
+    EXPECT_NEAR(h.streamer.group_cell_scale(), 2.0f, 1e-5f);
     EXPECT_TRUE(h.status("group_2_+000_+000").in_cut);
     EXPECT_TRUE(h.sink.drawn("group_2_+000_+000"));
     EXPECT_EQ(h.streamer.residency().drawn_groups, 1u);

@@ -1,4 +1,4 @@
-// The analytic image derivatives of the CPU reference renderer (ALGORITHMS §5) against finite
+// The analytic image derivatives of the CPU reference renderer (docs/algorithms.md §5) against finite
 // differences of the renderer itself, and the low-resolution camera of scaled_camera() against the
 // native one.
 #include <algorithm>
@@ -278,7 +278,7 @@ TEST(ScaledCamera, MapsProjectedMeansLikeTheUpscaler) {
     EXPECT_EQ(ref::scaled_camera(full, 1.0 / 3.0).width, 13);  // ceil(37/3): one texel past the output
 }
 
-// With the dilation scaled by s² (ALGORITHMS §5), the low-resolution image is the native one
+// With the dilation scaled by s² (docs/algorithms.md §5), the low-resolution image is the native one
 // sampled at the native pixel centres that coincide with texel centres (x = 3k + 1 at s = 1/3),
 // and its derivatives are the native ones × 1/s (× 1/s² for ∂xy). A Gaussian beyond the ±1.3·tan
 // Jacobian clamp makes this depend on clamp_tan_x: without it the rounded-up low-resolution image

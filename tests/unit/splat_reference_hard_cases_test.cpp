@@ -1,4 +1,4 @@
-// The ALGORITHMS §7 hard cases that concern rendering, one test each, on the CPU reference renderer:
+// The docs/algorithms.md §7 hard cases that concern rendering, one test each, on the CPU reference renderer:
 // no NaN in any output pixel, bad input dropped and counted, the documented behaviour asserted.
 #include <cmath>
 #include <functional>

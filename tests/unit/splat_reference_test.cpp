@@ -1,4 +1,4 @@
-// The CPU reference renderer against closed forms of ALGORITHMS §1 and against a brute-force
+// The CPU reference renderer against closed forms of docs/algorithms.md §1 and against a brute-force
 // per-pixel loop written here. The §7 hard cases are in splat_reference_hard_cases_test.cpp.
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #pragma once
 // Shared by the reference-renderer tests: small scenes built in code and the expected values of
-// ALGORITHMS §1 written out independently of the renderer.
+// docs/algorithms.md §1 written out independently of the renderer.
 #include <algorithm>
 #include <cmath>
 #include <span>

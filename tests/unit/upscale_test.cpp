@@ -1,4 +1,4 @@
-// The CPU reference upscalers (ALGORITHMS §5): what each interpolant reproduces exactly, the
+// The CPU reference upscalers (docs/algorithms.md §5): what each interpolant reproduces exactly, the
 // output-to-texel mapping for integer and fractional factors, and the hard cases (a one-pixel-wide
 // Gaussian, 1×1 and 4096-wide targets, huge derivatives, bad input).
 #include <algorithm>
@@ -393,7 +393,7 @@ double spline_overshoot(const up::GradientImage& low, int out_width, int out_hei
     return overshoot;
 }
 
-// ALGORITHMS §7: spline upscaling of a one-pixel-wide Gaussian. A dot and a line σ = 0.3 low-res
+// docs/algorithms.md §7: spline upscaling of a one-pixel-wide Gaussian. A dot and a line σ = 0.3 low-res
 // px across, opacity 0.99, rendered at s = 1/3 with the resolution-consistent dilation 0.3·s² and
 // upscaled 3×, at nine sub-texel positions. The output is finite and in [0, 1]. Before the clamp
 // the patch leaves the range of its four corner texels by 0.08–0.34 depending on where the dot

@@ -236,7 +236,7 @@ TEST(WorldChunk, DescribeRefusesAFileNotInStreamOrder) {
     EXPECT_NE(message.find("stream order"), std::string::npos) << message;
 }
 
-// The reach of ALGORITHMS §3's "not too small" test and the split into stream levels: a Gaussian of
+// The reach of docs/algorithms.md §3's "not too small" test and the split into stream levels: a Gaussian of
 // stream level l < 4 is never selectable beyond reach·f, and nothing the coarsest level holds is left
 // out of stream level 4.
 TEST(WorldChunk, StreamLevelsFollowTheReachOfTheNotTooSmallTest) {

@@ -1,5 +1,5 @@
 #pragma once
-// The splat LOD settings (shared/docs/ALGORITHMS.md §3 and §5): which Gaussians the selection
+// The splat LOD settings (docs/algorithms.md §3 and §5): which Gaussians the selection
 // rule keeps (multi-scale paper, Eq. 6), at which resolution splats are rasterised and how they
 // are upscaled. The UI and tools publish it; the splat_lod plugin reads it.
 #include <array>

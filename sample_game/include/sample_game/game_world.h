@@ -95,8 +95,6 @@ private:
     std::unique_ptr<splat_lod::world::SceneResidencySink> sink_;
     std::unique_ptr<splat_lod::world::ChunkStreamer> streamer_;
     splat_lod::SplatPass* pass_ = nullptr;
-    float group_cell_scale_ = 1.0f;         // the cut's switch × this: what a binding splat budget asks
-    std::uint64_t budget_frame_seen_ = ~0ull;  // statistics already fed to it
 };
 
 }  // namespace sample_game

@@ -1,5 +1,5 @@
 // splat_bake: trained splat scene → LOD asset (INRIA PLY with lod_level, coverage_min, coverage_max;
-// coarse levels first). ALGORITHMS §4.
+// coarse levels first). docs/algorithms.md §4.
 //   splat_bake --input scene.ply --output scene.lod.ply [--cameras auto|rings:RxA|orbit:N|cameras.json|path.json]
 //              [--up X,Y,Z] [--width 512 --height 384] [--levels 4] [--size-threshold 2]
 //              [--refine-iterations 200] [--refine-cameras 16] [--threads N] [--seed N]
@@ -120,11 +120,12 @@ int main(int argc, char** argv) {
     auto* enlargement = app.add_option("--max-enlargement", o.bake.max_enlargement,
                                        "clamp of the pooled Gaussians' enlargement S_T / S_avg (fixes the recipe)")
                             ->check(CLI::Range(1.0, 1000.0));
-    app.add_option("--pooling", o.pooling, "mean (ALGORITHMS §4 steps 4-5) or moments (moment-matched cells)")
+    app.add_option("--pooling", o.pooling, "mean (docs/algorithms.md §4 steps 4-5) or moments (moment-matched cells)")
         ->check(CLI::IsMember({"mean", "moments"}));
     auto* cells = app.add_option("--cells", o.cells,
                                  "auto (bake both recipes, keep the better), adaptive (the larger of grid and "
-                                 "distance cells, enlargement <= 8) or grid (ALGORITHMS §4 step 3, enlargement <= 32)")
+                                 "distance cells, enlargement <= 8) or grid (docs/algorithms.md §4 step 3, "
+                                 "enlargement <= 32)")
                       ->check(CLI::IsMember({"auto", "adaptive", "grid"}));
     app.add_flag("--keep-ranges", o.keep_ranges, "do not measure the coverage ranges again after the refinement");
     app.add_option("--debug-images", o.bake.debug_image_dir,

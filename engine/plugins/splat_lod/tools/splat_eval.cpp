@@ -1,4 +1,4 @@
-// splat_eval: speed against error, measured the same way for every method (ALGORITHMS §6).
+// splat_eval: speed against error, measured the same way for every method (docs/algorithms.md §6).
 //   splat_eval --scene FILE | --scene-json FILE  --cameras orbit:N|cameras.json|path.json
 //              --methods baseline,baseline_mip --sweep scale,distance,upscale --scales 1,2,4,...
 //              --distances 1,2,4,... --out DIR [--width W --height H --frames 5 --warmup 2

@@ -88,16 +88,18 @@ std::string merge_summary(const splat_lod::world::WorldSummary& s) {
     return text + line;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct CommandLine {
     splat_lod::world::WorldOptions options;
     std::string out, seed_text = "1", shard_text;
-    bool no_terrain_mesh = false, count_only = false, merge = false;
-    CLI::App app{"Generate and bake the sample world of LOD splat chunks and glTF props (cached in --out)"};
-    app.add_option("--out", out, "the world's folder (world.json, gen-<n>/chunks/, gen-<n>/meshes/)")
-        ->required();
-    app.add_option("--seed", seed_text, "random seed, 0 to 2^64 - 1 (the same seed gives the same bytes)");
+    bool no_terrain_mesh = false, no_groups = false, count_only = false, merge = false;
+    CLI::Option* shard_option = nullptr;  // given: bake a shard
+};
+
+// What the world is and how its chunks are baked.
+void add_world_options(CLI::App& app, CommandLine& c) {
+    splat_lod::world::WorldOptions& options = c.options;
+    app.add_option("--out", c.out, "the world's folder (world.json, gen-<n>/chunks/, gen-<n>/meshes/)")->required();
+    app.add_option("--seed", c.seed_text, "random seed, 0 to 2^64 - 1 (the same seed gives the same bytes)");
     app.add_option("--size", options.size_m, "world size in metres (a multiple of --chunk); 1024 by default")
         ->check(CLI::Range(4.0, 65536.0));
     app.add_option("--chunk", options.chunk_size_m, "chunk size in metres; 64 by default")->check(CLI::Range(4.0, 65536.0));
@@ -110,25 +112,67 @@ int main(int argc, char** argv) {
     app.add_option("--bake-width", options.bake_width, "chunk bake camera width (a multiple of 64)")->check(CLI::Range(64, 8192));
     app.add_option("--bake-height", options.bake_height, "chunk bake camera height (a multiple of 64)")
         ->check(CLI::Range(64, 8192));
-    app.add_flag("--no-terrain-mesh", no_terrain_mesh, "do not write the coarse terrain mesh");
-    bool no_groups = false;
-    app.add_flag("--no-groups", no_groups, "no chunk groups (the far field is then drawn from every chunk)");
+    app.add_flag("--no-terrain-mesh", c.no_terrain_mesh, "do not write the coarse terrain mesh");
+    app.add_flag("--no-groups", c.no_groups, "no chunk groups (the far field is then drawn from every chunk)");
     app.add_option("--group-cell", options.groups.base_cell_m,
                    "the chunk groups' pooling cell at depth 1 in metres, doubling per depth; 1 by default")
         ->check(CLI::Range(0.01, 1000.0));
     app.add_option("--group-fill", options.groups.fill,
                    "widens the chunk groups' pooled Gaussians so that neighbours overlap, 1 to 4; 1.5 by default")
         ->check(CLI::Range(1.0, 4.0));
-    app.add_flag("--force", options.force, "regenerate even when the cached world matches");
-    auto* count_flag = app.add_flag("--count-only", count_only,
+}
+
+// What to do: the whole world, a count, a shard or the merge of the shards.
+void add_run_options(CLI::App& app, CommandLine& c) {
+    app.add_flag("--force", c.options.force, "regenerate even when the cached world matches");
+    auto* count_flag = app.add_flag("--count-only", c.count_only,
                                     "only generate the content and print its Gaussian counts (no bake, no files)");
-    auto* shard_option = app.add_option("--shard", shard_text,
+    c.shard_option = app.add_option("--shard", c.shard_text,
                                         "bake only shard I of N (I is 1-based: 1..N), chunks k with k mod N = I - 1, "
                                         "into --out/staging-<hash>/; then --merge")
-                             ->excludes(count_flag);
-    app.add_flag("--merge", merge, "commit the world that --shard runs baked into --out (all must be done)")
+                         ->excludes(count_flag);
+    app.add_flag("--merge", c.merge, "commit the world that --shard runs baked into --out (all must be done)")
         ->excludes(count_flag)
-        ->excludes(shard_option);
+        ->excludes(c.shard_option);
+}
+
+int run(CommandLine& c) {
+    namespace world = splat_lod::world;
+    const auto shard = c.shard_option->count() > 0 ? std::optional(world::parse_world_shard(c.shard_text))  // first
+                                                   : std::optional<world::WorldShard>();
+    world::WorldOptions& options = c.options;
+    options.seed = engine::parse_u64(c.seed_text, "--seed");
+    options.output = c.out;
+    options.terrain_mesh = !c.no_terrain_mesh;
+    options.groups.enabled = !c.no_groups;
+    options.progress = print_progress;
+    if (c.count_only) {
+        std::printf("%s", world::format_summary(world::count_world_content(options)).c_str());
+        return 0;
+    }
+    const auto result = shard     ? world::bake_world_shard(options, *shard)
+                        : c.merge ? world::merge_world_shards(options)
+                                  : world::generate_world(options);
+    if (!result.summary.cached && !result.summary.cache_note.empty())
+        std::fprintf(stderr, "splat_world: not cached: %s\n", result.summary.cache_note.c_str());
+    const bool merged = c.merge && !result.summary.cached;
+    std::printf("%s", (merged ? merge_summary(result.summary) : world::format_summary(result.summary)).c_str());
+    const auto record = shard ? options.output / world::staging_folder(options) / world::shard_record_name(*shard)
+                              : std::filesystem::path();
+    if (shard && std::filesystem::exists(record))
+        std::printf("shard %zu/%zu: %s\n", shard->index, shard->count, record.string().c_str());
+    else
+        std::printf("world: %s\n", (options.output / world::kManifestFileName).string().c_str());
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CommandLine c;
+    CLI::App app{"Generate and bake the sample world of LOD splat chunks and glTF props (cached in --out)"};
+    add_world_options(app, c);
+    add_run_options(app, c);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -136,34 +180,7 @@ int main(int argc, char** argv) {
         return app.exit(e) == 0 ? 0 : 1;
     }
     try {
-        if (shard_option->count() > 0) splat_lod::world::parse_world_shard(shard_text);  // before any work
-        options.seed = engine::parse_u64(seed_text, "--seed");
-        options.output = out;
-        options.terrain_mesh = !no_terrain_mesh;
-        options.groups.enabled = !no_groups;
-        options.progress = print_progress;
-        if (count_only) {
-            const auto summary = splat_lod::world::count_world_content(options);
-            std::printf("%s", splat_lod::world::format_summary(summary).c_str());
-            return 0;
-        }
-        namespace world = splat_lod::world;
-        const auto shard = shard_option->count() > 0 ? std::optional(world::parse_world_shard(shard_text))
-                                                     : std::optional<world::WorldShard>();
-        const auto result = shard ? world::bake_world_shard(options, *shard)
-                            : merge ? world::merge_world_shards(options)
-                                    : world::generate_world(options);
-        if (!result.summary.cached && !result.summary.cache_note.empty())
-            std::fprintf(stderr, "splat_world: not cached: %s\n", result.summary.cache_note.c_str());
-        const bool merged = merge && !result.summary.cached;
-        std::printf("%s", (merged ? merge_summary(result.summary) : world::format_summary(result.summary)).c_str());
-        const auto record = shard ? options.output / world::staging_folder(options) / world::shard_record_name(*shard)
-                                  : std::filesystem::path();
-        if (shard && std::filesystem::exists(record))
-            std::printf("shard %zu/%zu: %s\n", shard->index, shard->count, record.string().c_str());
-        else
-            std::printf("world: %s\n", (options.output / world::kManifestFileName).string().c_str());
-        return 0;
+        return run(c);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "splat_world: %s\n", e.what());
         return 1;

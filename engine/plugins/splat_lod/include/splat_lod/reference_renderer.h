@@ -1,6 +1,6 @@
 #pragma once
 // The double-precision CPU reference renderer: the oracle that the GPU passes are tested against.
-// It implements the forward model of docs/ALGORITHMS.md §1 exactly and nothing else (no LOD
+// It implements the forward model of docs/algorithms.md §1 exactly and nothing else (no LOD
 // selection): activation, culling, EWA projection with the 0.3 px dilation, SH colour, the
 // α ≥ 1/255 extent, and front-to-back blending with the 1e−4 transmittance stop. The camera and
 // pixel conventions are those of engine/render/camera.h. Bad input (NaN/Inf, zero quaternions,
@@ -22,7 +22,7 @@ struct GradientImage;  // splat_lod/upscale.h
 
 namespace splat_lod::reference {
 
-// The constants of ALGORITHMS §1, named once.
+// The constants of docs/algorithms.md §1, named once.
 inline constexpr double kMinAlpha = 1.0 / 255.0;      // skip below; also the visibility cull
 inline constexpr double kMaxAlpha = 0.99;             // per-splat α cap
 inline constexpr double kMinTransmittance = 1e-4;     // stop before T would fall below
@@ -43,7 +43,7 @@ struct ReferenceSettings {
     int sh_degree_cap = kMaxShDegree;
     int threads = 0;               // 0: std::thread::hardware_concurrency()
     // Also output the splat-only colour and alpha with their x, y and xy image derivatives
-    // (ALGORITHMS §5), the input of the spline upscaler. Off: no extra memory and no extra work.
+    // (docs/algorithms.md §5), the input of the spline upscaler. Off: no extra memory and no extra work.
     bool gradients = false;
 };
 
@@ -80,7 +80,7 @@ ReferenceCamera make_reference_camera(const engine::CameraView& camera);
 // cy × s, size upscale::low_res_size(W, s) × upscale::low_res_size(H, s), and the Jacobian clamp of
 // `full` (clamp_tan_x/y), so a Gaussian's projection is the native one scaled by s: mean × s
 // (i.e. (native + 0.5)·s − 0.5 in texel-centre coordinates) and Σ2D × s² before the dilation
-// (render with dilation 0.3·s² for the native blur, ALGORITHMS §5). Throws engine::Error for s
+// (render with dilation 0.3·s² for the native blur, docs/algorithms.md §5). Throws engine::Error for s
 // outside (0, 1] or NaN, or an invalid `full`.
 ReferenceCamera scaled_camera(const ReferenceCamera& full, double render_scale);
 

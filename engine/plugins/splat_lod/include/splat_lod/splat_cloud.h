@@ -1,6 +1,6 @@
 #pragma once
 // The CPU copy of a Gaussian splat scene as a structure of arrays, in the stored (not activated)
-// parameterisation of 3DGS (docs/ALGORITHMS.md §1): log-scales, opacity logits, SH coefficients.
+// parameterisation of 3DGS (docs/algorithms.md §1): log-scales, opacity logits, SH coefficients.
 // Every reader returns one of these after sanitise(); every writer takes one.
 #include <cstddef>
 #include <cstdint>

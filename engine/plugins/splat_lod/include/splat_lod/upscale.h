@@ -1,5 +1,5 @@
 #pragma once
-// Gradient-aware upscaling (ALGORITHMS §5): the geometry shared by the GPU pass and the CPU
+// Gradient-aware upscaling (docs/algorithms.md §5): the geometry shared by the GPU pass and the CPU
 // reference, and the CPU reference upscalers (GL-free, in splat_lod_reference) that the GPU's
 // upscale pass is tested against.
 //
@@ -50,7 +50,7 @@ struct Rgba32f {
 // Upscales to out_width × out_height with render scale s (the low-resolution image must be
 // low_res_size(out, s) on each side). A sample at u lies in the cell i = min(floor(u), w − 2)
 // (0 when w = 1), t = u − i, with corners i and min(i + 1, w − 1); likewise in v. Methods:
-// - spline: the Hermite patch of ALGORITHMS §5 on the analytic derivatives (`dx`, `dy`, `dxy`);
+// - spline: the Hermite patch of docs/algorithms.md §5 on the analytic derivatives (`dx`, `dy`, `dxy`);
 // - bicubic: the same patch on central differences and a true mixed difference, indices clamped:
 //   Keys' cubic convolution with a = −0.5 in x and y;
 // - bilinear; lanczos3: 6×6 taps of sinc(x)·sinc(x/3), |x| < 3, weights normalised per axis.

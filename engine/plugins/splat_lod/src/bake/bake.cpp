@@ -1,4 +1,4 @@
-// The bake's driver: runs ALGORITHMS §4 steps 1–7 in order, times each stage and reports progress.
+// The bake's driver: runs docs/algorithms.md §4 steps 1–7 in order, times each stage and reports progress.
 #include "splat_lod/bake/bake.h"
 
 #include <algorithm>
@@ -59,16 +59,18 @@ private:
     std::chrono::steady_clock::time_point begin_;
 };
 
-// Steps 1–5 for one level: pools the Gaussians of finer levels that are small at its scale into
-// one new Gaussian per grid cell, enlarged towards S_T, and appends them (and their coverage).
-void build_level(SplatCloud& cloud, detail::CoverageTable& table, int level, const detail::Normaliser& normaliser,
-                 const std::vector<reference::ReferenceCamera>& cameras, const BakeOptions& options,
-                 LevelSummary& summary, const StageClock& clock) {
+// Steps 1–3 for one level: the Gaussians of finer levels that some camera sees smaller than S_T at
+// the level's scale, by cell. Cell g's members are members[starts[g] .. starts[g + 1]).
+struct CellMembers {
+    std::vector<std::uint32_t> members;
+    std::vector<std::size_t> starts;
+};
+
+CellMembers small_by_cell(const SplatCloud& cloud, const detail::CoverageTable& table, int level,
+                          const detail::Normaliser& normaliser, const std::vector<reference::ReferenceCamera>& cameras,
+                          const BakeOptions& options, LevelSummary& summary) {
     const int scale = level_scale(level);
     const int cells = (options.grid_cells + level - 1) / level;
-    summary.level = level;
-    summary.scale = scale;
-
     std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;  // (cell, Gaussian)
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         if (cloud.lod_level[i] >= level) continue;
@@ -89,14 +91,26 @@ void build_level(SplatCloud& cloud, detail::CoverageTable& table, int level, con
     // Sorted by (cell, index): the cells, their members and the first member (the quaternion
     // hemisphere) do not depend on anything but the input.
     std::sort(keyed.begin(), keyed.end());
-    std::vector<std::size_t> starts;
+    CellMembers out;
     for (std::size_t j = 0; j < keyed.size(); ++j)
-        if (j == 0 || keyed[j].first != keyed[j - 1].first) starts.push_back(j);
-    starts.push_back(keyed.size());
-    std::vector<std::uint32_t> members(keyed.size());
-    for (std::size_t j = 0; j < keyed.size(); ++j) members[j] = keyed[j].second;
-    keyed = {};
+        if (j == 0 || keyed[j].first != keyed[j - 1].first) out.starts.push_back(j);
+    out.starts.push_back(keyed.size());
+    out.members.resize(keyed.size());
+    for (std::size_t j = 0; j < keyed.size(); ++j) out.members[j] = keyed[j].second;
+    return out;
+}
 
+// Steps 1–5 for one level: pools the Gaussians of finer levels that are small at its scale into
+// one new Gaussian per grid cell, enlarged towards S_T, and appends them (and their coverage).
+void build_level(SplatCloud& cloud, detail::CoverageTable& table, int level, const detail::Normaliser& normaliser,
+                 const std::vector<reference::ReferenceCamera>& cameras, const BakeOptions& options,
+                 LevelSummary& summary, const StageClock& clock) {
+    const int scale = level_scale(level);
+    summary.level = level;
+    summary.scale = scale;
+    const CellMembers cells = small_by_cell(cloud, table, level, normaliser, cameras, options, summary);
+    const std::vector<std::uint32_t>& members = cells.members;
+    const std::vector<std::size_t>& starts = cells.starts;
     const std::size_t groups = starts.size() - 1;
     summary.added = groups;
     if (groups == 0) return;
@@ -222,8 +236,7 @@ SplatCloud bake_lod(const SplatCloud& fine, const std::vector<reference::Referen
 
 namespace {
 
-SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::ReferenceCamera>& cameras,
-                     const BakeOptions& options, const detail::Refiner* shared_refiner, BakeSummary* summary_out) {
+void check_input(const SplatCloud& fine, const std::vector<reference::ReferenceCamera>& cameras) {
     if (fine.empty()) engine::fail("bake: the scene has no Gaussians");
     if (cameras.empty()) engine::fail("bake: no cameras");
     fine.check_consistent();
@@ -231,14 +244,11 @@ SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::Refere
         engine::fail("bake: the scene already has LOD attributes (levels above 1 or coverage ranges); bake the original "
                      "level-1 scene");
     for (const auto& camera : cameras) reference::detail::check_camera(camera, "bake");
+}
 
-    BakeSummary summary;
-    summary.input_gaussians = fine.size();
-    summary.cameras = cameras.size();
-    StageClock clock(summary, options);
-
-    SplatCloud cloud = fine;
-    clock.start("coverage");
+// Step 1's table: the coverage of every Gaussian in every camera. Fails when no camera sees any.
+detail::CoverageTable measure_coverage(const SplatCloud& cloud, const std::vector<reference::ReferenceCamera>& cameras,
+                                       const BakeOptions& options) {
     detail::CoverageTable table(cameras.size());
     table.append(cloud, 0, cameras, options.znear, options.threads);
     std::size_t seen = 0;
@@ -250,7 +260,44 @@ SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::Refere
         engine::fail("bake: none of the " + std::to_string(cameras.size()) + " cameras sees any of the " +
                      std::to_string(cloud.size()) +
                      " Gaussians (in front of it, centre inside its image, opacity above 1/255)");
+    return table;
+}
 
+// Step 7 for every coarse level that gained Gaussians, finest first (each is refined with the finer
+// ones already settled). Returns the refiner that ran (its targets serve the final check), or null.
+const detail::Refiner* refine_levels(SplatCloud& cloud, const SplatCloud& fine,
+                                     const std::vector<reference::ReferenceCamera>& cameras, const BakeOptions& options,
+                                     const detail::Refiner* shared_refiner, std::optional<detail::Refiner>& own_refiner,
+                                     BakeSummary& summary, StageClock& clock) {
+    const bool any_added = std::any_of(summary.levels.begin(), summary.levels.end(),
+                                       [](const LevelSummary& l) { return l.added > 0; });
+    if (options.refine_iterations == 0 || !any_added) return nullptr;
+    const detail::Refiner* refiner = shared_refiner;
+    if (refiner == nullptr) {
+        clock.start("refine targets");
+        refiner = &own_refiner.emplace(fine, cameras, options);
+    }
+    if (!refiner->usable())
+        summary.warnings.push_back("no camera has image sides divisible by 64: the refinement was skipped");
+    for (auto& level_summary : summary.levels) {
+        if (level_summary.added == 0 || !refiner->usable()) continue;
+        clock.start("refine level " + std::to_string(level_summary.level));
+        refiner->refine_level(cloud, level_summary.level, level_summary);
+    }
+    return refiner;
+}
+
+SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::ReferenceCamera>& cameras,
+                     const BakeOptions& options, const detail::Refiner* shared_refiner, BakeSummary* summary_out) {
+    check_input(fine, cameras);
+    BakeSummary summary;
+    summary.input_gaussians = fine.size();
+    summary.cameras = cameras.size();
+    StageClock clock(summary, options);
+
+    SplatCloud cloud = fine;
+    clock.start("coverage");
+    detail::CoverageTable table = measure_coverage(cloud, cameras, options);
     const detail::Normaliser normaliser = detail::make_normaliser(cameras, cloud);
     summary.normalisation_radius = normaliser.radius;
     summary.radius_from_gaussians = normaliser.from_gaussians;
@@ -265,27 +312,11 @@ SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::Refere
     clock.start("ranges");
     detail::set_coverage_ranges(cloud, table, options.range_low_percentile, options.range_high_percentile);
 
-    bool refined = false;
-    const bool any_added = std::any_of(summary.levels.begin(), summary.levels.end(),
-                                       [](const LevelSummary& l) { return l.added > 0; });
     std::optional<detail::Refiner> own_refiner;
-    const detail::Refiner* refiner = shared_refiner;
-    if (options.refine_iterations > 0 && any_added) {
-        if (refiner == nullptr) {
-            clock.start("refine targets");
-            refiner = &own_refiner.emplace(fine, cameras, options);
-        }
-        if (!refiner->usable())
-            summary.warnings.push_back("no camera has image sides divisible by 64: the refinement was skipped");
-        // Finest coarse level first, as ALGORITHMS §4 step 7 orders them: each level is refined with
-        // the finer ones already settled.
-        for (auto& level_summary : summary.levels) {
-            if (level_summary.added == 0 || !refiner->usable()) continue;
-            clock.start("refine level " + std::to_string(level_summary.level));
-            refiner->refine_level(cloud, level_summary.level, level_summary);
-            refined = refined || level_summary.refine_iterations > 0;
-        }
-    }
+    const detail::Refiner* refiner =
+        refine_levels(cloud, fine, cameras, options, shared_refiner, own_refiner, summary, clock);
+    const bool refined = std::any_of(summary.levels.begin(), summary.levels.end(),
+                                     [](const LevelSummary& l) { return l.refine_iterations > 0; });
     if (refined && options.ranges_after_refine) {
         // The refinement lowers opacities, which shrinks coverage: the ranges must describe the
         // Gaussians as they are drawn.

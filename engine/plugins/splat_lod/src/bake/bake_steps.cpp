@@ -1,4 +1,4 @@
-// Steps 1–6 of the bake (ALGORITHMS §4) as separate functions; bake.cpp runs them in order.
+// Steps 1–6 of the bake (docs/algorithms.md §4) as separate functions; bake.cpp runs them in order.
 #include "bake/bake_steps.h"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 #pragma once
-// Internal to the bake: the steps of ALGORITHMS §4, each a function so that tests can check it on
+// Internal to the bake: the steps of docs/algorithms.md §4, each a function so that tests can check it on
 // hand-made input (closed forms, hard cases) without running a whole bake.
 #include <cstddef>
 #include <cstdint>
@@ -37,7 +37,7 @@ private:
     std::vector<float> values_;
 };
 
-// Coverage is defined on the undilated covariance (ALGORITHMS §2): projection settings with no
+// Coverage is defined on the undilated covariance (docs/algorithms.md §2): projection settings with no
 // dilation, no mip filter and no colour.
 reference::ReferenceSettings coverage_settings(double znear);
 // The coverage of a Gaussian projected with coverage_settings(): −1 when culled before its 2D
@@ -73,7 +73,7 @@ std::uint64_t grid_cell(const glm::dvec3& normalised, int cells);
 // fraction of the camera span B, which at the coarse scales is far below a pixel for an object
 // seen from around it (level 4: 0.04·B ≈ ¼ px at scale 64) and pools thousands of overlapping
 // Gaussians. With CellRule::adaptive the cell is the larger of the grid cell and the
-// distance-adaptive cell of ALGORITHMS §4 (edge = 2·S_T·2^b·k/f for b = floor(log2 d), d the
+// distance-adaptive cell of docs/algorithms.md §4 (edge = 2·S_T·2^b·k/f for b = floor(log2 d), d the
 // distance to the nearest camera centre, f its focal length): from its nearest camera a cell then
 // spans at least S_T…2·S_T pixels at the level's scale. Keys of the two kinds never collide.
 std::uint64_t cell_key(const glm::dvec3& p, int level, int grid_cells, const Normaliser& normaliser,
@@ -126,7 +126,7 @@ public:
     bool usable() const { return !cameras_.empty(); }
 
     // Adam on the SH DC and opacity logit of `level`'s Gaussians of `cloud` (every level present,
-    // ranges set), one camera per iteration; the selection (ALGORITHMS §3, mode full) at the
+    // ranges set), one camera per iteration; the selection (docs/algorithms.md §3, mode full) at the
     // level's scale is computed once per camera and held fixed.
     void refine_level(SplatCloud& cloud, int level, LevelSummary& summary) const;
     // Mean PSNR (dB) over the refinement cameras of the `full` selection of `cloud` at the level's

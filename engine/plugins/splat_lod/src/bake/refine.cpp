@@ -1,4 +1,4 @@
-// Step 7 of the bake (ALGORITHMS §4): distils each coarse level from the fine model. The target of
+// Step 7 of the bake (docs/algorithms.md §4): distils each coarse level from the fine model. The target of
 // a camera at level l is the level-1 model rendered at full resolution, clamped to [0, 1] and
 // area-averaged by k × k (k = 4^(l−1)); the render is the `full` selection at scale k; Adam moves
 // only the SH DC and opacity logit of the level-l Gaussians. Geometry and selection are fixed, so
@@ -88,7 +88,7 @@ reference::ReferenceSettings raster_settings(const BakeOptions& options) {
 }
 
 // Indices of the Gaussians that the `full` selection draws in `camera` (coverage from the
-// undilated covariance, ALGORITHMS §2–3). Culling beyond the near plane is the projection's job.
+// undilated covariance, docs/algorithms.md §2–3). Culling beyond the near plane is the projection's job.
 std::vector<std::uint32_t> select_full(const SplatCloud& cloud, const reference::ReferenceCamera& camera,
                                        const BakeOptions& options, int coarsest) {
     const auto settings = coverage_settings(options.znear);

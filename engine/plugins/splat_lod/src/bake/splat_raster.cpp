@@ -1,4 +1,4 @@
-// The bake's differentiable rasteriser (ALGORITHMS §1 forward, §4 step 7 backward). The per-pixel
+// The bake's differentiable rasteriser (docs/algorithms.md §1 forward, §4 step 7 backward). The per-pixel
 // arithmetic is the reference renderer's blend_pixel, written in the same order, so the forward
 // image equals the reference image and the backward differentiates exactly what is drawn.
 #include "bake/splat_raster.h"

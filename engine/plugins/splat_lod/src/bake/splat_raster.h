@@ -1,5 +1,5 @@
 #pragma once
-// The differentiable CPU rasteriser of the bake's refinement (ALGORITHMS §4 step 7). The geometry of
+// The differentiable CPU rasteriser of the bake's refinement (docs/algorithms.md §4 step 7). The geometry of
 // a camera's splats (mean, conic, depth order, pixel rectangle) is fixed for the whole refinement,
 // so it is projected and binned once into a RasterFrame; each iteration then only needs the image
 // from the per-splat colour and opacity (render_forward) and the gradients of a loss with respect

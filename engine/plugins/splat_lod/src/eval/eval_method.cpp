@@ -17,7 +17,7 @@ const std::vector<Method>& method_registry() {
              pass.settings.lod.mode = plugin_msgs::LodMode::baseline;
              pass.settings.mip_filter = true;
          }},
-        // The LOD ablation modes (ALGORITHMS §3); on a scene without baked levels they equal baseline.
+        // The LOD ablation modes (docs/algorithms.md §3); on a scene without baked levels they equal baseline.
         {"filter_small", "level 1 only, Gaussians too small for this view left out",
          [](SplatPass& pass) { pass.settings.lod.mode = plugin_msgs::LodMode::filter_small; }},
         {"insert_large", "every level, no filtering",

@@ -17,7 +17,7 @@ struct SplatComponent;
 
 namespace gpu {
 
-// Converts one cloud's Gaussians (ALGORITHMS §1 activation: exp scales, sigmoid opacity,
+// Converts one cloud's Gaussians (docs/algorithms.md §1 activation: exp scales, sigmoid opacity,
 // Σ = R S Sᵀ Rᵀ) into GpuGaussian records tagged with `instance`. Gaussians with NaN/Inf values
 // or a zero quaternion get opacity 0 (never drawn); returns how many.
 std::size_t pack_gaussians(const SplatCloud& cloud, std::uint32_t instance, std::vector<GpuGaussian>& out);

@@ -96,7 +96,7 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, const R
     u.camera_position = glm::vec4(camera.position, 1.0f);
     u.focal_principal = glm::vec4(f, f, c.x, c.y);
     u.image = glm::vec4(raster.width, raster.height, 1.3f * tan_x, 1.3f * tan_y);
-    // Resolution-consistent dilation (ALGORITHMS §5): 0.3 output px² is 0.3·s² raster px².
+    // Resolution-consistent dilation (docs/algorithms.md §5): 0.3 output px² is 0.3·s² raster px².
     const float dilation = settings.dilation * (settings.scaled_dilation ? s * s : 1.0f);
     u.params = glm::vec4(settings.znear, dilation, settings.mip_filter ? 1.0f : 0.0f, settings.cluster_skipping ? 1.0f : 0.0f);
     u.counts = glm::uvec4(scene_.gaussian_count(), scene_.sh_stride(), key_capacity_, scene_.instance_count());

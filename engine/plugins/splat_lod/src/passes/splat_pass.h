@@ -1,6 +1,6 @@
 #pragma once
 // The splat frame: every splat component of the scene drawn as one depth-sorted set, in compute
-// passes (ARCHITECTURE "Frame"), composited over the mesh pass's colour by its view depth.
+// passes (numbered in SplatPass::execute), composited over the mesh pass's colour by its view depth.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -24,7 +24,7 @@ class RadixSort;
 }  // namespace gpu
 
 struct SplatPassSettings {
-    float znear = 0.2f;       // ALGORITHMS §1
+    float znear = 0.2f;       // docs/algorithms.md §1
     float dilation = 0.3f;    // the EWA low-pass, in px²
     bool mip_filter = false;  // the optional 2D mip filter
     LodRule lod;              // selection by pixel coverage (coarsest_level is set from the scene)
@@ -40,7 +40,7 @@ struct SplatPassSettings {
     // larger: coarser levels), the smallest β in eighth-octave steps that fits, chosen on the GPU in
     // the same frame; if even β ≈ 3700 does not fit, the smallest of those Gaussians are dropped.
     std::uint32_t splat_budget = 0;
-    // Gradient-aware upscaling (ALGORITHMS §5): below 1 the splats are rasterised at this fraction
+    // Gradient-aware upscaling (docs/algorithms.md §5): below 1 the splats are rasterised at this fraction
     // of the output size, with their analytic image derivatives, and brought to the output by
     // `upscaler` before compositing over the mesh pass. Outside (0, 1] execute() throws engine::Error.
     float render_scale = 1.0f;

@@ -1,4 +1,4 @@
-// The per-Gaussian step of the reference renderer (ALGORITHMS §1): activation, culling, the EWA
+// The per-Gaussian step of the reference renderer (docs/algorithms.md §1): activation, culling, the EWA
 // projection of the covariance (3DGS, Kerbl et al. 2023, Eq. 5, after Zwicker et al. 2001), the
 // low-pass dilation, the α ≥ 1/255 extent and the SH colour, all in double precision.
 #include <algorithm>

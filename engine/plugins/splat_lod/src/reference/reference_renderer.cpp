@@ -1,9 +1,9 @@
-// The per-image part of the reference renderer (ALGORITHMS §1): project every Gaussian, sort the
+// The per-image part of the reference renderer (docs/algorithms.md §1): project every Gaussian, sort the
 // drawn ones front to back, bin them to 16-row bands and 16×16 tiles by their exact α ≥ 1/255
 // bounding box, and blend each pixel. The binning only shortens the candidate lists; a pixel
 // still tests every splat's pixel rectangle, so the image does not depend on the tile size.
 // Optionally (ReferenceSettings::gradients) each pixel also gets the analytic image derivatives
-// of the splat layer (ALGORITHMS §5), the input of the gradient-aware upscaler.
+// of the splat layer (docs/algorithms.md §5), the input of the gradient-aware upscaler.
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -130,7 +130,7 @@ BandLists bin_to_bands(const std::vector<DrawnSplat>& splats, int height) {
     return lists;
 }
 
-// ∂/∂x, ∂/∂y and ∂²/∂x∂y of the splat-only (C.rgb, A) at one pixel, in pixels (ALGORITHMS §5).
+// ∂/∂x, ∂/∂y and ∂²/∂x∂y of the splat-only (C.rgb, A) at one pixel, in pixels (docs/algorithms.md §5).
 struct PixelDerivatives {
     glm::dvec4 dx{0.0};
     glm::dvec4 dy{0.0};
@@ -143,7 +143,7 @@ struct PixelResult {
     std::uint32_t contributors = 0;
 };
 
-// One splat's term of paper Eqs. 8–14 in the accumulated-alpha form of ALGORITHMS §5, taken
+// One splat's term of paper Eqs. 8–14 in the accumulated-alpha form of docs/algorithms.md §5, taken
 // before the splat is blended: `transmittance` is still T = 1 − A of the splats in front. The
 // exponent g = −½ dᵀ C d has g_x = −(Cxx dx + Cxy dy), g_y = −(Cxy dx + Cyy dy), g_xy = −Cxy;
 // α is the clamped value and the clamp itself is not differentiated.

@@ -1,4 +1,4 @@
-// The CPU reference upscalers of ALGORITHMS §5 (GL-free, double precision inside): the gradient-
+// The CPU reference upscalers of docs/algorithms.md §5 (GL-free, double precision inside): the gradient-
 // aware spline (the paper's Eq. 25–28 / appendix G Hermite patch on analytic derivatives) and the
 // baselines it is compared with (bicubic, bilinear, Lanczos-3). The GPU upscale pass is tested
 // against these.
@@ -56,7 +56,7 @@ struct Plane {
     }
 };
 
-// [1 t t² t³] · M with M = [[1,0,0,0], [0,0,1,0], [−3,3,−2,−1], [2,−2,1,1]] (ALGORITHMS §5, the
+// [1 t t² t³] · M with M = [[1,0,0,0], [0,0,1,0], [−3,3,−2,−1], [2,−2,1,1]] (docs/algorithms.md §5, the
 // inverse of the paper's C, Eq. 28): the weights of f(0), f(1), f'(0), f'(1).
 std::array<double, 4> hermite_weights(double t) {
     const double t2 = t * t, t3 = t2 * t;
@@ -220,7 +220,7 @@ Rgba32f upscale_image(const GradientImage& low, int out_width, int out_height, d
     for (const AxisSample& ay : rows)
         for (const AxisSample& ax : columns)
             for (int c = 0; c < 4; ++c) {
-                // The cubic methods overshoot next to steep edges (ALGORITHMS §5: up to ~0.3 for the
+                // The cubic methods overshoot next to steep edges (docs/algorithms.md §5: up to ~0.3 for the
                 // spline); this clamp is the only limiter. Written so that a NaN, which only
                 // non-finite input can produce, becomes 0 rather than reaching the screen.
                 const double v = sample(low, ax, ay, c, method);

@@ -1,8 +1,8 @@
 #pragma once
 // Internal to the world generator: the bake cameras of a chunk. A chunk is seen by a player walking
 // or flying through the world, from inside it out to the far distance, so its coverage ranges and
-// the refinement should come from such views (ALGORITHMS §4: "camera sets that cover the directions
-// users will view from matter"), not from an object orbit: three rings of views aimed at the
+// the refinement should come from such views (docs/algorithms.md §4: coverage ranges measured from
+// the directions users view from are the ones that hold), not from an object orbit: three rings of views aimed at the
 // chunk's middle, at eye height just outside it, low flight a few chunks away, and high above far away.
 #include <vector>
 

@@ -123,6 +123,9 @@ ChunkStreamer::State::State(WorldManifest world, std::filesystem::path root, Str
         layout_levels(slot);
     }
     link_groups();
+    if (bus)
+        statistics_subscription = bus->subscribe<plugin_msgs::SplatStatistics>(
+            [this](const plugin_msgs::SplatStatistics& latest) { statistics = latest; });
     report.budget_bytes = settings.memory_budget_bytes;
     // Decoded parts are checked on the reader's thread, off the frame.
     reader = std::make_unique<StreamReader>(
@@ -388,6 +391,10 @@ void ChunkStreamer::update(const StreamView& view) {
             slot.failed_level = 0;
         }
     }
+    if (s.statistics) {
+        s.group_cell_scale = next_group_cell_scale(s.group_cell_scale, s.statistics->unbudgeted, s.statistics->splat_budget);
+        s.statistics.reset();
+    }
     s.plan(view);
     s.release_unwanted();
     s.collect_reads();
@@ -433,6 +440,9 @@ std::size_t ChunkStreamer::chunk_count() const {
 }
 std::size_t ChunkStreamer::group_count() const {
     return state_->manifest.groups.size();
+}
+float ChunkStreamer::group_cell_scale() const {
+    return state_->group_cell_scale;
 }
 const plugin_msgs::ResidencyReport& ChunkStreamer::residency() const {
     return state_->report;

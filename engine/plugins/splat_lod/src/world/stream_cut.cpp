@@ -58,8 +58,7 @@ void ChunkStreamer::State::choose_cut(const StreamView& view) {
         for (std::size_t k = 0; k < chunks.size(); ++k)
             if (chunks[k].parent == ChunkSlot::kNoSlot) mark(k, false);
     };
-    const double scale = std::isfinite(view.group_cell_scale) ? std::max(1.0, double{view.group_cell_scale}) : 1.0;
-    const double switch_px = settings.group_cell_px * scale, band = settings.unload_distance_factor;
+    const double switch_px = settings.group_cell_px * double{group_cell_scale}, band = settings.unload_distance_factor;
     cut(switch_px, [&](std::size_t k, bool in) {
         chunks[k].in_cut = in;
         chunks[k].near_cut = false;

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "plugin_msgs/splat_statistics.h"
 #include "splat_lod/world/chunk_streamer.h"
 #include "splat_lod/world/stream_reader.h"
 
@@ -109,6 +110,10 @@ struct ChunkStreamer::State {
     plugin_msgs::ResidencyReport report;
     std::vector<plugin_msgs::StreamEvent> events;
     StreamerStats stats;
+    // The splat budget's feedback to the cut (chunk_streamer.h): the newest statistics not yet used.
+    std::optional<plugin_msgs::SplatStatistics> statistics;
+    engine::Subscription statistics_subscription;
+    float group_cell_scale = 1.0f;
     std::unique_ptr<StreamReader> reader;  // last: destroyed (and joined) first
 
     // stream_plan.cpp

@@ -1,5 +1,5 @@
 #pragma once
-// The LOD bake (multi-scale paper Algorithm 1 and supplement §9, ALGORITHMS §4): from a trained
+// The LOD bake (multi-scale paper Algorithm 1 and supplement §9, docs/algorithms.md §4): from a trained
 // scene (level 1 only) and a set of cameras, builds levels 2..4 by pooling the Gaussians that are
 // small at the level's render scale 4^(l−1), enlarges them, gives every Gaussian the coverage
 // range in which it is drawn (10th/90th percentiles over the cameras), and refines the colour and
@@ -31,13 +31,13 @@ constexpr int level_scale(int level) { return 1 << (2 * (level - 1)); }
 
 // How small Gaussians are grouped into the cells that each become one coarse Gaussian.
 enum class CellRule {
-    grid,      // ALGORITHMS §4 steps 2–3: ceil(grid_cells / l)³ cells over the normalised cube
+    grid,      // docs/algorithms.md §4 steps 2–3: ceil(grid_cells / l)³ cells over the normalised cube
     adaptive,  // the larger of the grid cell and the distance-adaptive cell (S_T…2·S_T px at scale k)
 };
 
 // How a cell's Gaussians become one.
 enum class PoolingRule {
-    mean,     // ALGORITHMS §4 steps 4–5: mean parameters, scales enlarged by clamp(S_T / S_avg, 1, max)
+    mean,     // docs/algorithms.md §4 steps 4–5: mean parameters, scales enlarged by clamp(S_T / S_avg, 1, max)
     moments,  // the moment-matched Gaussian of the members (covers the cell they fill), no enlargement
 };
 
@@ -109,7 +109,7 @@ struct BakeSummary {
     std::size_t output_gaussians = 0;
     std::size_t cameras = 0;
     std::size_t unseen = 0;             // Gaussians no camera sees (ranges unset)
-    double normalisation_radius = 0.0;  // B of ALGORITHMS §4 step 2
+    double normalisation_radius = 0.0;  // B of docs/algorithms.md §4 step 2
     bool radius_from_gaussians = false; // the camera positions coincide: B from the Gaussians
     std::vector<LevelSummary> levels;   // one per built level 2..coarsest
     std::vector<StageTime> stages;

@@ -25,7 +25,7 @@ struct Method {
 const std::vector<Method>& method_registry();
 // The methods of a comma-separated list, in its order; throws naming an unknown or repeated one.
 std::vector<Method> select_methods(const std::string& list);
-// The reference renderer's setup (ALGORITHMS §6: the fine model with the baseline renderer).
+// The reference renderer's setup (docs/algorithms.md §6: the fine model with the baseline renderer).
 const Method& reference_method();
 // `full` with each Gaussian tinted by its LOD level (the pass's debug view), for the level picture.
 const Method& level_colouring_method();
@@ -33,7 +33,7 @@ const Method& level_colouring_method();
 // Finds a method of the registry by name; throws naming `option` and the known names otherwise.
 const Method& find_method(const std::string& name, const std::string& option);
 
-// How the upscale sweep brings a render at 1/f of the output to the output (ALGORITHMS §5).
+// How the upscale sweep brings a render at 1/f of the output to the output (docs/algorithms.md §5).
 struct UpscalerVariant {
     std::string name;  // the method name its measurements carry: "spline", "spline_plain", ...
     std::string description;

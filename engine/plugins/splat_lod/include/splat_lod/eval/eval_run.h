@@ -1,12 +1,12 @@
 #pragma once
-// The sweeps of the evaluation (ALGORITHMS §6) over a camera set and a list of methods:
+// The sweeps of the evaluation (docs/algorithms.md §6) over a camera set and a list of methods:
 //   scale k:    each method at (W/k)×(H/k), same field of view, against the baseline render of the
 //               fine model at W×H area-averaged by k×k;
 //   distance d: each method at W×H with the camera d times farther from its target (the scene
 //               covers 1/d of its screen size), against the baseline at (dW)×(dH) area-averaged
 //               by d×d where that fits in max_reference_side, with no error reported beyond;
 //   upscale f:  each upscaler variant renders the splats at render scale 1/f and upscales them to
-//               W×H (ALGORITHMS §5), against the native render (render scale 1, same LOD mode) at
+//               W×H (docs/algorithms.md §5), against the native render (render scale 1, same LOD mode) at
 //               W×H; the native render is also measured as method "native", factor 1, the time
 //               base of the speed-ups.
 // Comparison scenes (another model of the same content, e.g. each level of an existing LOD chain)

@@ -1,5 +1,5 @@
 #pragma once
-// Image error metrics of the evaluation (ALGORITHMS §6), on float RGB in [0, 1]:
+// Image error metrics of the evaluation (docs/algorithms.md §6), on float RGB in [0, 1]:
 // PSNR over all pixels and channels; SSIM with an 11×11 Gaussian window (σ = 1.5) per channel,
 // averaged; and the k×k area average that turns a full-resolution render into the reference.
 #include <string>

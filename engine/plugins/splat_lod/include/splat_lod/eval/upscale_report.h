@@ -48,7 +48,7 @@ struct UpscaleVerdict {
     std::vector<Criterion> criteria;
 };
 
-// The targets (ALGORITHMS §5 and the upscaling issue).
+// The targets (docs/algorithms.md §5 and the upscaling issue).
 constexpr double kMinSplineGainDb = 3.0;     // spline − bicubic at 2×, 3×, 4×
 constexpr double kMinSplinePsnr3x = 38.0;    // 3× spline against native (real scenes)
 constexpr double kMinSplineSpeedup3x = 2.5;  // 3× spline frame speed-up over native at 1920×1080

@@ -48,7 +48,11 @@
 // (a group whose cut descendants are not all complete is drawn instead of them, and a cut group that
 // is not complete yet leaves its resident descendants drawn), and whatever is drawn is held resident.
 // So a camera that moves never sees a hole or a node drawn twice over the same ground where memory
-// allows, and a failed chunk shows its group where that is resident. group_cell_px = 0 or a manifest
+// allows, and a failed chunk shows its group where that is resident.
+//   The splat budget: group Gaussians are drawn whole, so the renderer's raised threshold cannot thin
+// them. With a bus, the streamer reads the renderer's plugin_msgs::SplatStatistics (a few frames late)
+// and, while a budget binds, scales group_cell_px for the cut by next_group_cell_scale()
+// (stream_policy.h), so that coarser groups replace more chunks; group_cell_scale() says by how much. group_cell_px = 0 or a manifest
 // without groups: every chunk is always in the cut (the behaviour without groups).
 //
 // Oversized levels: a level is read and uploaded in parts of at most
@@ -103,14 +107,11 @@ struct StreamerSettings {
 };
 
 // What update() needs from the camera. The focal length is in pixels of the output image (LOD
-// selects by coverage at the output resolution, ALGORITHMS §5).
+// selects by coverage at the output resolution, docs/algorithms.md §5).
 struct StreamView {
     glm::vec3 camera_position{0.0f};
     float focal_length_px = 1000.0f;
     std::uint64_t frame_index = 0;
-    // Multiplies group_cell_px for this frame's cut (values below 1 count as 1): what a splat budget
-    // that binds asks of the streamer, so that coarser groups replace more chunks (next_group_cell_scale).
-    float group_cell_scale = 1.0f;
 };
 
 enum class LevelState {
@@ -176,6 +177,7 @@ public:
     std::uint64_t resident_bytes() const;
     std::size_t chunk_count() const;  // the manifest's chunks
     std::size_t group_count() const;  // the manifest's groups
+    float group_cell_scale() const;   // what a binding splat budget multiplies group_cell_px by now (≥ 1)
     // A chunk's index (0 … chunk_count − 1) or a group's (chunk_count + its index in the manifest).
     std::optional<std::size_t> find_chunk(std::string_view id) const;
     // index < chunk_count() + group_count(): chunks, then groups.

@@ -1,6 +1,6 @@
 #pragma once
 // A world-space bound on how far a Gaussian reaches for the purposes of pixel coverage
-// (ALGORITHMS §2), shared by whatever needs "could this Gaussian be large enough at distance z":
+// (docs/algorithms.md §2), shared by whatever needs "could this Gaussian be large enough at distance z":
 // the chunk manifest's per-level bounds (world_manifest.h) and the GPU cluster bounds of
 // build_clusters() in src/gpu/gpu_scene.cpp (header-only and GL-free so that neither side needs
 // another library).

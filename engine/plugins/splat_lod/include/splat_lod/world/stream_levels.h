@@ -5,7 +5,7 @@
 // distance, so a file ordered by bake level would need its whole finest level even from far away.
 //
 // A Gaussian's reach is the largest depth, per pixel of focal length, at which it can pass the
-// "not too small" half of the selection rule (ALGORITHMS §3): coverage ≤ 2·e·f / z
+// "not too small" half of the selection rule (docs/algorithms.md §3): coverage ≤ 2·e·f / z
 // (world/gaussian_extent.h) and the test needs coverage ≥ min(S_T, S_rel_min·S_min), so
 //   reach = 2·e / min(S_T, S_rel_min·S_min)   (metres per pixel; selectable only while z ≤ reach·f).
 // It is +∞ for the coarsest bake level and for Gaussians without S_min (never "too small"), and 0

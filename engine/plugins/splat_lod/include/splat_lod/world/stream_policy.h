@@ -1,7 +1,7 @@
 #pragma once
 // The stateless rules of chunk streaming (chunk_streamer.h), stated once so that the streamer,
 // its tests and a UI compute the same numbers: what a level costs in GPU memory, how far away a
-// chunk is, and from how far a finer level could be selected (world_manifest.h, ALGORITHMS §3).
+// chunk is, and from how far a finer level could be selected (world_manifest.h, docs/algorithms.md §3).
 #include <cstdint>
 #include <string>
 
@@ -12,7 +12,7 @@
 namespace splat_lod::world {
 
 // The two thresholds of the selection rule that decide whether a Gaussian is "not too small"
-// (ALGORITHMS §3): S ≥ S_T or S / S_min ≥ S_rel_min. plugin_msgs::LodSettings carries the same
+// (docs/algorithms.md §3): S ≥ S_T or S / S_min ≥ S_rel_min. plugin_msgs::LodSettings carries the same
 // values for the renderer; the streamer must use the ones the renderer draws with.
 struct LodThresholds {
     float size_threshold_px = 2.0f;  // S_T
@@ -63,8 +63,8 @@ double level_load_distance(const ChunkEntry& chunk, int level, double focal_leng
 
 // The splat budget and the cut (chunk_streamer.h): the renderer meets a per-frame splat budget on the
 // GPU by raising its size threshold, which moves the per-Gaussian cut inside chunks but cannot make a
-// chunk group coarser (group Gaussians are drawn whole). Fed each frame with the renderer's latest
-// statistics (a few frames late), this returns the next StreamView::group_cell_scale: when the
+// chunk group coarser (group Gaussians are drawn whole). Fed with the renderer's latest statistics
+// (a few frames late), this returns the streamer's next scale of group_cell_px: when the
 // selection wanted `unbudgeted` > `budget` Gaussians it grows toward scale·√(unbudgeted / budget) (a
 // group's count falls with the square of its switch), at most 2^(1/4) per call; below 70 % of the
 // budget it shrinks by 2^(1/8) per call, never below 1; in between it stays. 1 without a budget.

@@ -75,7 +75,7 @@ struct WorldProgress {
 // cameras), single-threaded. Measured on a 128 m world at density 1: levels 2/3/4 gain +1.1/+6.0/
 // +12.8 dB over level 1 alone at 1/4, 1/16, 1/64 on the bake views, against +0.5/+3.7/+5.6 dB with
 // 20 iterations and +1.3/+6.3/+16 dB with 150, for 1.3× and 1.75× the time of 20.
-// Coverage ranges take S_min at the 75th percentile instead of the 10th (ALGORITHMS §4 step 6):
+// Coverage ranges take S_min at the 75th percentile instead of the 10th (docs/algorithms.md §4 step 6):
 // most chunk views see a leaf from far away or edge-on, so the 10th percentile is tiny and the
 // "not too small" test (S / S_min ≥ S_rel_min) then keeps every leaf selectable from any distance.
 // Measured on a 512 m world at density 0.25 (640 × 360 reference renders, `full` against `baseline`,
