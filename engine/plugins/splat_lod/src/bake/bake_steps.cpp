@@ -183,15 +183,7 @@ std::uint64_t cell_key(const glm::dvec3& p, int level, int grid_cells, const Nor
     return hash | (1ULL << 63);
 }
 
-namespace {
-
-double sigmoid(double logit) {
-    if (logit >= 0.0) return 1.0 / (1.0 + std::exp(-logit));
-    const double e = std::exp(logit);
-    return e / (1.0 + e);
-}
-
-}  // namespace
+using reference::detail::sigmoid;
 
 void symmetric_eigen(glm::dmat3 a, glm::dvec3& values, glm::dmat3& vectors) {
     vectors = glm::dmat3(1.0);

@@ -38,11 +38,7 @@ void shuffle(std::vector<std::size_t>& values, std::uint64_t& state) {
     for (std::size_t i = values.size(); i > 1; --i) std::swap(values[i - 1], values[next_random(state) % i]);
 }
 
-double sigmoid(double logit) {
-    if (logit >= 0.0) return 1.0 / (1.0 + std::exp(-logit));
-    const double e = std::exp(logit);
-    return e / (1.0 + e);
-}
+using reference::detail::sigmoid;
 
 std::vector<double> area_average(const std::vector<double>& rgb, int width, int height, int k) {
     const int w = width / k, h = height / k;

@@ -23,6 +23,9 @@ InstanceFrame make_instance_frame(const SplatCloud& cloud, const glm::dmat4& mod
 ProjectedGaussian project_in_frame(const SplatCloud& cloud, std::size_t index, const InstanceFrame& frame,
                                    const ReferenceCamera& camera, const ReferenceSettings& settings);
 
+// The activated opacity of a logit, in two branches so that neither exp() overflows (±60 and beyond).
+double sigmoid(double logit);
+
 // Throw engine::Error naming `caller` when the camera or the settings cannot be rendered with.
 void check_camera(const ReferenceCamera& camera, const char* caller);
 void check_settings(const ReferenceSettings& settings, const char* caller);

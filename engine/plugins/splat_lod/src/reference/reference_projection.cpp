@@ -53,12 +53,6 @@ std::optional<glm::dmat3> rotation_matrix(const Rotation& r) {
                       2.0 * (x * z + w * y), 2.0 * (y * z - w * x), 1.0 - 2.0 * (x * x + y * y));  // column 2
 }
 
-// Written in the two branches so that neither exp() overflows (logit ±60 and beyond).
-double sigmoid(double logit) {
-    if (logit >= 0.0) return 1.0 / (1.0 + std::exp(-logit));
-    const double e = std::exp(logit);
-    return e / (1.0 + e);
-}
 
 // Undilated Σ2D = A Aᵀ with A = J · (local_to_camera · R) · S (2×3), which equals J W₃ Σ W₃ᵀ Jᵀ for
 // Σ = M R S Sᵀ Rᵀ Mᵀ. Its determinant is taken as the sum of the squared 2×2 minors of A
@@ -129,6 +123,13 @@ bool set_extent(ProjectedGaussian& g, const ReferenceCamera& camera) {
 }
 
 }  // namespace
+
+// Written in the two branches so that neither exp() overflows (logit ±60 and beyond).
+double sigmoid(double logit) {
+    if (logit >= 0.0) return 1.0 / (1.0 + std::exp(-logit));
+    const double e = std::exp(logit);
+    return e / (1.0 + e);
+}
 
 void check_camera(const ReferenceCamera& camera, const char* caller) {
     const auto bad = [&](const std::string& what) { engine::fail(std::string(caller) + ": " + what); };

@@ -14,6 +14,7 @@
 
 #include "bake/bake_steps.h"
 #include "engine/core/error.h"
+#include "reference/instance_frame.h"
 #include "reference/parallel_for.h"
 #include "splat_lod/splat_io.h"
 #include "splat_lod/world/chunk_reader.h"
@@ -29,11 +30,7 @@ int floor_div(int a, int b) {
     return (a % b != 0 && (a < 0) != (b < 0)) ? q - 1 : q;
 }
 
-double sigmoid(double logit) {
-    if (logit >= 0.0) return 1.0 / (1.0 + std::exp(-logit));
-    const double e = std::exp(logit);
-    return e / (1.0 + e);
-}
+using reference::detail::sigmoid;
 
 // Mean over the three axis projections of √det of the 2×2 block: how much area the Gaussian covers,
 // independent of the view (the weight and the opacity scale of the pooling).

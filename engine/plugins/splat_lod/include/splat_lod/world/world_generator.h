@@ -36,8 +36,9 @@
 // and waymark posts (glTF props). No tree, rock or grass stands on the path, in the river or inside a
 // prop. The default world (1024 m, 256 chunks of 64 m, density 1, seed 1) holds 10.78 million generated
 // Gaussians, 10.89 million after the bake (800 MiB): measured 10.0 min wall on 2 cores here, of
-// which the chunk groups 42 s (of the chunk work, refinement 51 %, its targets 19 %, final check 11 %,
-// coverage 6 %); the groups hold 1.88 million Gaussians (138 MiB), 16–21 s to build them alone.
+// which the chunk groups (then with 0.5 m cells) 42 s (of the chunk work, refinement 51 %, its targets
+// 19 %, final check 11 %, coverage 6 %); the default groups hold 1.88 million Gaussians (138 MiB) and
+// take 16 s to build alone from the chunk files.
 //
 // Determinism: the files depend only on the options (seed, sizes, density, bake settings), not on
 // the thread count or the order chunks finish in: every object draws from its own random stream,
