@@ -3,7 +3,6 @@
 #include "splat_lod/world/world_groups.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -216,28 +215,29 @@ SplatCloud pool_group(std::span<const SplatCloud> members, const glm::vec3& orig
     for (const SplatCloud& m : members) degree = std::max(degree, m.sh_degree);
     const std::vector<Entry> entries = cell_entries(members, glm::dvec3(origin), static_cast<double>(cell_m));
     // Output slots: one per cell with pooled members, one per kept Gaussian.
-    std::vector<std::pair<std::size_t, std::size_t>> runs;  // [begin, end) of a cell's pooled members
+    // A cell's entries [begin, end): its pooled members [begin, kept), then the ones kept as they are.
+    struct Run {
+        std::size_t begin, kept, end;
+    };
+    std::vector<Run> runs;
     std::size_t outputs = 0;
     for (std::size_t b = 0; b < entries.size();) {
-        std::size_t e = b;
-        while (e < entries.size() && entries[e].cell == entries[b].cell) ++e;
-        std::size_t pooled_end = b;
-        while (pooled_end < e && !entries[pooled_end].keep) ++pooled_end;
-        if (pooled_end > b) ++outputs;
-        outputs += e - pooled_end;
-        runs.push_back({b, e});
-        b = e;
+        Run run{b, b, b};
+        while (run.end < entries.size() && entries[run.end].cell == entries[b].cell) ++run.end;
+        while (run.kept < run.end && !entries[run.kept].keep) ++run.kept;
+        outputs += (run.kept > run.begin ? 1 : 0) + (run.end - run.kept);
+        runs.push_back(run);
+        b = run.end;
     }
     SplatCloud out;
     out.set_sh_degree(degree);
     out.resize(outputs);
     std::size_t next = 0;
-    for (const auto& [b, e] : runs) {
-        std::size_t pooled_end = b;
-        while (pooled_end < e && !entries[pooled_end].keep) ++pooled_end;
-        if (pooled_end > b)
-            pool_cell(members, std::span<const Entry>(entries.data() + b, pooled_end - b), cell_m, fill, out, next++);
-        for (std::size_t k = pooled_end; k < e; ++k)
+    for (const Run& run : runs) {
+        if (run.kept > run.begin)
+            pool_cell(members, std::span<const Entry>(entries.data() + run.begin, run.kept - run.begin), cell_m, fill,
+                      out, next++);
+        for (std::size_t k = run.kept; k < run.end; ++k)
             copy_gaussian(members[entries[k].member], entries[k].index, out, next++);
     }
     std::fill(out.lod_level.begin(), out.lod_level.end(), std::uint8_t{4});
