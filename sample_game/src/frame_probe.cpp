@@ -5,8 +5,7 @@
 #include <plugin_msgs/frame_statistics.h>
 
 #include "engine/gl/gl.h"
-#include "gpu/gpu_scene.h"
-#include "passes/splat_pass.h"
+#include "splat_lod/splat_renderer.h"
 
 namespace sample_game {
 namespace {
@@ -42,7 +41,7 @@ void record_spans(engine::Engine& engine, FrameRecord& r) {
 
 void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::CameraView& camera,
                       engine::RenderTarget& target, FrameRecord& record) {
-    splat_lod::SplatPass& pass = world.pass();
+    splat_lod::SplatRenderer& pass = world.pass();
     // The splat pass publishes no statistics for a frame without Gaussians: only numbers of the
     // frame just drawn count (the renderer's index was that frame's during render()).
     auto this_frames_statistics = [&]() -> const plugin_msgs::SplatStatistics* {
@@ -50,7 +49,7 @@ void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::Ca
         return s && s->frame_index + 1 == engine.renderer().frame_index() ? &*s : nullptr;
     };
     record.frame_ms = draw(engine, world.scene(), camera, target);
-    record.gpu_upload_bytes = pass.scene().last_upload_bytes();
+    record.gpu_upload_bytes = pass.memory().last_upload_bytes;
     engine.renderer().timers().wait_all();
     pass.wait_for_statistics(engine.bus());
     record.redraws = 0;
@@ -63,7 +62,7 @@ void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::Ca
     record_spans(engine, record);
     if (const auto frame = engine.bus().latest<plugin_msgs::FrameStatistics>())
         record.cpu_record_ms = frame->cpu_frame_ms;
-    record.considered = pass.scene().live_gaussians();
+    record.considered = pass.memory().live_gaussians;
     if (const plugin_msgs::SplatStatistics* s = this_frames_statistics()) {
         record.considered = s->considered;
         record.visible = s->visible;
@@ -76,7 +75,7 @@ void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::Ca
         record.drawn_per_level = s->per_level;
         record.gpu_total_bytes = s->resident_bytes;
     }
-    record.gpu_page_bytes = std::uint64_t(pass.scene().pages_in_use()) * pass.scene().page_bytes();
+    record.gpu_page_bytes = std::uint64_t(pass.memory().pages_in_use) * pass.memory().page_bytes;
     record_streaming(world, record);
 }
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "eval/sheet_drawing.h"
+#include "splat_lod/eval/sheet_drawing.h"
 
 namespace sample_game {
 namespace {

@@ -8,12 +8,11 @@
 #include "engine/core/error.h"
 #include "engine/render/render_target.h"
 #include "engine/scene/builtin_components.h"
-#include "gpu/gpu_scene.h"
-#include "passes/splat_pass.h"
+#include "splat_lod/splat_renderer.h"
 #include "sample_game/world_path.h"
 #include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
-#include "splat_lod/world/stream_policy.h"
+#include "splat_lod/stream/stream_policy.h"
 
 namespace sample_game {
 namespace sw = splat_lod::world;
@@ -66,8 +65,7 @@ GameWorld::GameWorld(engine::Engine& engine, const std::filesystem::path& folder
       terrain_(manifest_.seed, manifest_.size_m),
       scene_(std::make_unique<engine::Scene>()) {
     validate(settings_);
-    pass_ = splat_lod::find_splat_pass(engine.renderer());
-    if (!pass_) engine::fail("sample_game: the splat_lod plugin is not started");
+    pass_.emplace(engine.renderer());
     scene_->background = {0.62f, 0.74f, 0.86f};  // a pale sky (display space)
     add_light(*scene_, "sun", engine::LightComponent::Kind::directional, {-50.0f, 30.0f, 0.0f}, 2.0f);
     add_light(*scene_, "sky", engine::LightComponent::Kind::ambient, {0.0f, 0.0f, 0.0f}, 0.5f);
@@ -79,7 +77,7 @@ GameWorld::GameWorld(engine::Engine& engine, const std::filesystem::path& folder
     start_streamer(streamer_settings(settings_));
     const sw::StreamerSettings& s = streamer_->settings();
     const std::uint64_t page_bytes = sw::gpu_bytes(s.gpu_pages.page_gaussians, s.gpu_sh_degree, s.gpu_pages);
-    pass_->scene().reserve(s.memory_budget_bytes / page_bytes * s.gpu_pages.page_gaussians, s.gpu_sh_degree);
+    pass_->reserve(s.memory_budget_bytes / page_bytes * s.gpu_pages.page_gaussians, s.gpu_sh_degree);
     publish_lod_settings();
 }
 
@@ -222,7 +220,7 @@ double GameWorld::load_whole_world(const std::function<void(std::size_t, std::si
     s.background_thread = false;
     s.max_requests_in_flight = 64;
     start_streamer(s);
-    pass_->scene().reserve(
+    pass_->reserve(
         total / sw::gpu_bytes(s.gpu_pages.page_gaussians, s.gpu_sh_degree, s.gpu_pages) * s.gpu_pages.page_gaussians,
         s.gpu_sh_degree);
     const glm::vec3 above = world_centre(terrain_) + glm::vec3(0.0f, manifest_.size_m, 0.0f);

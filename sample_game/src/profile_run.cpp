@@ -13,7 +13,7 @@
 #include "engine/render/render_target.h"
 #include "formatted.h"
 #include "progress.h"
-#include "passes/splat_pass.h"
+#include "splat_lod/splat_renderer.h"
 #include "sample_game/frame_probe.h"
 #include "sample_game/frame_sheet.h"
 #include "sample_game/game_world.h"

@@ -13,7 +13,7 @@
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
 #include "formatted.h"
-#include "splat_lod/world/world_manifest.h"
+#include "splat_lod/core/world_manifest.h"
 
 namespace sample_game {
 namespace fs = std::filesystem;

@@ -17,7 +17,7 @@
 #include "engine/gl/gl_census.h"
 #include "engine/render/render_target.h"
 #include "formatted.h"
-#include "passes/splat_pass.h"
+#include "splat_lod/splat_renderer.h"
 #include "sample_game/chunk_faults.h"
 #include "sample_game/game_world.h"
 #include "sample_game/world_path.h"

@@ -1,4 +1,4 @@
-// Pixel coverage and the LOD selection rule, the GLSL twin of splat_lod/lod_selection.h (the
+// Pixel coverage and the LOD selection rule, the GLSL twin of splat_lod/core/lod_selection.h (the
 // tests compare them Gaussian for Gaussian). Needs `frame` (FrameUniforms).
 
 // docs/algorithms.md §2: S = 2·min(sqrt(L/Σ⁻¹ₓₓ), sqrt(L/Σ⁻¹ᵧᵧ)), L = 2·ln(255·o), undilated Σ2D.

@@ -1,6 +1,6 @@
 // The splat_lod GPU contract, compiled by C++ and GLSL alike: struct layouts (std430), binding
 // indices and workgroup sizes. C++ checks sizes and offsets with static_assert
-// (engine/plugins/splat_lod/src/gpu/gpu_layout.h); GLSL includes this file directly.
+// (engine/plugins/splat_lod/runtime/src/gpu/gpu_layout.h); GLSL includes this file directly.
 // Rule: no bare vec3 members in std430 structs (use vec4 or explicit padding).
 #ifndef SPLAT_LOD_SHARED_H
 #define SPLAT_LOD_SHARED_H

@@ -10,7 +10,7 @@
 // is nearer than the splats' front depth (where their transmittance fell below ½) at all four
 // surrounding texels, the mesh hides them and the pixel keeps the mesh colour; mesh edges are
 // therefore as sharp as the mesh pass drew them.
-// The CPU twin is splat_lod/upscale.h (upscale_image); the tests compare the two.
+// The CPU twin is splat_lod/core/upscale.h (upscale_image); the tests compare the two.
 #include "common_splat_bindings.glsl"
 
 #ifndef UPSCALE_METHOD

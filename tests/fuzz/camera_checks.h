@@ -1,12 +1,12 @@
 #pragma once
-// What splat_lod/eval/camera_set.h promises of every pose a camera file gives: a finite eye,
+// What splat_lod/core/camera_set.h promises of every pose a camera file gives: a finite eye,
 // unit `forward`, unit `up` orthogonal to it, a field of view in (0, 180°) and a positive finite
 // focus distance.
 #include <cmath>
 #include <vector>
 
 #include "fuzz_support.h"
-#include "splat_lod/eval/camera_set.h"
+#include "splat_lod/core/camera_set.h"
 
 namespace splat_fuzz {
 

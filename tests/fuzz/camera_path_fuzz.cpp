@@ -1,6 +1,6 @@
 // Camera-path files ([{"eye", "target", "up", "fov_y_deg", "name"}, ...]) through
 // parse_camera_path, the text form of read_camera_path.
-// Contract (splat_lod/eval/camera_set.h): poses as checked in camera_checks.h, or engine::Error
+// Contract (splat_lod/core/camera_set.h): poses as checked in camera_checks.h, or engine::Error
 // naming the file, the camera index and the problem.
 #include "camera_checks.h"
 #include "engine/core/error.h"

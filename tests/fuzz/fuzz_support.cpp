@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "engine/core/log.h"
-#include "splat_lod/splat_io.h"
+#include "splat_lod/core/splat_io.h"
 
 namespace splat_fuzz {
 namespace {

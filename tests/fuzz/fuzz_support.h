@@ -13,7 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "engine/core/error.h"
-#include "splat_lod/splat_cloud.h"
+#include "splat_lod/core/splat_cloud.h"
 
 namespace splat_fuzz {
 

@@ -1,6 +1,6 @@
 // INRIA 3DGS cameras.json (camera-to-world rotation, position, fx/fy, image size) through
 // parse_inria_cameras, the text form of read_inria_cameras.
-// Contract (splat_lod/eval/camera_set.h): poses as checked in camera_checks.h, or engine::Error
+// Contract (splat_lod/core/camera_set.h): poses as checked in camera_checks.h, or engine::Error
 // naming the file, the camera index and the problem.
 #include "camera_checks.h"
 #include "engine/core/error.h"

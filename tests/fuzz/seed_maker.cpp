@@ -20,10 +20,10 @@
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
 #include "fuzz_support.h"
-#include "io/ply_file.h"
+#include "splat_lod/core/ply_file.h"
 #include "splat_io_test_helpers.h"
-#include "splat_lod/splat_io.h"
-#include "world/world_meshes.h"
+#include "splat_lod/core/splat_io.h"
+#include "splat_lod/worldgen/world_meshes.h"
 
 namespace {
 

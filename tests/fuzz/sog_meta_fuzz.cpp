@@ -5,7 +5,7 @@
 
 #include "engine/core/error.h"
 #include "fuzz_support.h"
-#include "io/sog_meta.h"
+#include "splat_lod/core/sog_meta.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 // allocates. The first input byte picks min_pixels (0..255), the rest is the file.
 #include "engine/core/error.h"
 #include "fuzz_support.h"
-#include "io/webp_texture.h"
+#include "splat_lod/core/webp_texture.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     if (size == 0) return 0;

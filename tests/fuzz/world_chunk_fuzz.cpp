@@ -1,4 +1,4 @@
-// A streamed world's chunk file through world::read_chunk_range (splat_lod/world/chunk_reader.h),
+// A streamed world's chunk file through world::read_chunk_range (splat_lod/core/chunk_reader.h),
 // the streamer's reader: the header layout (io::read_ply_vertex_layout), the size, header and
 // checksum checks against the manifest entry, the widened block read and the decode behind a
 // rewritten header.
@@ -16,9 +16,9 @@
 
 #include "engine/core/error.h"
 #include "fuzz_support.h"
-#include "io/ply_vertex_layout.h"
-#include "splat_lod/world/chunk_reader.h"
-#include "splat_lod/world/world_manifest.h"
+#include "splat_lod/core/ply_vertex_layout.h"
+#include "splat_lod/core/chunk_reader.h"
+#include "splat_lod/core/world_manifest.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The streamed world's manifest, world.json (splat_lod/world/world_manifest.h), through
+// The streamed world's manifest, world.json (splat_lod/core/world_manifest.h), through
 // parse_world_manifest, the text form of read_world_manifest.
 // Contract: a manifest that obeys every rule the header lists (relative paths inside the folder,
 // prefix counts that do not grow, byte counts that add up, one checksum per record block) and
@@ -7,7 +7,7 @@
 
 #include "engine/core/error.h"
 #include "fuzz_support.h"
-#include "splat_lod/world/world_manifest.h"
+#include "splat_lod/core/world_manifest.h"
 
 namespace {
 

@@ -18,7 +18,7 @@
 #include "sample_game/reference_run.h"
 #include "sample_game/world_path.h"
 #include "splat_lod/splat_lod_plugin.h"
-#include "splat_lod/world/world_generator.h"
+#include "splat_lod/worldgen/world_generator.h"
 #include "test_support.h"
 #include "tiny_world.h"
 

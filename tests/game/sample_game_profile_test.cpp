@@ -13,15 +13,14 @@
 #include "engine/engine.h"
 #include "engine/render/render_target.h"
 #include "engine/scene/builtin_components.h"
-#include "gpu/gpu_scene.h"
 #include "gpu_fixture.h"
-#include "passes/splat_pass.h"
+#include "splat_lod/splat_renderer.h"
 #include "sample_game/frame_record.h"
 #include "sample_game/game_world.h"
 #include "sample_game/profile_run.h"
 #include "splat_lod/splat_lod_plugin.h"
-#include "splat_lod/world/stream_policy.h"
-#include "splat_lod/world/world_generator.h"
+#include "splat_lod/stream/stream_policy.h"
+#include "splat_lod/worldgen/world_generator.h"
 #include "test_support.h"
 #include "tiny_world.h"
 
@@ -157,7 +156,7 @@ TEST_F(SampleGameTest, WorldPutsPropsAndTerrainInTheSceneAndCanHoldAllOfIt) {
     engine::RenderTarget target(96, 64);
     splat_lod::render_complete(engine, world.scene(), world.camera({0.0f, 60.0f, 60.0f}, {0.0f, -1.0f, -1.0f}, 96, 64),
                                target);
-    EXPECT_EQ(std::uint64_t(world.pass().scene().pages_in_use()) * world.pass().scene().page_bytes(),
+    EXPECT_EQ(std::uint64_t(world.pass().memory().pages_in_use) * world.pass().memory().page_bytes,
               whole_world_bytes(m));
 }
 

@@ -13,8 +13,8 @@
 #include "gpu_fixture.h"
 #include "sample_game/frame_record.h"
 #include "sample_game/soak_run.h"
-#include "splat_lod/world/stream_policy.h"
-#include "splat_lod/world/world_generator.h"
+#include "splat_lod/stream/stream_policy.h"
+#include "splat_lod/worldgen/world_generator.h"
 #include "test_support.h"
 #include "tiny_world.h"
 

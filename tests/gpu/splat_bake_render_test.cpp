@@ -7,13 +7,12 @@
 
 #include "engine/render/camera.h"
 #include "gpu_fixture.h"
-#include "gpu/gpu_scene.h"
-#include "passes/splat_pass.h"
+#include "splat_lod/splat_renderer.h"
 #include "splat_lod/bake/bake.h"
 #include "splat_lod/bake/bake_cameras.h"
-#include "splat_lod/eval/camera_set.h"
+#include "splat_lod/core/camera_set.h"
 #include "splat_lod/eval/image_metrics.h"
-#include "splat_lod/splat_io.h"
+#include "splat_lod/core/splat_io.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_lod/synth/fine_detail_scene.h"
 #include "splat_test_scenes.h"
@@ -85,7 +84,7 @@ TEST_F(SplatBakeRenderTest, BakedGardenLooksRightWhenSmallAndStaysExactWhenLarge
     RecordProperty("psnr_16x_baseline", std::to_string(baseline_small));
     RecordProperty("psnr_16x_full", std::to_string(full_small));
     EXPECT_GT(full_small, baseline_small + 1.0) << "baseline " << baseline_small << " dB, full " << full_small << " dB";
-    const auto& statistics = splat_lod::find_splat_pass(harness.engine().renderer())->latest_statistics();
+    const auto& statistics = splat_lod::SplatRenderer(harness.engine().renderer()).latest_statistics();
     ASSERT_TRUE(statistics.has_value());
     EXPECT_GT(statistics->per_level[1] + statistics->per_level[2] + statistics->per_level[3], 0u);
 }
@@ -97,21 +96,21 @@ TEST_F(SplatBakeRenderTest, ClusterSkippingChangesNothingButTheWork) {
     const auto& extent = garden.extent;
     const glm::vec3 up(0, 1, 0);
     const auto cloud = std::make_shared<const splat_lod::SplatCloud>(garden.baked);
-    auto* pass = splat_lod::find_splat_pass(harness.engine().renderer());
+    splat_lod::SplatRenderer pass(harness.engine().renderer());
     const auto pose = eval::orbit_poses(extent, up, 1).front();
     bool skipped_somewhere = false;
     for (const float distance : {1.0f, 8.0f, 64.0f})
         for (const auto mode : {plugin_msgs::LodMode::full, plugin_msgs::LodMode::filter_small}) {
             SCOPED_TRACE("distance " + std::to_string(distance) + ", " + std::string(plugin_msgs::to_string(mode)));
             const auto view = eval::make_view(eval::dolly(pose, distance), 128, 96);
-            pass->settings.cluster_skipping = false;
+            pass.settings().cluster_skipping = false;
             const auto without = render_mode(harness, cloud, view, mode);
-            const auto counts_without = pass->latest_statistics()->per_level;
-            pass->settings.cluster_skipping = true;
+            const auto counts_without = pass.latest_statistics()->per_level;
+            pass.settings().cluster_skipping = true;
             const auto with = render_mode(harness, cloud, view, mode);
             EXPECT_EQ(with.rgba, without.rgba);
-            EXPECT_EQ(pass->latest_statistics()->per_level, counts_without);
-            if (pass->latest_statistics()->skipped > 0) skipped_somewhere = true;
+            EXPECT_EQ(pass.latest_statistics()->per_level, counts_without);
+            if (pass.latest_statistics()->skipped > 0) skipped_somewhere = true;
         }
     EXPECT_TRUE(skipped_somewhere) << "far away, whole clusters of small Gaussians are skipped";
 }
@@ -135,7 +134,7 @@ TEST_F(SplatBakeRenderTest, FrustumCullingChangesNothingButTheWork) {
     const auto& extent = garden.extent;
     const glm::vec3 up(0, 1, 0);
     const auto cloud = std::make_shared<const splat_lod::SplatCloud>(garden.baked);
-    auto* pass = splat_lod::find_splat_pass(harness.engine().renderer());
+    splat_lod::SplatRenderer pass(harness.engine().renderer());
     std::vector<eval::CameraPose> poses;
     for (int k = 0; k < 4; ++k) {  // inside, looking out in four directions
         const float a = 1.5707963f * static_cast<float>(k);
@@ -153,18 +152,18 @@ TEST_F(SplatBakeRenderTest, FrustumCullingChangesNothingButTheWork) {
                 SCOPED_TRACE("pose " + std::to_string(p) + ", " + std::string(plugin_msgs::to_string(mode)) +
                              ", render scale " + std::to_string(scale));
                 const auto view = eval::make_view(poses[p], 120, 90);
-                pass->settings.render_scale = scale;
-                pass->settings.frustum_culling = false;
+                pass.settings().render_scale = scale;
+                pass.settings().frustum_culling = false;
                 const auto without = render_mode(harness, cloud, view, mode);
-                const auto stats_without = *pass->latest_statistics();
-                pass->settings.frustum_culling = true;
+                const auto stats_without = *pass.latest_statistics();
+                pass.settings().frustum_culling = true;
                 const auto with = render_mode(harness, cloud, view, mode);
                 EXPECT_EQ(with.rgba, without.rgba);
-                EXPECT_EQ(pass->latest_statistics()->per_level, stats_without.per_level);
+                EXPECT_EQ(pass.latest_statistics()->per_level, stats_without.per_level);
                 EXPECT_EQ(stats_without.culled, 0u);
-                culled += pass->latest_statistics()->culled;
+                culled += pass.latest_statistics()->culled;
             }
-    pass->settings.render_scale = 1.0f;
+    pass.settings().render_scale = 1.0f;
     EXPECT_GT(culled, 0u) << "clusters behind and beside the view are culled";
 }
 
@@ -172,7 +171,7 @@ TEST_F(SplatBakeRenderTest, FrustumCullingKeepsGaussiansWhoseTailsReachIntoTheVi
     // A cluster of wide Gaussians just left of the view, their means outside it, their 1/255 tails
     // inside: the bound must not drop them (and far beyond the tails it does).
     const engine::CameraView view = eval::make_view(look_at(glm::vec3(0, 0, 5), glm::vec3(0), glm::vec3(0, 1, 0), 1.0472f), 96, 64);
-    auto* pass = splat_lod::find_splat_pass(harness.engine().renderer());
+    splat_lod::SplatRenderer pass(harness.engine().renderer());
     for (const float x : {-5.2f, -40.0f}) {
         std::vector<engine::test::GaussianSpec> specs(256);
         for (std::size_t i = 0; i < specs.size(); ++i) {
@@ -181,18 +180,18 @@ TEST_F(SplatBakeRenderTest, FrustumCullingKeepsGaussiansWhoseTailsReachIntoTheVi
             specs[i].color = glm::vec3(0.9f, 0.6f, 0.2f);
         }
         const auto cloud = std::make_shared<const splat_lod::SplatCloud>(engine::test::make_cloud(specs));
-        pass->settings.frustum_culling = false;
+        pass.settings().frustum_culling = false;
         const auto without = render_mode(harness, cloud, view, plugin_msgs::LodMode::baseline);
-        const auto visible_without = pass->latest_statistics()->visible;
-        pass->settings.frustum_culling = true;
+        const auto visible_without = pass.latest_statistics()->visible;
+        pass.settings().frustum_culling = true;
         const auto with = render_mode(harness, cloud, view, plugin_msgs::LodMode::baseline);
         EXPECT_EQ(with.rgba, without.rgba);
         if (x > -6.0f) {
             EXPECT_GT(visible_without, 0u) << "the tails reach into the image";
-            EXPECT_EQ(pass->latest_statistics()->culled, 0u);
+            EXPECT_EQ(pass.latest_statistics()->culled, 0u);
         } else {
             EXPECT_EQ(visible_without, 0u);
-            EXPECT_EQ(pass->latest_statistics()->culled, 256u) << "far outside, the whole cluster is culled";
+            EXPECT_EQ(pass.latest_statistics()->culled, 256u) << "far outside, the whole cluster is culled";
         }
     }
 }
@@ -200,27 +199,27 @@ TEST_F(SplatBakeRenderTest, FrustumCullingKeepsGaussiansWhoseTailsReachIntoTheVi
 TEST_F(SplatBakeRenderTest, SplatBudgetIsNeverExceededAndChangesNothingWhenItFits) {
     const auto garden = bake_garden(0);
     const auto cloud = std::make_shared<const splat_lod::SplatCloud>(garden.baked);
-    auto* pass = splat_lod::find_splat_pass(harness.engine().renderer());
+    splat_lod::SplatRenderer pass(harness.engine().renderer());
     const auto pose = eval::orbit_poses(garden.extent, glm::vec3(0, 1, 0), 1).front();
     const auto view = eval::make_view(eval::dolly(pose, 0.6f), 128, 96);
     for (const auto mode : {plugin_msgs::LodMode::full, plugin_msgs::LodMode::baseline}) {
         SCOPED_TRACE(std::string(plugin_msgs::to_string(mode)));
         const auto free = render_mode(harness, cloud, view, mode);
-        const plugin_msgs::SplatStatistics unbudgeted = *pass->latest_statistics();
+        const plugin_msgs::SplatStatistics unbudgeted = *pass.latest_statistics();
         ASSERT_GT(unbudgeted.visible, 1000u);
         EXPECT_EQ(unbudgeted.unbudgeted, unbudgeted.visible);
 
         // Fits exactly.
         const auto fitting = render_mode(harness, cloud, view, mode, static_cast<std::uint32_t>(unbudgeted.visible));
         EXPECT_EQ(fitting.rgba, free.rgba);
-        EXPECT_EQ(pass->latest_statistics()->visible, unbudgeted.visible);
-        EXPECT_EQ(pass->latest_statistics()->budget_scale, 1.0);
+        EXPECT_EQ(pass.latest_statistics()->visible, unbudgeted.visible);
+        EXPECT_EQ(pass.latest_statistics()->budget_scale, 1.0);
 
         double previous_psnr = 1e9;
         for (const double share : {0.7, 0.3, 0.05}) {
             const auto budget = static_cast<std::uint32_t>(share * static_cast<double>(unbudgeted.visible));
             const auto image = render_mode(harness, cloud, view, mode, budget);
-            const auto& s = *pass->latest_statistics();
+            const auto& s = *pass.latest_statistics();
             SCOPED_TRACE("budget " + std::to_string(budget));
             EXPECT_LE(s.visible, budget);
             EXPECT_GT(s.visible, 0u);
@@ -239,7 +238,7 @@ TEST_F(SplatBakeRenderTest, SplatBudgetIsNeverExceededAndChangesNothingWhenItFit
         }
         for (const std::uint32_t tiny : {1u, 17u}) {  // even the coarsest cut is too many
             render_mode(harness, cloud, view, mode, tiny);
-            EXPECT_LE(pass->latest_statistics()->visible, tiny);
+            EXPECT_LE(pass.latest_statistics()->visible, tiny);
         }
     }
 }

@@ -5,15 +5,16 @@
 #include <fstream>
 #include <sstream>
 
+#include "engine/core/error.h"
 #include "gpu_fixture.h"
-#include "passes/splat_pass.h"
+#include "splat_lod/splat_renderer.h"
 #include "splat_lod/eval/eval_report.h"
 #include "splat_lod/eval/eval_run.h"
 #include "splat_lod/eval/eval_scene.h"
 #include "splat_lod/eval/frame_measurer.h"
 #include "splat_lod/eval/lod_chain.h"
 #include "splat_lod/splat_component.h"
-#include "splat_lod/splat_io.h"
+#include "splat_lod/core/splat_io.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_test_scenes.h"
 #include "test_support.h"
@@ -277,21 +278,20 @@ TEST_F(SplatEvalTest, UpscaleSweepScoresEveryUpscalerAgainstNative) {
 TEST_F(SplatEvalTest, UpscaleMethodsSetTheSplatPassAndBadFactorsFailFirst) {
     engine::Engine engine;
     engine.plugins().add_static(splat_lod::make_plugin());
-    splat_lod::SplatPass* pass = splat_lod::find_splat_pass(engine.renderer());
-    ASSERT_NE(pass, nullptr);
+    splat_lod::SplatRenderer pass(engine.renderer());
     const eval::UpscalerVariant plain = eval::select_upscalers("spline_plain").front();
-    eval::upscaled_method(eval::find_method("full", "--upscale-mode"), plain, 4).configure(*pass);
-    EXPECT_FLOAT_EQ(pass->settings.render_scale, 0.25f);
-    EXPECT_EQ(pass->settings.upscaler, plugin_msgs::Upscaler::spline);
-    EXPECT_FALSE(pass->settings.scaled_dilation);
-    EXPECT_EQ(pass->settings.lod.mode, plugin_msgs::LodMode::full);
-    pass->settings = splat_lod::SplatPassSettings{};
-    eval::upscaled_method(eval::reference_method(), eval::select_upscalers("lanczos3").front(), 3).configure(*pass);
-    EXPECT_FLOAT_EQ(pass->settings.render_scale, 1.0f / 3.0f);
-    EXPECT_EQ(pass->settings.upscaler, plugin_msgs::Upscaler::lanczos3);
-    EXPECT_TRUE(pass->settings.scaled_dilation);
-    eval::native_method(eval::reference_method()).configure(*pass);
-    EXPECT_FLOAT_EQ(pass->settings.render_scale, 1.0f);
+    eval::upscaled_method(eval::find_method("full", "--upscale-mode"), plain, 4).configure(pass.settings());
+    EXPECT_FLOAT_EQ(pass.settings().render_scale, 0.25f);
+    EXPECT_EQ(pass.settings().upscaler, plugin_msgs::Upscaler::spline);
+    EXPECT_FALSE(pass.settings().scaled_dilation);
+    EXPECT_EQ(pass.settings().lod.mode, plugin_msgs::LodMode::full);
+    pass.settings() = splat_lod::SplatPassSettings{};
+    eval::upscaled_method(eval::reference_method(), eval::select_upscalers("lanczos3").front(), 3).configure(pass.settings());
+    EXPECT_FLOAT_EQ(pass.settings().render_scale, 1.0f / 3.0f);
+    EXPECT_EQ(pass.settings().upscaler, plugin_msgs::Upscaler::lanczos3);
+    EXPECT_TRUE(pass.settings().scaled_dilation);
+    eval::native_method(eval::reference_method()).configure(pass.settings());
+    EXPECT_FLOAT_EQ(pass.settings().render_scale, 1.0f);
 
     eval::EvalScene scene = eval::make_splat_scene(small_cloud());
     eval::FrameMeasurer measurer(engine, *scene.scene);

@@ -8,9 +8,9 @@
 #include "splat_lod/splat_component.h"
 #include "engine/scene/scene_loader.h"
 #include "gpu_fixture.h"
-#include "passes/splat_pass.h"
-#include "splat_lod/reference_renderer.h"
-#include "splat_lod/splat_io.h"
+#include "splat_lod/splat_renderer.h"
+#include "splat_lod/core/reference_renderer.h"
+#include "splat_lod/core/splat_io.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_test_scenes.h"
 #include "test_support.h"
@@ -138,9 +138,9 @@ TEST_F(SplatPipelineTest, HardCasesAgreeWithTheReference) {
     const auto d = engine::compare_images(gpu, reference(*cloud, camera));
     EXPECT_GE(d.psnr_db, 40.0);
     // The pass counts what it could not draw.
-    const auto* pass = splat_lod::find_splat_pass(harness.engine().renderer());
-    ASSERT_TRUE(pass->latest_statistics().has_value());
-    EXPECT_EQ(pass->latest_statistics()->considered, specs.size());
+    const splat_lod::SplatRenderer pass(harness.engine().renderer());
+    ASSERT_TRUE(pass.latest_statistics().has_value());
+    EXPECT_EQ(pass.latest_statistics()->considered, specs.size());
 }
 
 TEST_F(SplatPipelineTest, TinyHugeAndEmptyTargets) {
@@ -172,15 +172,15 @@ TEST_F(SplatPipelineTest, KeyBufferGrowsAfterAnOverflowedFrame) {
     scene.root().add_child("s").attach(std::move(component));
     engine::RenderTarget target(512, 512);
     auto& engine = harness.engine();
-    auto* pass = splat_lod::find_splat_pass(engine.renderer());
+    splat_lod::SplatRenderer pass(engine.renderer());
     engine.renderer().render(scene, camera, target);
-    pass->wait_for_statistics(engine.bus());
-    const auto first = *pass->latest_statistics();
+    pass.wait_for_statistics(engine.bus());
+    const auto first = *pass.latest_statistics();
     ASSERT_TRUE(first.overflowed) << first.tile_splat_pairs << " pairs, capacity " << first.key_capacity;
     engine.renderer().render(scene, camera, target);
-    pass->wait_for_statistics(engine.bus());
-    EXPECT_FALSE(pass->latest_statistics()->overflowed);
-    EXPECT_GE(pass->key_capacity(), first.tile_splat_pairs);
+    pass.wait_for_statistics(engine.bus());
+    EXPECT_FALSE(pass.latest_statistics()->overflowed);
+    EXPECT_GE(pass.key_capacity(), first.tile_splat_pairs);
     const auto gpu = target.read_color();
     const auto cpu = reference(*cloud, camera);
     const auto d = engine::compare_images(gpu, cpu);
@@ -206,9 +206,9 @@ TEST_F(SplatPipelineTest, MeshesAndSplatsCompositeByDepth) {
 
     engine::RenderTarget target(w, h);
     engine.renderer().render(*full, camera, target);
-    auto* pass = splat_lod::find_splat_pass(engine.renderer());
-    pass->wait_for_statistics(engine.bus());
-    ASSERT_FALSE(pass->latest_statistics()->overflowed);
+    splat_lod::SplatRenderer pass(engine.renderer());
+    pass.wait_for_statistics(engine.bus());
+    ASSERT_FALSE(pass.latest_statistics()->overflowed);
     const engine::Image gpu = target.read_color();
 
     // The mesh layer alone: the same scene without its splat node.
@@ -266,7 +266,7 @@ TEST_F(SplatPipelineTest, LodSelectionMatchesTheCpuRule) {
         cloud.coverage_max[i] = (i % 7 == 0) ? -1.0f : static_cast<float>(coverage[i] / f);
     }
     const auto shared_cloud = shared(cloud);
-    auto* pass = splat_lod::find_splat_pass(harness.engine().renderer());
+    splat_lod::SplatRenderer pass(harness.engine().renderer());
     std::map<plugin_msgs::LodMode, std::array<std::uint64_t, 4>> counts;
     for (const auto mode : {plugin_msgs::LodMode::baseline, plugin_msgs::LodMode::filter_small,
                             plugin_msgs::LodMode::insert_large, plugin_msgs::LodMode::full}) {
@@ -274,8 +274,8 @@ TEST_F(SplatPipelineTest, LodSelectionMatchesTheCpuRule) {
         plugin_msgs::LodSettings lod;
         lod.mode = mode;
         harness.engine().bus().publish(lod);  // the plugin takes settings from the bus
-        ASSERT_EQ(pass->settings.lod.mode, mode);
-        splat_lod::LodRule rule = pass->settings.lod;
+        ASSERT_EQ(pass.settings().lod.mode, mode);
+        splat_lod::LodRule rule = pass.settings().lod;
         rule.coarsest_level = 4;
         std::vector<std::uint8_t> keep(cloud.size());
         std::array<std::uint64_t, 4> per_level{0, 0, 0, 0};
@@ -286,7 +286,7 @@ TEST_F(SplatPipelineTest, LodSelectionMatchesTheCpuRule) {
             if (keep[i]) ++per_level[cloud.lod_level[i] - 1u];
         }
         const auto gpu = harness.render({shared_cloud}, camera);
-        EXPECT_EQ(pass->latest_statistics()->per_level, per_level);
+        EXPECT_EQ(pass.latest_statistics()->per_level, per_level);
         counts[mode] = per_level;
         auto selected = cloud;
         selected.keep_only(keep);

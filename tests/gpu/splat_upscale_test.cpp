@@ -8,13 +8,14 @@
 #include "engine/render/scene_camera.h"
 #include "engine/scene/scene_loader.h"
 #include "gpu_fixture.h"
-#include "passes/splat_pass.h"
-#include "splat_lod/lod_selection.h"
-#include "splat_lod/reference_renderer.h"
+#include "engine/core/error.h"
+#include "splat_lod/splat_renderer.h"
+#include "splat_lod/core/lod_selection.h"
+#include "splat_lod/core/reference_renderer.h"
 #include "splat_lod/splat_component.h"
-#include "splat_lod/splat_io.h"
+#include "splat_lod/core/splat_io.h"
 #include "splat_lod/splat_lod_plugin.h"
-#include "splat_lod/upscale.h"
+#include "splat_lod/core/upscale.h"
 #include "splat_test_scenes.h"
 #include "test_support.h"
 
@@ -54,13 +55,13 @@ class SplatUpscaleTest : public engine::test::GpuTest {
 protected:
     engine::test::SplatRenderHarness harness;
 
-    splat_lod::SplatPass& pass() { return *splat_lod::find_splat_pass(harness.engine().renderer()); }
+    splat_lod::SplatRenderer pass() { return splat_lod::SplatRenderer(harness.engine().renderer()); }
 
     engine::Image render(const std::shared_ptr<const splat_lod::SplatCloud>& cloud, const engine::CameraView& camera,
                          float render_scale, Upscaler upscaler = Upscaler::spline,
                          const glm::vec3& background = glm::vec3(0.0f)) {
-        pass().settings.render_scale = render_scale;
-        pass().settings.upscaler = upscaler;
+        pass().settings().render_scale = render_scale;
+        pass().settings().upscaler = upscaler;
         return harness.render({cloud}, camera, background);
     }
 
@@ -174,9 +175,9 @@ TEST_F(SplatUpscaleTest, SplineAtThreeTimesIsCloseToNativeAndBeatsBicubic) {
 
     // Without the resolution-consistent dilation the low-resolution image is blurred f² times too
     // much: every upscaler loses.
-    pass().settings.scaled_dilation = false;
+    pass().settings().scaled_dilation = false;
     const double plain = engine::compare_images(render(cloud, camera, 1.0f / 3.0f), native).psnr_db;
-    pass().settings.scaled_dilation = true;
+    pass().settings().scaled_dilation = true;
     EXPECT_LT(plain, psnr[0] - 3.0) << "plain dilation " << plain << " dB";
 }
 
@@ -210,7 +211,7 @@ TEST_F(SplatUpscaleTest, LodSelectionUsesTheOutputCoverage) {
         cloud.coverage_max[i] = (i % 7 == 0) ? -1.0f : static_cast<float>(coverage / f);
     }
     const auto scene = shared(cloud);
-    pass().settings.lod.mode = plugin_msgs::LodMode::full;
+    pass().settings().lod.mode = plugin_msgs::LodMode::full;
     render(scene, camera, 1.0f);
     const auto native = pass().latest_statistics()->per_level;
     render(scene, camera, 1.0f / 3.0f);
@@ -234,7 +235,7 @@ TEST_F(SplatUpscaleTest, MeshesHideSplatsWithSharpEdges) {
     const auto camera = *engine::scene_camera(*full, "", w, h);
     engine::RenderTarget target(w, h);
     auto render_frame = [&](const engine::Scene& scene, float s) {
-        pass().settings.render_scale = s;
+        pass().settings().render_scale = s;
         splat_lod::render_complete(engine, scene, camera, target);
         return target.read_color();
     };
@@ -306,12 +307,12 @@ TEST_F(SplatUpscaleTest, HardCasesStayFiniteAndInRange) {
         }
     }
     // An impossible render scale is a clear error, not a frame of garbage.
-    pass().settings.render_scale = 0.0f;
+    pass().settings().render_scale = 0.0f;
     EXPECT_THROW(harness.render({needles}, front_camera(8, 8)), engine::Error);
-    pass().settings.render_scale = 0.5f;
-    pass().settings.low_res_tile_size = 5;
+    pass().settings().render_scale = 0.5f;
+    pass().settings().low_res_tile_size = 5;
     EXPECT_THROW(harness.render({needles}, front_camera(8, 8)), engine::Error);
-    pass().settings.low_res_tile_size = 8;
+    pass().settings().low_res_tile_size = 8;
     // The pass recovers: the next frame is drawn.
     EXPECT_EQ(render(needles, front_camera(16, 16), 0.5f).width, 16);
 }

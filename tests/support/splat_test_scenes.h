@@ -8,7 +8,7 @@
 #include "engine/engine.h"
 #include "engine/render/camera.h"
 #include "engine/render/image.h"
-#include "splat_lod/splat_cloud.h"
+#include "splat_lod/core/splat_cloud.h"
 
 namespace engine::test {
 

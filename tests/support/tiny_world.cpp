@@ -4,7 +4,7 @@
 #include <iterator>
 #include <regex>
 
-#include "splat_lod/world/world_manifest.h"
+#include "splat_lod/core/world_manifest.h"
 
 namespace engine::test {
 

@@ -7,7 +7,7 @@
 #include <map>
 #include <string>
 
-#include "splat_lod/world/world_generator.h"
+#include "splat_lod/worldgen/world_generator.h"
 
 namespace engine::test {
 

@@ -23,8 +23,8 @@
 
 #include "engine/assets/mesh_asset.h"
 #include "engine/core/file_io.h"
-#include "splat_lod/world/chunk_reader.h"
-#include "splat_lod/world/world_manifest.h"
+#include "splat_lod/core/chunk_reader.h"
+#include "splat_lod/core/world_manifest.h"
 #include "test_support.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// The chunk streamer (splat_lod/world/chunk_streamer.h) on a small synthetic world: 4×4 chunks of
+// The chunk streamer (splat_lod/stream/chunk_streamer.h) on a small synthetic world: 4×4 chunks of
 // 10 m, each with 10 / 40 / 160 / 640 Gaussians in levels 4 / 3 / 2 / 1 and level bounds that make
 // levels 3 / 2 / 1 needed within 60 / 30 / 15 m at a 100 px focal length. An in-memory source with
 // controllable failures and delays stands for the chunk files, a recording sink for the GPU; one
@@ -22,9 +22,9 @@
 #include "engine/core/error.h"
 #include "engine/core/message_bus.h"
 #include "plugin_msgs/splat_statistics.h"
-#include "splat_lod/splat_io.h"
-#include "splat_lod/world/chunk_streamer.h"
-#include "splat_lod/world/world_groups.h"
+#include "splat_lod/core/splat_io.h"
+#include "splat_lod/stream/chunk_streamer.h"
+#include "splat_lod/worldgen/world_groups.h"
 #include "test_support.h"
 
 namespace sw = splat_lod::world;

@@ -13,7 +13,7 @@
 
 #include "splat_io_test_helpers.h"
 #include "engine/core/error.h"
-#include "splat_lod/splat_io.h"
+#include "splat_lod/core/splat_io.h"
 #include "splat_lod/synth/fine_detail_scene.h"
 #include "test_support.h"
 

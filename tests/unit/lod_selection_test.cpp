@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "splat_lod/lod_selection.h"
+#include "splat_lod/core/lod_selection.h"
 
 using plugin_msgs::LodMode;
 using splat_lod::LodRule;

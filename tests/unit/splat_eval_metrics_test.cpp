@@ -3,7 +3,7 @@
 #include <fstream>
 
 #include "engine/core/error.h"
-#include "splat_lod/eval/camera_set.h"
+#include "splat_lod/core/camera_set.h"
 #include "splat_lod/eval/eval_method.h"
 #include "splat_lod/eval/eval_run.h"
 #include "splat_lod/eval/image_metrics.h"

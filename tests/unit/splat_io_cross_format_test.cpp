@@ -21,7 +21,7 @@
 
 #include "engine/core/file_io.h"
 #include "splat_io_test_helpers.h"
-#include "splat_lod/splat_io.h"
+#include "splat_lod/core/splat_io.h"
 #include "test_support.h"
 
 using splat_io_test::real_splat;

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "splat_io_test_helpers.h"
-#include "splat_lod/splat_io.h"
+#include "splat_lod/core/splat_io.h"
 #include "test_support.h"
 
 using splat_io_test::error_of;

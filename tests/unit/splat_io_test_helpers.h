@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "splat_lod/splat_cloud.h"
+#include "splat_lod/core/splat_cloud.h"
 
 namespace splat_io_test {
 

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "engine/core/error.h"
-#include "splat_lod/reference_renderer.h"
+#include "splat_lod/core/reference_renderer.h"
 #include "splat_reference_test_helpers.h"
 
 namespace ref = splat_lod::reference;

@@ -10,8 +10,8 @@
 
 #include "engine/core/error.h"
 #include "engine/render/camera.h"
-#include "splat_lod/reference_renderer.h"
-#include "splat_lod/splat_io.h"
+#include "splat_lod/core/reference_renderer.h"
+#include "splat_lod/core/splat_io.h"
 #include "splat_reference_test_helpers.h"
 #include "test_support.h"
 

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "splat_lod/reference_renderer.h"
+#include "splat_lod/core/reference_renderer.h"
 
 namespace splat_lod::reference::test {
 

@@ -13,8 +13,8 @@
 #include <gtest/gtest.h>
 
 #include "engine/core/error.h"
-#include "splat_lod/reference_renderer.h"
-#include "splat_lod/upscale.h"
+#include "splat_lod/core/reference_renderer.h"
+#include "splat_lod/core/upscale.h"
 #include "splat_reference_test_helpers.h"
 
 namespace up = splat_lod::upscale;

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "splat_lod/world/world_manifest.h"
+#include "splat_lod/core/world_manifest.h"
 
 namespace sample_game {
 

@@ -2,13 +2,13 @@
 // What the game runs with, in one place: the LOD settings the splat pass draws with AND the ones
 // the chunk streamer decides residency with come from the same GameSettings::lod, so they cannot
 // disagree (the streamer loads a finer level only from where the renderer could select it;
-// splat_lod/world/stream_policy.h). The budgets and the lens are here too.
+// splat_lod/stream/stream_policy.h). The budgets and the lens are here too.
 #include <cstdint>
 #include <string>
 
 #include <plugin_msgs/lod_settings.h>
 
-#include "splat_lod/world/chunk_streamer.h"
+#include "splat_lod/stream/chunk_streamer.h"
 
 namespace sample_game {
 

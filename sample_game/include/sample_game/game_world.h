@@ -9,21 +9,19 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "engine/engine.h"
 #include "engine/render/camera.h"
 #include "sample_game/camera_path.h"
 #include "sample_game/frame_record.h"
 #include "sample_game/game_settings.h"
-#include "splat_lod/world/chunk_streamer.h"
-#include "splat_lod/world/stream_scene_sink.h"
-#include "splat_lod/world/world_lock.h"
-#include "splat_lod/world/world_manifest.h"
-#include "splat_lod/world/world_terrain.h"
-
-namespace splat_lod {
-class SplatPass;
-}
+#include "splat_lod/stream/chunk_streamer.h"
+#include "splat_lod/stream/stream_scene_sink.h"
+#include "splat_lod/worldgen/world_lock.h"
+#include "splat_lod/core/world_manifest.h"
+#include "splat_lod/splat_renderer.h"
+#include "splat_lod/worldgen/world_terrain.h"
 
 namespace sample_game {
 
@@ -48,7 +46,7 @@ public:
     const std::filesystem::path& folder() const { return folder_; }
     engine::Scene& scene() { return *scene_; }
     splat_lod::world::ChunkStreamer& streamer() { return *streamer_; }
-    splat_lod::SplatPass& pass() { return *pass_; }
+    splat_lod::SplatRenderer& pass() { return *pass_; }
     const GameSettings& settings() const { return settings_; }
 
     // The game's camera at `eye` looking along `forward` (Y up), with near and far planes for its
@@ -94,7 +92,7 @@ private:
     splat_lod::world::FileChunkSource source_;
     std::unique_ptr<splat_lod::world::SceneResidencySink> sink_;
     std::unique_ptr<splat_lod::world::ChunkStreamer> streamer_;
-    splat_lod::SplatPass* pass_ = nullptr;
+    std::optional<splat_lod::SplatRenderer> pass_;  // the plugin's splat pass, set once the engine runs
 };
 
 }  // namespace sample_game

@@ -1,5 +1,5 @@
 #pragma once
-// The walkthrough of a generated world (splat_lod/world/world_terrain.h), derived from the terrain
+// The walkthrough of a generated world (splat_lod/worldgen/world_terrain.h), derived from the terrain
 // alone so that it fits any seed and size without loading a chunk:
 //   ground    eye height (1.7 m) along the path, where it runs through the most forest within a
 //             quarter of the world from the centre, looking ahead along it;
@@ -13,7 +13,7 @@
 // Distances along the ground scale with the world (a 96 m test world gets a 9 m walk), heights
 // above the ground do not (eye height, tree tops).
 #include "sample_game/camera_path.h"
-#include "splat_lod/world/world_terrain.h"
+#include "splat_lod/worldgen/world_terrain.h"
 
 namespace sample_game {
 

@@ -21,7 +21,7 @@
 #include "engine/core/file_io.h"
 #include "splat_lod/bake/bake.h"
 #include "splat_lod/bake/bake_cameras.h"
-#include "splat_lod/splat_io.h"
+#include "splat_lod/core/splat_io.h"
 
 namespace {
 

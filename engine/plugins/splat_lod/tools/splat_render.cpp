@@ -17,9 +17,9 @@
 #include "engine/platform/gl_context.h"
 #include "engine/render/image.h"
 #include "engine/render/render_target.h"
-#include "passes/splat_pass.h"
+#include "splat_lod/splat_renderer.h"
 #include "splat_lod/splat_component.h"
-#include "splat_lod/splat_io.h"
+#include "splat_lod/core/splat_io.h"
 #include "splat_lod/splat_lod_plugin.h"
 
 namespace {
@@ -57,12 +57,12 @@ int run(const Options& o) {
     const glm::vec3 eye = engine::parse_vec3(o.eye, "--eye"), target = engine::parse_vec3(o.target, "--target");
     const auto camera = engine::make_look_at_camera(eye, target, engine::parse_vec3(o.up, "--up"), glm::radians(o.fov_y_deg),
                                                     o.width, o.height, 0.01f, 1e6f);
-    auto* pass = splat_lod::find_splat_pass(engine.renderer());
-    pass->settings.mip_filter = o.mip_filter;
-    pass->settings.render_scale = o.render_scale;
-    pass->settings.tile_size = o.tile;
-    pass->settings.low_res_tile_size = o.low_res_tile;
-    pass->settings.upscaler = plugin_msgs::detail::enum_from_json<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, o.upscaler);
+    splat_lod::SplatRenderer pass(engine.renderer());
+    pass.settings().mip_filter = o.mip_filter;
+    pass.settings().render_scale = o.render_scale;
+    pass.settings().tile_size = o.tile;
+    pass.settings().low_res_tile_size = o.low_res_tile;
+    pass.settings().upscaler = plugin_msgs::detail::enum_from_json<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, o.upscaler);
     engine::RenderTarget target_image(o.width, o.height);
 
     // Warm-up: the first frame compiles shaders and sizes the key buffer; the second is a plain one.
@@ -75,10 +75,10 @@ int run(const Options& o) {
         for (const auto& span : engine.renderer().timers().latest().value_or(std::vector<engine::gl::GpuSpan>{}))
             gpu_ms[span.name].push_back(span.milliseconds);
     }
-    pass->wait_for_statistics(engine.bus());
+    pass.wait_for_statistics(engine.bus());
     engine::write_png(o.out, target_image.read_color());
 
-    const auto& s = *pass->latest_statistics();
+    const auto& s = *pass.latest_statistics();
     std::printf("%s: %zu Gaussians (%s, SH degree %d, %zu dropped) -> %s %dx%d on %s\n", o.in.c_str(), cloud->size(),
                 report.format.c_str(), cloud->sh_degree, report.dropped(), o.out.c_str(), o.width, o.height,
                 context->info().renderer.c_str());

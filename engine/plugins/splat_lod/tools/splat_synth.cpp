@@ -14,7 +14,7 @@
 
 #include "engine/core/cli_values.h"
 #include "engine/core/error.h"
-#include "splat_lod/splat_io.h"
+#include "splat_lod/core/splat_io.h"
 #include "splat_lod/synth/fine_detail_scene.h"
 
 namespace {

@@ -30,8 +30,8 @@
 
 #include "engine/core/cli_values.h"
 #include "engine/core/error.h"
-#include "splat_lod/world/world_generator.h"
-#include "splat_lod/world/world_shards.h"
+#include "splat_lod/worldgen/world_generator.h"
+#include "splat_lod/worldgen/world_shards.h"
 
 namespace {
 

@@ -1,0 +1,315 @@
+// Step 7 of the bake (docs/algorithms.md §4): distils each coarse level from the fine model. The target of
+// a camera at level l is the level-1 model rendered at full resolution, clamped to [0, 1] and
+// area-averaged by k × k (k = 4^(l−1)); the render is the `full` selection at scale k; Adam moves
+// only the SH DC and opacity logit of the level-l Gaussians. Geometry and selection are fixed, so
+// each camera is projected and binned once per level and each iteration is a forward and a
+// backward pass of the differentiable rasteriser.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+
+#include "bake_steps.h"
+#include "splat_raster.h"
+#include "engine/core/error.h"
+#include "engine/render/image.h"
+#include "splat_lod/core/instance_frame.h"
+#include "splat_lod/core/parallel_for.h"
+#include "splat_lod/core/lod_selection.h"
+
+namespace splat_lod::bake::detail {
+namespace {
+
+constexpr double kAdamBeta1 = 0.9;
+constexpr double kAdamBeta2 = 0.999;
+constexpr double kAdamEpsilon = 1e-15;  // 3DGS's Adam epsilon
+constexpr std::size_t kChunk = 4096;
+
+// splitmix64: a fixed, portable sequence (std::shuffle's algorithm is implementation-defined).
+std::uint64_t next_random(std::uint64_t& state) {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+void shuffle(std::vector<std::size_t>& values, std::uint64_t& state) {
+    for (std::size_t i = values.size(); i > 1; --i) std::swap(values[i - 1], values[next_random(state) % i]);
+}
+
+using reference::detail::sigmoid;
+
+std::vector<double> area_average(const std::vector<double>& rgb, int width, int height, int k) {
+    const int w = width / k, h = height / k;
+    std::vector<double> out(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3, 0.0);
+    const double inverse = 1.0 / (static_cast<double>(k) * k);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) {
+                double sum = 0.0;
+                for (int dy = 0; dy < k; ++dy)
+                    for (int dx = 0; dx < k; ++dx)
+                        sum += rgb[(static_cast<std::size_t>(y * k + dy) * static_cast<std::size_t>(width) +
+                                    static_cast<std::size_t>(x * k + dx)) * 3 + static_cast<std::size_t>(c)];
+                out[(static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)) * 3 +
+                    static_cast<std::size_t>(c)] = sum * inverse;
+            }
+    return out;
+}
+
+double mse(const std::vector<double>& a, const std::vector<double>& b) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) sum += (a[i] - b[i]) * (a[i] - b[i]);
+    return a.empty() ? 0.0 : sum / static_cast<double>(a.size());
+}
+
+double psnr_from_mse(double value) {
+    return value > 0.0 ? -10.0 * std::log10(value) : std::numeric_limits<double>::infinity();
+}
+
+// One camera of one level: the fixed splats and what turns the parameters into their colour.
+struct CameraFrame {
+    RasterFrame frame;
+    std::vector<double> target;       // area-averaged, k×k-downsampled
+    std::vector<glm::dvec3> base;     // per splat: the colour before the clamp without the DC term
+};
+
+reference::ReferenceSettings raster_settings(const BakeOptions& options) {
+    reference::ReferenceSettings settings;  // the renderer's dilation, no mip filter: as `full` draws
+    settings.znear = options.znear;
+    settings.background = options.background;
+    settings.threads = options.threads;
+    return settings;
+}
+
+// Indices of the Gaussians that the `full` selection draws in `camera` (coverage from the
+// undilated covariance, docs/algorithms.md §2–3). Culling beyond the near plane is the projection's job.
+std::vector<std::uint32_t> select_full(const SplatCloud& cloud, const reference::ReferenceCamera& camera,
+                                       const BakeOptions& options, int coarsest) {
+    const auto settings = coverage_settings(options.znear);
+    const auto frame = reference::detail::make_instance_frame(cloud, glm::dmat4(1.0), camera, settings, 0);
+    LodRule rule;
+    rule.mode = plugin_msgs::LodMode::full;
+    rule.size_threshold_px = options.size_threshold_px;
+    rule.rel_min = options.rel_min;
+    rule.rel_max = options.rel_max;
+    rule.coarsest_level = coarsest;
+    std::vector<std::uint8_t> keep(cloud.size(), 0);
+    const std::size_t tasks = (cloud.size() + kChunk - 1) / kChunk;
+    reference::detail::parallel_for(tasks, reference::detail::resolve_thread_count(options.threads), [&](std::size_t t) {
+        for (std::size_t i = t * kChunk; i < std::min(cloud.size(), (t + 1) * kChunk); ++i) {
+            const double coverage = projected_coverage(reference::detail::project_in_frame(cloud, i, frame, camera, settings));
+            if (coverage < 0.0) continue;
+            keep[i] = lod_selected(rule, cloud.lod_level[i], coverage, cloud.coverage_min[i], cloud.coverage_max[i]);
+        }
+    });
+    std::vector<std::uint32_t> selected;
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+        if (keep[i]) selected.push_back(static_cast<std::uint32_t>(i));
+    return selected;
+}
+
+// Per camera: the fixed geometry and the `full` selection at the level's scale, the target, and
+// each splat's colour without its DC term (the SH rest along the view + 0.5, before the clamp).
+std::vector<CameraFrame> build_frames(const SplatCloud& cloud, int level,
+                                      const std::vector<reference::ReferenceCamera>& cameras,
+                                      const std::vector<std::vector<double>>& targets, const BakeOptions& options,
+                                      LevelSummary* summary) {
+    const int k = level_scale(level);
+    const int coarsest = *std::max_element(cloud.lod_level.begin(), cloud.lod_level.end());
+    std::vector<CameraFrame> frames;
+    for (std::size_t c = 0; c < cameras.size(); ++c) {
+        const auto camera = scaled_camera(cameras[c], k);
+        const auto selected = select_full(cloud, camera, options, coarsest);
+        if (summary != nullptr)
+            for (const std::uint32_t i : selected)
+                summary->refine_drawn_per_level[cloud.lod_level[i] - 1] += 1.0 / static_cast<double>(cameras.size());
+        RasterFrame frame(project_for_raster(cloud, selected, camera, raster_settings(options), options.threads),
+                          camera.width, camera.height);
+        std::vector<glm::dvec3> base(frame.splats().size());
+        for (std::size_t j = 0; j < base.size(); ++j) {
+            const std::size_t i = frame.splats()[j].id;
+            const glm::dvec3 direction = glm::dvec3(cloud.positions[i]) - camera.position;
+            base[j] = reference::sh_colour_unclamped(cloud, i, cloud.sh_degree, direction) -
+                      static_cast<double>(kShC0) * glm::dvec3(cloud.sh_dc[i]);
+        }
+        frames.push_back({std::move(frame), area_average(targets[c], cameras[c].width, cameras[c].height, k),
+                          std::move(base)});
+    }
+    return frames;
+}
+
+}  // namespace
+
+double Refiner::evaluate(const SplatCloud& cloud, int level) const {
+    const auto frames = build_frames(cloud, level, cameras_, targets_, options_, nullptr);
+    double sum = 0.0;
+    for (const auto& f : frames)
+        sum += psnr_from_mse(mse(render_forward(f.frame, f.frame.colours(), f.frame.opacities(), options_.background,
+                                                options_.threads).rgb, f.target));
+    return frames.empty() ? 0.0 : sum / static_cast<double>(frames.size());
+}
+
+Refiner::Refiner(const SplatCloud& fine, const std::vector<reference::ReferenceCamera>& cameras, const BakeOptions& options)
+    : options_(options) {
+    for (const std::size_t i : refinement_cameras(cameras, options.refine_cameras)) cameras_.push_back(cameras[i]);
+    const reference::ReferenceInstance instance{&fine, glm::dmat4(1.0), kMaxShDegree};
+    for (std::size_t c = 0; c < cameras_.size(); ++c) {
+        if (options_.progress) options_.progress("refine targets", static_cast<double>(c) / cameras_.size());
+        const auto image = reference::render_reference({&instance, 1}, cameras_[c], raster_settings(options_));
+        std::vector<double> rgb = image.rgb;
+        for (double& v : rgb) v = std::clamp(v, 0.0, 1.0);
+        targets_.push_back(std::move(rgb));
+    }
+}
+
+void Refiner::refine_level(SplatCloud& cloud, int level, LevelSummary& summary) const {
+    const int k = level_scale(level);
+    const int threads = options_.threads;
+    const std::string stage = "refine level " + std::to_string(level);
+
+    // Parameter slots of the level's Gaussians.
+    std::vector<std::int64_t> slot(cloud.size(), -1);
+    std::vector<std::size_t> members;
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+        if (cloud.lod_level[i] == level) {
+            slot[i] = static_cast<std::int64_t>(members.size());
+            members.push_back(i);
+        }
+    if (members.empty()) return;
+
+    std::vector<CameraFrame> frames = build_frames(cloud, level, cameras_, targets_, options_, &summary);
+
+    // Current parameters of every splat of a frame, from the cloud (the level's from `dc`/`logit`).
+    std::vector<glm::dvec3> dc(members.size());
+    std::vector<double> logit(members.size());
+    for (std::size_t m = 0; m < members.size(); ++m) {
+        dc[m] = glm::dvec3(cloud.sh_dc[members[m]]);
+        logit[m] = cloud.opacity_logits[members[m]];
+    }
+    std::vector<glm::dvec3> colour;
+    std::vector<double> opacity;
+    std::vector<glm::dvec3> before_clamp;
+    const auto load = [&](const CameraFrame& f) {
+        const auto& splats = f.frame.splats();
+        colour.resize(splats.size());
+        opacity.resize(splats.size());
+        before_clamp.resize(splats.size());
+        for (std::size_t j = 0; j < splats.size(); ++j) {
+            const std::size_t i = splats[j].id;
+            const std::int64_t s = slot[i];
+            const glm::dvec3 d = s >= 0 ? dc[static_cast<std::size_t>(s)] : glm::dvec3(cloud.sh_dc[i]);
+            const double l = s >= 0 ? logit[static_cast<std::size_t>(s)] : static_cast<double>(cloud.opacity_logits[i]);
+            before_clamp[j] = f.base[j] + static_cast<double>(kShC0) * d;
+            colour[j] = glm::max(before_clamp[j], glm::dvec3(0.0));
+            opacity[j] = sigmoid(l);
+        }
+    };
+    const auto mean_psnr = [&] {
+        double sum = 0.0;
+        for (const auto& f : frames) {
+            load(f);
+            sum += psnr_from_mse(mse(render_forward(f.frame, colour, opacity, options_.background, threads).rgb, f.target));
+        }
+        return sum / static_cast<double>(frames.size());
+    };
+    summary.refine_psnr_before = mean_psnr();
+    const auto dump = [&](const std::string& tag) {
+        if (options_.debug_image_dir.empty()) return;
+        const std::string dir = options_.debug_image_dir;
+        const auto& f = frames.front();
+        load(f);
+        const auto image = render_forward(f.frame, colour, opacity, options_.background, threads);
+        const auto save = [&](const std::vector<double>& rgb, const std::string& name) {
+            engine::Image out;
+            out.width = image.width;
+            out.height = image.height;
+            out.rgba.resize(static_cast<std::size_t>(out.width) * out.height * 4, 255);
+            for (std::size_t p = 0; p < rgb.size() / 3; ++p)
+                for (int ch = 0; ch < 3; ++ch)
+                    out.rgba[p * 4 + ch] = static_cast<std::uint8_t>(std::lround(std::clamp(rgb[p * 3 + ch], 0.0, 1.0) * 255.0));
+            engine::write_png(dir + "/level" + std::to_string(level) + "_" + name + ".png", out);
+        };
+        save(image.rgb, tag);
+        save(f.target, "target");
+    };
+    dump("before");
+    {
+        // For comparison: level 1 alone, unfiltered (the baseline renderer), on the same cameras.
+        std::vector<std::uint32_t> fine_indices;
+        for (std::size_t i = 0; i < cloud.size(); ++i)
+            if (cloud.lod_level[i] == 1) fine_indices.push_back(static_cast<std::uint32_t>(i));
+        double sum = 0.0;
+        for (std::size_t c = 0; c < cameras_.size(); ++c) {
+            const auto camera = scaled_camera(cameras_[c], k);
+            RasterFrame frame(project_for_raster(cloud, fine_indices, camera, raster_settings(options_), threads),
+                              camera.width, camera.height);
+            sum += psnr_from_mse(mse(
+                render_forward(frame, frame.colours(), frame.opacities(), options_.background, threads).rgb, frames[c].target));
+        }
+        summary.refine_psnr_baseline = sum / static_cast<double>(cameras_.size());
+    }
+
+    std::vector<glm::dvec3> m_dc(members.size(), glm::dvec3(0.0)), v_dc(members.size(), glm::dvec3(0.0));
+    std::vector<double> m_logit(members.size(), 0.0), v_logit(members.size(), 0.0);
+    std::vector<glm::dvec3> g_dc(members.size());
+    std::vector<double> g_logit(members.size());
+    std::vector<glm::dvec3> d_colour;
+    std::vector<double> d_opacity;
+    std::vector<std::size_t> order(frames.size());
+    std::uint64_t random_state = options_.seed * 0x2545f4914f6cdd1dULL + static_cast<std::uint64_t>(level);
+
+    for (int iteration = 0; iteration < options_.refine_iterations; ++iteration) {
+        // One camera per iteration, a fresh fixed-seed permutation per pass over the cameras.
+        const std::size_t position = static_cast<std::size_t>(iteration) % frames.size();
+        if (position == 0) {
+            std::iota(order.begin(), order.end(), std::size_t{0});
+            shuffle(order, random_state);
+        }
+        if (options_.progress && iteration % 20 == 0)
+            options_.progress(stage, 0.2 + 0.8 * iteration / static_cast<double>(options_.refine_iterations));
+        const CameraFrame& f = frames[order[position]];
+        load(f);
+        const RasterImage image = render_forward(f.frame, colour, opacity, options_.background, threads);
+        // L = mean over pixels and channels of (C − target)².
+        std::vector<double> dl(image.rgb.size());
+        const double scale = 2.0 / static_cast<double>(image.rgb.size());
+        for (std::size_t p = 0; p < dl.size(); ++p) dl[p] = scale * (image.rgb[p] - f.target[p]);
+        d_colour.assign(colour.size(), glm::dvec3(0.0));
+        d_opacity.assign(colour.size(), 0.0);
+        render_backward(f.frame, colour, opacity, options_.background, dl, d_colour, d_opacity, threads);
+
+        std::fill(g_dc.begin(), g_dc.end(), glm::dvec3(0.0));
+        std::fill(g_logit.begin(), g_logit.end(), 0.0);
+        for (std::size_t j = 0; j < colour.size(); ++j) {
+            const std::int64_t s = slot[f.frame.splats()[j].id];
+            if (s < 0) continue;
+            const auto m = static_cast<std::size_t>(s);
+            g_dc[m] += d_sh_dc_from_d_colour(d_colour[j], before_clamp[j]);
+            g_logit[m] += d_logit_from_d_opacity(d_opacity[j], logit[m]);
+        }
+        // Adam (Kingma & Ba) with bias correction, every parameter of the level each step.
+        const double t = iteration + 1.0;
+        const double c1 = 1.0 - std::pow(kAdamBeta1, t), c2 = 1.0 - std::pow(kAdamBeta2, t);
+        for (std::size_t m = 0; m < members.size(); ++m) {
+            m_dc[m] = kAdamBeta1 * m_dc[m] + (1.0 - kAdamBeta1) * g_dc[m];
+            v_dc[m] = kAdamBeta2 * v_dc[m] + (1.0 - kAdamBeta2) * g_dc[m] * g_dc[m];
+            dc[m] -= options_.learning_rate_dc * (m_dc[m] / c1) / (glm::sqrt(v_dc[m] / c2) + kAdamEpsilon);
+            m_logit[m] = kAdamBeta1 * m_logit[m] + (1.0 - kAdamBeta1) * g_logit[m];
+            v_logit[m] = kAdamBeta2 * v_logit[m] + (1.0 - kAdamBeta2) * g_logit[m] * g_logit[m];
+            logit[m] -= options_.learning_rate_opacity * (m_logit[m] / c1) / (std::sqrt(v_logit[m] / c2) + kAdamEpsilon);
+            logit[m] = std::clamp(logit[m], -options_.logit_clamp, options_.logit_clamp);
+        }
+    }
+
+    for (std::size_t m = 0; m < members.size(); ++m) {
+        cloud.sh_dc[members[m]] = glm::vec3(dc[m]);
+        cloud.opacity_logits[members[m]] = static_cast<float>(logit[m]);
+    }
+    summary.refine_iterations = options_.refine_iterations;
+    summary.refine_psnr_after = mean_psnr();
+    dump("after");
+}
+
+}  // namespace splat_lod::bake::detail

@@ -1,0 +1,31 @@
+#include "splat_lod/core/lod_selection.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace splat_lod {
+
+double pixel_coverage(double cov_xx, double cov_xy, double cov_yy, double opacity) {
+    if (!(opacity > 1.0 / 255.0)) return 0.0;
+    const double det = cov_xx * cov_yy - cov_xy * cov_xy;
+    if (!(det > 0.0) || !(cov_xx > 0.0) || !(cov_yy > 0.0)) return 0.0;
+    const double level_set = 2.0 * std::log(255.0 * opacity);
+    // Σ⁻¹ₓₓ = yy / det and Σ⁻¹ᵧᵧ = xx / det: the chords through the centre where α falls to 1/255.
+    return 2.0 * std::min(std::sqrt(level_set * det / cov_yy), std::sqrt(level_set * det / cov_xx));
+}
+
+bool lod_selected(const LodRule& rule, int level, double coverage, double coverage_min, double coverage_max) {
+    using plugin_msgs::LodMode;
+    const bool all_levels = rule.mode == LodMode::insert_large || rule.mode == LodMode::full;
+    if (!all_levels && level != rule.finest_level) return false;
+    if (rule.mode == LodMode::baseline || rule.mode == LodMode::insert_large) return true;
+    // Eq. 6: not too large for its level (unless finest) and not too small (unless large enough
+    // on screen, or coarsest).
+    const bool not_too_large =
+        level == rule.finest_level || coverage_max < 0.0 || coverage / coverage_max <= rule.rel_max;
+    const bool not_too_small = level == rule.coarsest_level || coverage_min < 0.0 ||
+                               coverage >= rule.size_threshold_px || coverage / coverage_min >= rule.rel_min;
+    return not_too_large && not_too_small;
+}
+
+}  // namespace splat_lod

@@ -1,0 +1,200 @@
+#pragma once
+// Streams a chunked world (world_manifest.h) prefix by prefix, GL-free: a background
+// reader decodes ranges of chunk files (ChunkSource), the main thread hands them to the GPU side
+// (ResidencySink) within a per-frame byte budget, and GPU memory stays within a memory budget.
+// Events and one residency report per frame go out as plugin_msgs on an engine::MessageBus.
+//
+// "Level" here is always a chunk's stream level (world/stream_levels.h): level 4 is what can be
+// selected from any distance and stays resident, levels 3, 2, 1 are what is needed only within
+// their load distances. The renderer selects by each Gaussian's bake level, independently.
+//
+// Per frame (update()):
+//  1. plan: per chunk, the nearest distance z from the camera to its bounds and, per finer level
+//     l = 1..3, its margin m(l) = D(l) / z with D(l) the manifest's load distance
+//     (level_load_distance(), × load_distance_scale); a level is needed while some level at least as
+//     fine has m ≥ 1 (a chunk is a coarse prefix: level l needs levels l+1..4). Level 4 is always
+//     needed. Hysteresis: a loaded level stays wanted while m ≥ 1 / unload_distance_factor, and for
+//     unload_delay_frames frames after that. The wanted levels, in priority order — every chunk's
+//     level 4 first (nearest first), then finer levels by margin (largest first, then nearest, then
+//     coarser first) — are taken greedily while their bytes fit the memory budget: the target set.
+//  2. release: loaded levels no longer wanted are released ("evicted", no longer needed); levels
+//     being loaded but outside the target set are cancelled.
+//  3. collect finished reads; a read that failed, or returned the wrong number of Gaussians or
+//     Gaussians of another level, marks the chunk failed (one `failed` event).
+//  4. evict while resident bytes exceed the memory budget (only after the budget was lowered).
+//  5. upload loaded parts in priority order while the frame's bytes stay within the upload budget
+//     (strictly: the first part that does not fit ends the frame's uploads), evicting non-target
+//     levels when the memory budget needs room. Eviction order: levels outside the target set before
+//     target ones, then the reverse of the priority order — the finest level of the farthest chunk
+//     (smallest margin) first, level 4 of any chunk only when no finer level is left to evict.
+//  6. request reads for target levels (in priority order, coarse before fine within a chunk), at most
+//     max_requests_in_flight parts requested or waiting for upload.
+//  7. publish the ResidencyReport.
+//
+// Chunk groups and the cut (world_groups.h): when the manifest has groups, every chunk and group is a
+// node of a quadtree (a chunk's parent is its depth-1 group, a group's the group one depth up), and
+// step 1 first chooses the cut, top-down from the roots: a group is drawn instead of everything below
+// it when its pooling cell projects to at most group_cell_px pixels at the group's nearest distance
+// (cell_m · f / z ≤ group_cell_px; z only grows and the cell only shrinks going down, so exactly one
+// node on every root-to-chunk path is in the cut) and it has not failed; a chunk is in the cut when no
+// group above it is. Only nodes in the cut are needed (a group as its single level 4, a chunk as
+// before). Hysteresis: a loaded node that would be in the cut if the camera were
+// unload_distance_factor times nearer or farther (the cuts for group_cell_px × and ÷ that factor) is
+// kept, not drawn; any other node outside the cut is released at once, unless drawn (below): with
+// the band, the frame delay would only hold memory that the view does not use. Level 4 of nodes
+// outside the cut ranks after every finer level (evicted first).
+//   After the uploads (step 5b) the streamer decides what is drawn, through ResidencySink::show():
+// a node of the cut is drawn when its level 4 is complete; until then what it replaces stays drawn
+// (a group whose cut descendants are not all complete is drawn instead of them, and a cut group that
+// is not complete yet leaves its resident descendants drawn), and whatever is drawn is held resident.
+// So a camera that moves never sees a hole or a node drawn twice over the same ground where memory
+// allows, and a failed chunk shows its group where that is resident.
+//   The splat budget: group Gaussians are drawn whole, so the renderer's raised threshold cannot thin
+// them. With a bus, the streamer reads the renderer's plugin_msgs::SplatStatistics (a few frames late)
+// and, while a budget binds, scales group_cell_px for the cut by next_group_cell_scale()
+// (stream_policy.h), so that coarser groups replace more chunks; group_cell_scale() says by how much. group_cell_px = 0 or a manifest
+// without groups: every chunk is always in the cut (the behaviour without groups).
+//
+// Oversized levels: a level is read and uploaded in parts of at most
+// floor(upload_budget / bytes per Gaussian) Gaussians, so no frame ever uploads more than the
+// budget; the constructor rejects a budget below one Gaussian.
+//
+// Failures: a missing, truncated or corrupt chunk (anything the source throws) is reported once as
+// a `failed` event naming the chunk, the file and the problem, and logged as a warning. Levels of
+// that chunk coarser than the failed one stay resident (they were read and checked); the failed
+// level and finer ones are not requested again until retry_failed_after_frames frames have passed
+// (0: never). A manifest entry that cannot be right (check_chunk_entry()) fails at construction.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "engine/core/message_bus.h"
+#include "plugin_msgs/stream_events.h"
+#include "splat_lod/stream/stream_interfaces.h"
+#include "splat_lod/stream/stream_policy.h"
+#include "splat_lod/core/world_manifest.h"
+
+namespace splat_lod::world {
+
+struct StreamerSettings {
+    std::uint64_t upload_budget_bytes_per_frame = 8ull << 20;  // GPU bytes handed to the sink per update
+    std::uint64_t memory_budget_bytes = 512ull << 20;          // GPU bytes resident at the end of any update
+    int max_requests_in_flight = 8;                            // parts queued, being read or waiting for upload
+    int gpu_sh_degree = 3;  // the SH degree the GPU scene stores (sets the bytes per Gaussian)
+    PageLayout gpu_pages;   // how the GPU scene stores an upload (whole pages; stream_policy.h)
+    LodThresholds lod;      // S_T and S_rel_min, as the renderer uses them
+    // Multiplies the manifest's load distances. The bound 2·e·f / z holds on the view axis; off axis
+    // the perspective Jacobian enlarges a Gaussian by up to about 1 / cos²θ (θ: angle from the axis,
+    // ≈1.6 at the edge of a 75° field of view), so a game may load earlier with e.g. 1.5.
+    float load_distance_scale = 1.0f;
+    float unload_distance_factor = 1.25f;  // ≥ 1: a loaded level stays while z ≤ factor · load distance
+    int unload_delay_frames = 30;          // ... and for this many further frames
+    int retry_failed_after_frames = 0;     // a failed chunk is tried again after this many frames; 0: never
+    bool background_thread = true;         // false: reads run inside update() (tests, tools); same behaviour
+    // A chunk group replaces its chunks where its pooling cell projects to at most this many pixels
+    // (output pixels); 0: groups are never used. Chosen on the default world (docs/world_lod.md): 2 px
+    // keeps the overview at 1.2 Gaussians per pixel and 31–32 dB against the reference; 1 px draws
+    // 3–4 per pixel there, 3 px loses 5 dB.
+    float group_cell_px = 2.0f;
+};
+
+// What update() needs from the camera. The focal length is in pixels of the output image (LOD
+// selects by coverage at the output resolution, docs/algorithms.md §5).
+struct StreamView {
+    glm::vec3 camera_position{0.0f};
+    float focal_length_px = 1000.0f;
+    std::uint64_t frame_index = 0;
+};
+
+enum class LevelState {
+    absent,     // not loaded, not being loaded
+    requested,  // reads queued or in progress, nothing decoded yet
+    loaded,     // some parts decoded and waiting for upload, none uploaded
+    partial,    // some parts uploaded, not all
+    resident,   // every part uploaded (an empty level is always resident)
+};
+
+struct ChunkStatus {
+    std::string id;
+    float distance = 0.0f;                     // nearest distance at the last update
+    int finest_needed_level = 4;               // 1..4 at the last update
+    int finest_resident_level = 0;             // levels 4..this are all resident; 0 when level 4 is not
+    std::array<LevelState, kLevels> levels{};  // [l − 1]
+    std::uint64_t resident_bytes = 0;          // GPU bytes uploaded for this chunk
+    bool failed = false;
+    std::string failure;  // the message of the last failure
+    int depth = 0;        // 0: a chunk; ≥ 1: a chunk group of that depth
+    bool in_cut = true;   // chosen to be drawn at the last update (see "the cut")
+    bool drawn = false;   // drawn after the last update
+};
+
+struct StreamerStats {
+    std::uint64_t updates = 0;
+    std::uint64_t uploaded_bytes_last_update = 0;
+    std::uint64_t max_uploaded_bytes_per_update = 0;
+    std::uint64_t uploaded_bytes_total = 0;
+    std::uint64_t peak_resident_bytes = 0;  // measured after each upload and eviction
+    std::uint64_t reads_requested = 0;
+    std::uint64_t reads_discarded = 0;  // finished reads of levels cancelled meanwhile
+    std::uint64_t levels_evicted_for_memory = 0;
+    std::uint64_t levels_released_unneeded = 0;
+    std::uint64_t failures = 0;
+};
+
+class ChunkStreamer {
+public:
+    // `folder` is the manifest's folder (chunk files are relative to it). The source and the sink must
+    // outlive the streamer; `bus` may be null. Throws engine::Error on invalid settings.
+    ChunkStreamer(WorldManifest manifest, std::filesystem::path folder, StreamerSettings settings, ChunkSource& source,
+                  ResidencySink& sink, engine::MessageBus* bus = nullptr);
+    // Stops the reader (queued reads dropped, a read in progress finishes) and joins its thread. Does
+    // not call the sink: call release_all() first if the GPU side should be emptied.
+    ~ChunkStreamer();
+    ChunkStreamer(const ChunkStreamer&) = delete;
+    ChunkStreamer& operator=(const ChunkStreamer&) = delete;
+
+    // Once per frame on the main thread. Throws engine::Error on a non-finite camera position or a
+    // focal length that is not positive.
+    void update(const StreamView& view);
+    // Blocks until the reader has nothing queued or in progress (tests: update, wait_idle, update...).
+    void wait_idle();
+    // Releases every uploaded level through the sink (finest first) and cancels every read.
+    void release_all();
+
+    // Validated like the constructor's; budgets and rules apply from the next update (a lowered
+    // memory budget is enforced by eviction in that update).
+    void set_settings(const StreamerSettings& settings);
+    const StreamerSettings& settings() const;
+
+    std::uint64_t resident_bytes() const;
+    std::size_t chunk_count() const;  // the manifest's chunks
+    std::size_t group_count() const;  // the manifest's groups
+    float group_cell_scale() const;   // what a binding splat budget multiplies group_cell_px by now (≥ 1)
+    // A chunk's index (0 … chunk_count − 1) or a group's (chunk_count + its index in the manifest).
+    std::optional<std::size_t> find_chunk(std::string_view id) const;
+    // index < chunk_count() + group_count(): chunks, then groups.
+    ChunkStatus chunk_status(std::size_t index) const;
+    // The report published by the last update (all zero before the first).
+    const plugin_msgs::ResidencyReport& residency() const;
+    // The events of the last update, in the order they were published.
+    const std::vector<plugin_msgs::StreamEvent>& last_events() const;
+    const StreamerStats& stats() const;
+
+    struct State;  // defined in runtime/src/stream/stream_state.h
+
+private:
+    std::unique_ptr<State> state_;
+};
+
+// Throws engine::Error naming the first invalid setting.
+void validate(const StreamerSettings& settings);
+
+}  // namespace splat_lod::world

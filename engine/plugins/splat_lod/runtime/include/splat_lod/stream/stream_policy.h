@@ -1,0 +1,78 @@
+#pragma once
+// The stateless rules of chunk streaming (chunk_streamer.h), stated once so that the streamer,
+// its tests and a UI compute the same numbers: what a level costs in GPU memory, how far away a
+// chunk is, and from how far a finer level could be selected (world_manifest.h, docs/algorithms.md §3).
+#include <cstdint>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "splat_lod/core/world_manifest.h"
+
+namespace splat_lod::world {
+
+// The two thresholds of the selection rule that decide whether a Gaussian is "not too small"
+// (docs/algorithms.md §3): S ≥ S_T or S / S_min ≥ S_rel_min. plugin_msgs::LodSettings carries the same
+// values for the renderer; the streamer must use the ones the renderer draws with.
+struct LodThresholds {
+    float size_threshold_px = 2.0f;  // S_T
+    float rel_min = 0.5f;            // S_rel_min
+};
+
+// Bytes the GPU scene stores per Gaussian slot: one 64-byte GpuGaussian (splat_lod_shared.h) plus
+// its SH coefficients, 3·(d + 1)² floats with the DC term included (gpu_scene.cpp, pack_sh), i.e.
+// 64 + 12·(d + 1)² bytes: 76 at degree 0, 256 at degree 3.
+constexpr std::uint64_t gpu_bytes_per_gaussian(int sh_degree) {
+    const auto coefficients = static_cast<std::uint64_t>((sh_degree + 1) * (sh_degree + 1));
+    return 64 + 3 * 4 * coefficients;
+}
+
+// How the GPU scene stores one upload (gpu/gpu_scene.h): whole pages of `page_gaussians` slots plus
+// `page_overhead_bytes` per page (its cluster record). The defaults of StreamerSettings match the
+// incremental GPU scene: 256 slots (SPLAT_PROJECT_WORKGROUP_SIZE) and a 48-byte GpuCluster
+// (gpu_scene.cpp checks both).
+struct PageLayout {
+    std::uint32_t page_gaussians = 256;
+    std::uint32_t page_overhead_bytes = 48;
+};
+
+// GPU bytes of one upload of `count` Gaussians stored with SH degree `sh_degree` (0..3): whole
+// pages, so ceil(count / page)·(page·per Gaussian + overhead); none for none.
+constexpr std::uint64_t gpu_bytes(std::uint64_t count, int sh_degree, PageLayout page = {1, 0}) {
+    const std::uint64_t pages = (count + page.page_gaussians - 1) / page.page_gaussians;
+    return pages * (std::uint64_t(page.page_gaussians) * gpu_bytes_per_gaussian(sh_degree) + page.page_overhead_bytes);
+}
+
+// The most Gaussians one upload may hold within `budget` bytes: whole pages (0 when not even one
+// page fits).
+constexpr std::uint64_t max_gaussians_within(std::uint64_t budget, int sh_degree, PageLayout page) {
+    return budget / gpu_bytes(page.page_gaussians, sh_degree, page) * page.page_gaussians;
+}
+
+// Euclidean distance from `point` to the box of the chunk's Gaussian means (0 inside it). Every
+// Gaussian of the chunk is at least this far from the camera, which is what makes it a bound.
+float nearest_distance(const ChunkEntry& chunk, const glm::vec3& point);
+
+// The largest distance at which some Gaussian of stream level `level` (1..3) of a chunk could be
+// selected, from the manifest's per-level bounds (world_manifest.h):
+//   f · max(2·extent_max / S_T, 2·extent_per_min_coverage_max / S_rel_min),
+// +∞ when extent_per_min_coverage_max < 0 (a Gaussian of the level has no coverage_min, so the
+// "not too small" test never rejects it), 0 for an empty level. Level 4 is not decided by distance
+// (every chunk keeps its coarse prefix), so asking for it is a programming error.
+double level_load_distance(const ChunkEntry& chunk, int level, double focal_length_px, const LodThresholds& lod);
+
+// The splat budget and the cut (chunk_streamer.h): the renderer meets a per-frame splat budget on the
+// GPU by raising its size threshold, which moves the per-Gaussian cut inside chunks but cannot make a
+// chunk group coarser (group Gaussians are drawn whole). Fed with the renderer's latest statistics
+// (a few frames late), this returns the streamer's next scale of group_cell_px: when the
+// selection wanted `unbudgeted` > `budget` Gaussians it grows toward scale·√(unbudgeted / budget) (a
+// group's count falls with the square of its switch), at most 2^(1/4) per call; below 70 % of the
+// budget it shrinks by 2^(1/8) per call, never below 1; in between it stays. 1 without a budget.
+float next_group_cell_scale(float scale, std::uint64_t unbudgeted, std::uint64_t budget);
+
+// An empty string when the entry can be streamed, otherwise what is wrong with it (prefix counts
+// not ordered coarse to fine, no bytes per record, counts beyond the file size). The streamer marks
+// such a chunk failed without reading it.
+std::string check_chunk_entry(const ChunkEntry& chunk);
+
+}  // namespace splat_lod::world

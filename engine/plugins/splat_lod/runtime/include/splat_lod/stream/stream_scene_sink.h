@@ -1,0 +1,33 @@
+#pragma once
+// The ResidencySink that puts streamed chunk levels into a scene: one node with a SplatComponent
+// per uploaded part, under a root node the game owns. The splat pass's incremental GPU scene
+// (gpu/gpu_scene.h) then uploads exactly that part's pages and frees them when the node goes, so
+// the streamer's byte counts (stream_policy.h, PageLayout) are the GPU's.
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/scene/node.h"
+#include "splat_lod/stream/stream_interfaces.h"
+
+namespace splat_lod::world {
+
+class SceneResidencySink final : public ResidencySink {
+public:
+    // `root` must outlive the sink; its other children are left alone.
+    explicit SceneResidencySink(engine::Node& root, int sh_degree_cap = kMaxShDegree);
+    void upload(const LevelPart& part) override;
+    void release(const std::string& chunk_id, int level) override;
+    // Sets SplatComponent::visible of every node of the chunk or group.
+    void show(const std::string& chunk_id, bool visible) override;
+
+    std::size_t resident_parts() const;
+
+private:
+    engine::Node& root_;
+    int sh_degree_cap_;
+    std::map<std::pair<std::string, int>, std::vector<engine::Node*>> nodes_;
+};
+
+}  // namespace splat_lod::world

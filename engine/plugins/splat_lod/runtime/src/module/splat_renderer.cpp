@@ -1,0 +1,44 @@
+// The public handle to the splat pass (splat_lod/splat_renderer.h).
+#include "splat_lod/splat_renderer.h"
+
+#include "engine/core/error.h"
+#include "engine/render/renderer.h"
+#include "passes/splat_pass.h"
+
+namespace splat_lod {
+
+SplatRenderer::SplatRenderer(engine::Renderer& renderer) : pass_(find_splat_pass(renderer)) {
+    if (pass_ == nullptr) engine::fail("splat_lod: the plugin is not started in this renderer (no splat pass)");
+}
+
+SplatPassSettings& SplatRenderer::settings() { return pass_->settings; }
+const SplatPassSettings& SplatRenderer::settings() const { return pass_->settings; }
+
+const std::optional<plugin_msgs::SplatStatistics>& SplatRenderer::latest_statistics() const {
+    return pass_->latest_statistics();
+}
+
+void SplatRenderer::wait_for_statistics(engine::MessageBus& bus) { pass_->wait_for_statistics(bus); }
+
+std::uint32_t SplatRenderer::key_capacity() const { return pass_->key_capacity(); }
+
+SplatMemory SplatRenderer::memory() const {
+    const gpu::GpuScene& scene = pass_->scene();
+    SplatMemory m;
+    m.live_gaussians = scene.live_gaussians();
+    m.gaussian_count = scene.gaussian_count();
+    m.pages_in_use = scene.pages_in_use();
+    m.free_pages = scene.free_pages();
+    m.page_bytes = scene.page_bytes();
+    m.last_upload_bytes = scene.last_upload_bytes();
+    m.sh_stride = scene.sh_stride();
+    return m;
+}
+
+void SplatRenderer::reserve(std::uint64_t gaussians, int sh_degree) { pass_->scene().reserve(gaussians, sh_degree); }
+
+upscale::GradientImage SplatRenderer::read_low_res_image() const { return pass_->read_low_res_image(); }
+
+std::vector<float> SplatRenderer::read_low_res_front_depth() const { return pass_->read_low_res_front_depth(); }
+
+}  // namespace splat_lod

@@ -1,0 +1,122 @@
+// The chunk streamer's LOD cut over the quadtree of chunk groups (chunk_streamer.h, "the cut"): which
+// nodes the view wants drawn (step 1) and which are drawn now, given what is resident (step 5b).
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <tuple>
+
+#include "splat_lod/core/chunk_quadtree.h"
+#include "stream_state.h"
+
+namespace splat_lod::world {
+namespace {
+
+bool level4_complete(const ChunkSlot& slot) {
+    const LevelSlot& s = slot.level(kLevels);
+    return !slot.failure_permanent && !slot.blocked(kLevels) && !s.parts.empty() && s.complete();
+}
+
+bool level4_any(const ChunkSlot& slot) {
+    return !slot.failure_permanent && slot.level(kLevels).any_uploaded();
+}
+
+}  // namespace
+
+void ChunkStreamer::State::link_groups() {
+    if (manifest.groups.empty()) return;
+    const int count = chunks_per_side(manifest);
+    std::map<std::tuple<int, int, int>, std::size_t> by_cell;  // (depth, x, z) → slot of a group
+    for (std::size_t k = manifest.chunks.size(); k < chunks.size(); ++k)
+        by_cell[{chunks[k].depth, chunks[k].entry->cell.x, chunks[k].entry->cell.y}] = k;
+    for (std::size_t k = 0; k < chunks.size(); ++k) {
+        ChunkSlot& slot = chunks[k];
+        const glm::ivec2 up = slot.depth == 0 ? group_of_chunk(slot.entry->cell, count, 1) : slot.entry->cell / 2;
+        // Groups of a non-negative index only: floor and truncation agree.
+        const auto it = by_cell.find({slot.depth + 1, up.x, up.y});
+        if (it == by_cell.end()) continue;
+        slot.parent = it->second;
+        chunks[it->second].children.push_back(k);
+    }
+}
+
+void ChunkStreamer::State::choose_cut(const StreamView& view) {
+    const bool groups_on = settings.group_cell_px > 0.0f && !manifest.groups.empty();
+    // The cut for a switch of `pixels_max`; `covered`: a group above is in it.
+    const auto cut = [&](double pixels_max, auto&& assign) {
+        std::function<void(std::size_t, bool)> mark = [&](std::size_t k, bool covered) {
+            const ChunkSlot& slot = chunks[k];
+            bool in = !covered;
+            if (slot.depth > 0) {
+                const double pixels = static_cast<double>(slot.entry->cell_m) * view.focal_length_px / slot.distance;
+                const bool coarse_enough = slot.distance > 0.0f && pixels <= pixels_max;
+                in = groups_on && !covered && coarse_enough && !slot.failed && !slot.failure_permanent;
+            }
+            assign(k, in);
+            for (const std::size_t c : slot.children) mark(c, covered || in);
+        };
+        for (std::size_t k = 0; k < chunks.size(); ++k)
+            if (chunks[k].parent == ChunkSlot::kNoSlot) mark(k, false);
+    };
+    const double switch_px = settings.group_cell_px * double{group_cell_scale}, band = settings.unload_distance_factor;
+    cut(switch_px, [&](std::size_t k, bool in) {
+        chunks[k].in_cut = in;
+        chunks[k].near_cut = false;
+    });
+    // The hysteresis band: what would be in the cut if the camera were `band` times nearer or
+    // farther stays resident (not drawn) once loaded, so that small moves do not reload it.
+    for (const double pixels_max : {switch_px * band, switch_px / band})
+        cut(pixels_max,
+            [&](std::size_t k, bool in) { chunks[k].near_cut = chunks[k].near_cut || (in && !chunks[k].in_cut); });
+}
+
+void ChunkStreamer::State::decide_drawn() {
+    for (ChunkSlot& slot : chunks) slot.drawn = false;
+    // ready: every node of the cut below (or at) k is complete, so k's part of the view can be drawn fine.
+    std::function<bool(std::size_t)> ready = [&](std::size_t k) {
+        const ChunkSlot& slot = chunks[k];
+        if (slot.in_cut) return level4_complete(slot);
+        if (slot.children.empty()) return false;
+        for (const std::size_t c : slot.children)
+            if (!ready(c)) return false;
+        return true;
+    };
+    // Below a cut node that is not complete: what is resident there stays drawn, coarsest first.
+    std::function<void(std::size_t)> fallback = [&](std::size_t k) {
+        ChunkSlot& slot = chunks[k];
+        if (level4_any(slot)) {
+            slot.drawn = true;
+            return;
+        }
+        for (const std::size_t c : slot.children) fallback(c);
+    };
+    std::function<bool(std::size_t)> any_below = [&](std::size_t k) {
+        for (const std::size_t c : chunks[k].children)
+            if (level4_any(chunks[c]) || any_below(c)) return true;
+        return false;
+    };
+    std::function<void(std::size_t)> draw = [&](std::size_t k) {
+        ChunkSlot& slot = chunks[k];
+        if (slot.in_cut) {
+            if (level4_complete(slot) || (level4_any(slot) && !any_below(k)))
+                slot.drawn = true;
+            else
+                for (const std::size_t c : slot.children) fallback(c);
+            return;
+        }
+        if (!ready(k) && level4_complete(slot)) {
+            slot.drawn = true;  // the coarse node stays until everything that replaces it is in
+            return;
+        }
+        for (const std::size_t c : slot.children) draw(c);
+    };
+    for (std::size_t k = 0; k < chunks.size(); ++k)
+        if (chunks[k].parent == ChunkSlot::kNoSlot) draw(k);
+    for (ChunkSlot& slot : chunks) {
+        if (slot.drawn == slot.shown) continue;
+        slot.shown = slot.drawn;
+        sink.show(slot.entry->id, slot.drawn);
+    }
+}
+
+}  // namespace splat_lod::world

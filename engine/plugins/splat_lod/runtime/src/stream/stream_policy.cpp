@@ -1,0 +1,68 @@
+// The stateless streaming rules (stream_policy.h).
+#include "splat_lod/stream/stream_policy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/glm.hpp>
+
+#include "engine/core/error.h"
+
+namespace splat_lod::world {
+
+float nearest_distance(const ChunkEntry& chunk, const glm::vec3& point) {
+    const glm::vec3 lo = glm::min(chunk.bounds_min, chunk.bounds_max);
+    const glm::vec3 hi = glm::max(chunk.bounds_min, chunk.bounds_max);
+    return glm::length(point - glm::clamp(point, lo, hi));
+}
+
+double level_load_distance(const ChunkEntry& chunk, int level, double focal_length_px, const LodThresholds& lod) {
+    if (level < 1 || level >= kLevels)
+        engine::fail("splat_lod::world::level_load_distance(): level must be 1..3, got " + std::to_string(level));
+    const ChunkLevel& bounds = chunk.levels[static_cast<std::size_t>(level - 1)];
+    // Always needed: some Gaussian has no coverage_min, so only "too large" could hide it.
+    if (bounds.extent_per_min_coverage_max < 0.0f) return std::numeric_limits<double>::infinity();
+    const double by_size = 2.0 * bounds.extent_max * focal_length_px / lod.size_threshold_px;
+    const double by_ratio = 2.0 * bounds.extent_per_min_coverage_max * focal_length_px / lod.rel_min;
+    const double distance = std::max(by_size, by_ratio);
+    return distance > 0.0 ? distance : 0.0;  // NaN and negative bounds: never needed by distance
+}
+
+std::string check_chunk_entry(const ChunkEntry& chunk) {
+    const auto& counts = chunk.prefix_count;
+    for (int l = 1; l < kLevels; ++l)
+        if (counts[static_cast<std::size_t>(l)] > counts[static_cast<std::size_t>(l - 1)])
+            return "manifest prefix counts are not ordered coarse to fine (Gaussians with level >= " +
+                   std::to_string(l + 1) + ": " + std::to_string(counts[static_cast<std::size_t>(l)]) +
+                   ", with level >= " + std::to_string(l) + ": " +
+                   std::to_string(counts[static_cast<std::size_t>(l - 1)]) + ")";
+    if (counts[0] > 0 && chunk.vertex_bytes == 0) return "manifest gives 0 bytes per Gaussian record";
+    if (chunk.vertex_bytes > 0 &&
+        counts[0] > (std::numeric_limits<std::uint64_t>::max() - chunk.header_bytes) / chunk.vertex_bytes)
+        return "manifest record count overflows a 64-bit byte count";
+    if (chunk.prefix_bytes(1) != chunk.file_bytes)
+        return "manifest says " + std::to_string(chunk.file_bytes) + " file bytes but " + std::to_string(counts[0]) +
+               " records of " + std::to_string(chunk.vertex_bytes) + " bytes after a " +
+               std::to_string(chunk.header_bytes) + "-byte header make " + std::to_string(chunk.prefix_bytes(1));
+    for (int axis = 0; axis < 3; ++axis)
+        if (!std::isfinite(chunk.bounds_min[axis]) || !std::isfinite(chunk.bounds_max[axis]))
+            return "manifest bounds are not finite";
+    for (const ChunkLevel& level : chunk.levels)
+        if (std::isnan(level.extent_max) || std::isnan(level.extent_per_min_coverage_max))
+            return "manifest level bounds are NaN";
+    return {};
+}
+
+float next_group_cell_scale(float scale, std::uint64_t unbudgeted, std::uint64_t budget) {
+    if (budget == 0 || !std::isfinite(scale) || scale < 1.0f) return 1.0f;
+    const double ratio = static_cast<double>(unbudgeted) / static_cast<double>(budget);
+    if (ratio > 1.0) {
+        const double wanted = static_cast<double>(scale) * std::sqrt(ratio);
+        return static_cast<float>(std::min({wanted, static_cast<double>(scale) * std::exp2(0.25), 1024.0}));
+    }
+    if (ratio < 0.7) return std::max(1.0f, scale / static_cast<float>(std::exp2(0.125)));
+    return scale;
+}
+
+}  // namespace splat_lod::world

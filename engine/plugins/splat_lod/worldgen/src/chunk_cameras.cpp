@@ -1,0 +1,56 @@
+// Bake cameras of a chunk (world/chunk_cameras.h).
+#include "splat_lod/synth/synth_common.h"
+
+#include "chunk_cameras.h"
+
+#include <cmath>
+#include <string>
+
+namespace splat_lod::world {
+namespace {
+
+// Horizontal distance from the chunk's middle (in half-diagonals) and height above the ground
+// under the eye (metres): a walker at the chunk's edge, low flight, and a high overview.
+struct Ring {
+    float distance;
+    float height;
+};
+constexpr Ring kRings[kChunkCameraRings] = {{1.4f, 1.7f}, {3.0f, 25.0f}, {6.0f, 80.0f}};
+
+}  // namespace
+
+std::vector<eval::CameraPose> chunk_camera_poses(const WorldTerrain& terrain, const ChunkSquare& square) {
+    const glm::vec2 middle = 0.5f * (square.lo + square.hi);
+    const glm::vec2 span = square.hi - square.lo;
+    const float half_diagonal = 0.5f * std::sqrt(glm::dot(span, span));
+    // The mean ground height over a 3 × 3 sample of the square: where the views aim.
+    float ground = 0.0f;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const glm::vec2 p = square.lo + span * glm::vec2(0.25f + 0.25f * static_cast<float>(i), 0.25f + 0.25f * static_cast<float>(j));
+            ground += terrain.height(p.x, p.y) / 9.0f;
+        }
+    const glm::vec3 target(middle.x, ground + 1.5f, middle.y);
+    std::vector<eval::CameraPose> poses;
+    for (int r = 0; r < kChunkCameraRings; ++r)
+        for (int k = 0; k < kChunkCamerasPerRing; ++k) {
+            // Rings are turned against each other so that no two views share an azimuth.
+            const double azimuth = synth::kTwoPiF * (static_cast<double>(k) + static_cast<double>(r) / kChunkCameraRings) /
+                                   kChunkCamerasPerRing;
+            const synth::SinCos sc = synth::sin_cos(azimuth);
+            const glm::vec2 at = middle + glm::vec2(sc.cos, sc.sin) * (kRings[r].distance * half_diagonal);
+            eval::CameraPose pose;
+            pose.name = "chunk ring " + std::to_string(r) + " view " + std::to_string(k);
+            pose.eye = glm::vec3(at.x, terrain.height(at.x, at.y) + kRings[r].height, at.y);
+            const glm::vec3 to_target = target - pose.eye;
+            pose.focus_distance = std::sqrt(glm::dot(to_target, to_target));
+            pose.forward = to_target / pose.focus_distance;
+            const glm::vec3 side = glm::cross(pose.forward, glm::vec3(0.0f, 1.0f, 0.0f));
+            pose.up = glm::normalize(glm::cross(side, pose.forward));
+            pose.fov_y = static_cast<float>(kChunkCameraFovDeg * synth::kPi / 180.0);
+            poses.push_back(pose);
+        }
+    return poses;
+}
+
+}  // namespace splat_lod::world

@@ -1,0 +1,379 @@
+// Sharded world bakes (world/world_shards.h): a shard bakes its chunks into the staging folder and
+// writes its record; the merge checks the records against the files, writes the meshes, renames the
+// staging generation to gen-<n> and commits world.json like an unsharded run (world_generator.cpp).
+#include "splat_lod/worldgen/world_shards.h"
+
+#include <charconv>
+#include <map>
+#include <optional>
+#include <set>
+#include <span>
+#include <system_error>
+#include <utility>
+
+#include "engine/core/error.h"
+#include "engine/core/file_io.h"
+#include "splat_lod/worldgen/world_lock.h"
+#include "world_build.h"
+#include "world_folder.h"
+#include "world_layout.h"
+#include "splat_lod/worldgen/world_meshes.h"
+
+namespace splat_lod::world {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The staging folder's generation: renamed to gen-<n> by the merge.
+constexpr const char* kStagedGeneration = "gen";
+
+void check_shard(const WorldShard& shard) {
+    if (shard.count < 1 || shard.count > kMaxShards || shard.index < 1 || shard.index > shard.count)
+        engine::fail("shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) +
+                     ": expected 1 <= I <= N <= " + std::to_string(kMaxShards) + " (I is 1-based)");
+}
+
+std::optional<std::size_t> whole_number(const std::string& text) {
+    std::size_t n = 0;
+    const char* const last = text.data() + text.size();
+    const auto [end, error] = std::from_chars(text.data(), last, n);
+    if (text.empty() || error != std::errc() || end != last) return std::nullopt;
+    return n;
+}
+
+// I and N of a record's name "shard-<I>-of-<N>.json"; nullopt for any other name.
+std::optional<WorldShard> record_shard(const std::string& name) {
+    const std::string prefix = "shard-", middle = "-of-", suffix = ".json";
+    if (name.size() <= prefix.size() + middle.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+        return std::nullopt;
+    const std::string numbers = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+    const std::size_t split = numbers.find(middle);
+    if (split == std::string::npos) return std::nullopt;
+    const auto index = whole_number(numbers.substr(0, split)),
+               count = whole_number(numbers.substr(split + middle.size()));
+    if (!index || !count) return std::nullopt;
+    const WorldShard shard{*index, *count};
+    if (shard.count < 1 || shard.count > kMaxShards || shard.index < 1 || shard.index > shard.count ||
+        shard_record_name(shard) != name)
+        return std::nullopt;
+    return shard;
+}
+
+// Throws unless the file holds exactly what the entry records: its size, the header's and every
+// record block's checksum (world_manifest.h).
+void check_chunk_file(const fs::path& path, const ChunkEntry& entry) {
+    std::error_code ec;
+    const auto size = fs::file_size(path, ec);
+    if (ec) engine::fail(path.string() + ": missing (" + ec.message() + ")");
+    if (size != entry.file_bytes)
+        engine::fail(path.string() + ": " + std::to_string(size) + " bytes, the shard's record says " +
+                     std::to_string(entry.file_bytes));
+    const std::vector<std::uint8_t> bytes = engine::read_binary_file(path);
+    const std::span<const std::uint8_t> all(bytes);
+    if (checksum(all.first(entry.header_bytes)) != entry.header_crc32)
+        engine::fail(path.string() + ": the header's checksum is not the one its shard recorded");
+    for (const RecordBlock& block : record_blocks(entry, 0, entry.prefix_count[0])) {
+        const std::uint64_t begin = entry.header_bytes + block.begin * entry.vertex_bytes;
+        if (checksum(all.subspan(begin, (block.end - block.begin) * entry.vertex_bytes)) !=
+            entry.record_crc32[block.index])
+            engine::fail(path.string() + ": byte " + std::to_string(begin) + ": records [" +
+                         std::to_string(block.begin) + ", " + std::to_string(block.end) +
+                         ") do not match the checksum its shard recorded");
+    }
+}
+
+// The chunk entries of a shard's record (paths relative to the staging folder), each checked: made
+// with these options, one of the shard's chunks, named as the shards name them, its file matching.
+std::vector<ChunkEntry> read_shard_record(const WorldOptions& o, const fs::path& staging, const WorldShard& shard) {
+    const fs::path path = staging / shard_record_name(shard);
+    const WorldManifest record = read_world_manifest(path);
+    if (record.seed != o.seed || record.size_m != o.size_m || record.chunk_size_m != o.chunk_size_m ||
+        record.density != o.density || record.generator != generator_settings(o))
+        engine::fail(path.string() + ": made with other options than these");
+    const std::vector<ChunkSlot> slots = chunk_slots(o);
+    std::set<std::pair<int, int>> cells;
+    for (const std::size_t k : shard_chunk_indices(slots.size(), shard))
+        cells.insert({slots[k].cell.x, slots[k].cell.y});
+    for (const ChunkEntry& c : record.chunks) {
+        if (!cells.erase({c.cell.x, c.cell.y}) || c.id != chunk_id(c.cell) ||
+            c.file != chunk_file(kStagedGeneration, c.cell))
+            engine::fail(path.string() + ": chunk " + c.id + " is not one of the shard's or not where shards write it");
+        check_chunk_file(staging / c.file, c);
+    }
+    if (!cells.empty()) engine::fail(path.string() + ": does not list every chunk of the shard");
+    return record.chunks;
+}
+
+// The shards' records in the staging folder, by name.
+std::vector<WorldShard> shard_records(const fs::path& staging) {
+    std::vector<WorldShard> shards;
+    std::error_code ec;
+    for (fs::directory_iterator it(staging, ec), end; !ec && it != end; it.increment(ec))
+        if (const auto shard = record_shard(it->path().filename().string())) shards.push_back(*shard);
+    if (ec) engine::fail(staging.string() + ": cannot list the staging folder: " + ec.message());
+    return shards;
+}
+
+std::string listed(const std::vector<std::string>& items, std::size_t most = 8) {
+    std::string text;
+    for (std::size_t i = 0; i < items.size() && i < most; ++i) text += (i ? ", " : "") + items[i];
+    if (items.size() > most) text += " and " + std::to_string(items.size() - most) + " more";
+    return text;
+}
+
+// The error for chunks that no record lists: which chunks, and which shards of every shard count
+// seen have no record.
+[[noreturn]] void fail_missing(const WorldOptions& o, const fs::path& staging, const std::vector<WorldShard>& records,
+                               const std::vector<std::string>& missing_chunks) {
+    std::map<std::size_t, std::set<std::size_t>> done;  // N → the I with a record
+    for (const WorldShard& shard : records) done[shard.count].insert(shard.index);
+    std::vector<std::string> missing_shards;
+    for (const auto& [count, indices] : done)
+        for (std::size_t index = 1; index <= count; ++index)
+            if (!indices.count(index)) missing_shards.push_back(std::to_string(index) + "/" + std::to_string(count));
+    const std::string shards =
+        records.empty() ? "no shard has finished (no " + (staging / "shard-<I>-of-<N>.json").string() + ")"
+                        : "missing shards " + listed(missing_shards, 32) + " (no record in " + staging.string() + ")";
+    engine::fail(o.output.string() + ": cannot merge: " + shards + "; " + std::to_string(missing_chunks.size()) +
+                 " of " + std::to_string(chunk_slots(o).size()) + " chunks missing: " + listed(missing_chunks) +
+                 "; run the missing shards, then merge again (nothing was written)");
+}
+
+// Every chunk's entry from the records, in grid order, paths relative to the staging folder.
+std::vector<ChunkEntry> gather_chunks(const WorldOptions& o, const fs::path& staging) {
+    const std::vector<WorldShard> records = shard_records(staging);
+    std::map<std::pair<int, int>, ChunkEntry> entries;
+    for (const WorldShard& shard : records)
+        for (ChunkEntry& c : read_shard_record(o, staging, shard))
+            entries.emplace(std::pair{c.cell.x, c.cell.y}, std::move(c));
+    std::vector<ChunkEntry> chunks;
+    std::vector<std::string> missing;
+    for (const ChunkSlot& slot : chunk_slots(o)) {
+        const auto it = entries.find({slot.cell.x, slot.cell.y});
+        if (it == entries.end())
+            missing.push_back(chunk_id(slot.cell));
+        else
+            chunks.push_back(std::move(it->second));
+    }
+    if (!missing.empty()) fail_missing(o, staging, records, missing);
+    return chunks;
+}
+
+// Removes everything in the staged generation that `m` (paths relative to the staging folder) does
+// not name and the meshes are not: temporaries of killed shards, anything else put there.
+void prune_staged_generation(const fs::path& staging, const WorldManifest& m) {
+    std::set<fs::path> keep;
+    for (const ChunkEntry& c : m.chunks) keep.insert(c.file);
+    for (const char* mesh : {kHouseMesh, kFenceMesh, kPostMesh, kTerrainMesh})
+        keep.insert(fs::path(kStagedGeneration) / mesh);
+    std::vector<fs::path> remove;
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(staging / kStagedGeneration, ec), end; !ec && it != end; it.increment(ec))
+        if (!it->is_directory(ec) && !keep.count(it->path().lexically_relative(staging))) remove.push_back(it->path());
+    for (const fs::path& path : remove) fs::remove(path, ec);
+}
+
+// Whether the world.json in `output` names files in `generation` (unreadable: assumed so, to keep them).
+bool manifest_names(const fs::path& output, const fs::path& generation) {
+    std::error_code ec;
+    if (!fs::exists(output / kManifestFileName, ec)) return false;
+    try {
+        const WorldManifest current = read_world_manifest(output / kManifestFileName);
+        return !current.chunks.empty() && *current.chunks.front().file.begin() == generation;
+    } catch (const engine::Error&) {
+        return true;
+    }
+}
+
+// Renames the staged generation to `generation` and commits `m` (naming it); on failure before the
+// commit the staged files go back to the staging folder, for another merge.
+void commit_staged(const WorldOptions& o, const fs::path& staging, const fs::path& generation, const WorldManifest& m) {
+    std::error_code ec;
+    fs::rename(staging / kStagedGeneration, o.output / generation, ec);
+    if (ec)
+        engine::fail((staging / kStagedGeneration).string() + ": cannot rename to " + (o.output / generation).string() +
+                     ": " + ec.message());
+    try {
+        engine::sync_folder(o.output);
+        engine::sync_folder(staging);
+        write_world_manifest(o.output / kManifestFileName, m);  // the commit
+    } catch (...) {
+        if (!manifest_names(o.output, generation)) fs::rename(o.output / generation, staging / kStagedGeneration, ec);
+        throw;
+    }
+}
+
+WorldResult cached_result(WorldManifest manifest, const fs::path& folder, Clock::time_point start) {
+    WorldResult result;
+    result.manifest = std::move(manifest);
+    result.summary.cached = true;
+    summarise_manifest(result.manifest, folder, result.summary);
+    result.summary.seconds = seconds_since(start);
+    return result;
+}
+
+}  // namespace
+
+WorldShard parse_world_shard(const std::string& text) {
+    const auto bad = [&](const std::string& problem) { engine::fail("--shard \"" + text + "\": " + problem); };
+    const std::size_t slash = text.find('/');
+    const auto index = slash == std::string::npos ? std::nullopt : whole_number(text.substr(0, slash));
+    const auto count = slash == std::string::npos ? std::nullopt : whole_number(text.substr(slash + 1));
+    if (!index || !count)
+        bad("expected I/N: the shard's index I, 1-based, and the number of shards N, e.g. 3/8 (decimal digits only)");
+    if (*count < 1 || *count > kMaxShards) bad("the number of shards N must be 1 to " + std::to_string(kMaxShards));
+    if (*index < 1 || *index > *count)
+        bad("the shard's index is 1-based: 1 <= I <= N (here 1 to " + std::to_string(*count) + ")");
+    return {*index, *count};
+}
+
+std::vector<std::size_t> shard_chunk_indices(std::size_t chunks, const WorldShard& shard) {
+    check_shard(shard);
+    std::vector<std::size_t> indices;
+    for (std::size_t k = shard.index - 1; k < chunks; k += shard.count) indices.push_back(k);
+    return indices;
+}
+
+fs::path staging_folder(const WorldOptions& o) {
+    return staging_folder_name(o.seed, o.size_m, o.chunk_size_m, o.density, generator_settings(o));
+}
+
+std::string shard_record_name(const WorldShard& shard) {
+    return "shard-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + ".json";
+}
+
+WorldResult bake_world_shard(const WorldOptions& o, const WorldShard& shard) {
+    validate(o);
+    check_shard(shard);
+    const auto start = Clock::now();
+    if (!o.force)
+        if (auto cached = find_cached_world(o)) return cached_result(std::move(*cached), o.output, start);
+    std::string cache_note;  // why the shard's own record was not reused
+    const fs::path staging = o.output / staging_folder(o);
+    std::error_code ec;
+    fs::create_directories(staging, ec);
+    if (ec) engine::fail(staging.string() + ": cannot create the staging folder: " + ec.message());
+    const FolderFlock lock(staging, false);
+    if (!lock.held())
+        engine::fail(lock.busy()
+                         ? staging.string() + ": a merge is using this staging folder (it holds its lock); wait for it"
+                         : lock.problem());
+
+    const std::vector<ChunkSlot> all = chunk_slots(o);
+    if (!o.force && fs::exists(staging / shard_record_name(shard), ec)) {
+        try {
+            WorldManifest record = read_world_manifest(staging / shard_record_name(shard));
+            record.chunks = read_shard_record(o, staging, shard);  // checks every file
+            return cached_result(std::move(record), staging, start);
+        } catch (const engine::Error& e) {
+            cache_note = e.what();  // baked again
+        }
+    }
+
+    WorldResult result;
+    WorldSummary& s = result.summary;
+    s.cache_note = cache_note;
+    const WorldTerrain terrain(o.seed, o.size_m);
+    const WorldLayout layout = make_world_layout(terrain, o.seed);
+    std::vector<ChunkSlot> slots;
+    for (const std::size_t k : shard_chunk_indices(all.size(), shard)) slots.push_back(all[k]);
+    auto stage_start = Clock::now();
+    const fs::path generation = staging_folder(o) / kStagedGeneration;
+    std::vector<ChunkResult> chunks = build_chunks(o, content_context(o, terrain, layout), generation, slots, start);
+    s.stages.push_back({"chunks (content, bake, write)", seconds_since(stage_start)});
+
+    stage_start = Clock::now();
+    if (o.progress) o.progress({"shard record", chunks.size(), chunks.size(), 0, seconds_since(start), 0.0});
+    WorldManifest& record = result.manifest;
+    record = manifest_without_chunks(o, layout, kStagedGeneration);
+    record.props.clear();  // the merge writes the meshes and names them
+    record.terrain_mesh.clear();
+    add_chunk_results(chunks, record, s);
+    for (ChunkEntry& c : record.chunks) c.file = c.file.lexically_relative(staging_folder(o));
+    write_world_manifest(staging / shard_record_name(shard), record);
+    s.stages.push_back({"shard record", seconds_since(stage_start)});
+    summarise_manifest(record, staging, s);
+    s.fine_gaussians = s.gaussians_per_level[0];
+    s.seconds = seconds_since(start);
+    return result;
+}
+
+WorldResult merge_world_shards(const WorldOptions& o) {
+    validate(o);
+    const auto start = Clock::now();
+    std::error_code ec;
+    if (!fs::is_directory(o.output, ec)) engine::fail(o.output.string() + ": cannot merge: no such folder");
+    const WorldFolderLock lock(o.output, WorldFolderLock::Mode::write);
+    std::string cache_note;
+    if (!o.force)
+        if (auto cached = find_cached_world(o, &cache_note)) {
+            if (lock.held()) remove_unnamed_files(o.output, *cached);
+            return cached_result(std::move(*cached), o.output, start);
+        }
+    lock.require();
+    const fs::path staging = o.output / staging_folder(o);
+    if (!fs::is_directory(staging, ec))
+        engine::fail(o.output.string() + ": cannot merge: no shard of these options has run here (no " +
+                     staging.string() + ")");
+    std::optional<FolderFlock> staging_lock(std::in_place, staging, true);
+    if (!staging_lock->held())
+        engine::fail(staging_lock->busy() ? staging.string() +
+                                                ": a shard is still baking into it (it holds the staging "
+                                                "folder's lock); wait for every shard to finish, then merge"
+                                          : staging_lock->problem());
+
+    WorldResult result;
+    WorldSummary& s = result.summary;
+    s.cache_note = cache_note;
+    if (o.progress) o.progress({"merge", 0, 0, 0, seconds_since(start), -1.0});
+    auto stage_start = Clock::now();
+    WorldManifest staged;
+    staged.chunks = gather_chunks(o, staging);
+    s.stages.push_back({"check shards", seconds_since(stage_start)});
+
+    // Everything that needs all chunks goes here, after the check (chunk groups' coarse levels).
+    stage_start = Clock::now();
+    if (o.progress) o.progress({"meshes", 0, 0, 0, seconds_since(start), -1.0});
+    const WorldTerrain terrain(o.seed, o.size_m);
+    const WorldLayout layout = make_world_layout(terrain, o.seed);
+    write_prop_meshes(staging / kStagedGeneration);
+    if (o.terrain_mesh) write_terrain_mesh(staging / kStagedGeneration, terrain);
+    prune_staged_generation(staging, staged);
+    s.stages.push_back({"layout and meshes", seconds_since(stage_start)});
+
+    // The chunk groups need every chunk: they are pooled here, from the checked chunk files.
+    stage_start = Clock::now();
+    const auto group_progress = [&](const GroupProgress& p) {
+        if (o.progress) o.progress({"groups", p.done, p.total, 0, seconds_since(start), -1.0});
+    };
+    staged.groups = build_groups(staging, kStagedGeneration, staged.chunks, o.size_m, o.chunk_size_m, o.groups,
+                                 stream_level_rule(o), o.threads, group_progress);
+    s.stages.push_back({"chunk groups", seconds_since(stage_start)});
+
+    stage_start = Clock::now();
+    if (o.progress) o.progress({"manifest", staged.chunks.size(), staged.chunks.size(), 0, seconds_since(start), 0.0});
+    const fs::path generation = new_generation(o.output);
+    WorldManifest& m = result.manifest;
+    m = manifest_without_chunks(o, layout, generation);
+    for (ChunkEntry& c : staged.chunks) {
+        c.file = generation / c.file.lexically_relative(kStagedGeneration);
+        m.gaussians += c.prefix_count[0];
+        m.chunks.push_back(std::move(c));
+    }
+    for (ChunkEntry& g : staged.groups) {
+        g.file = generation / g.file.lexically_relative(kStagedGeneration);
+        m.groups.push_back(std::move(g));
+    }
+    m.group_generator = group_generator_settings(o.groups);
+    commit_staged(o, staging, generation, m);
+    staging_lock.reset();  // the clean-up takes it again to remove the staging folder
+    if (o.progress) o.progress({"clean-up", m.chunks.size(), m.chunks.size(), 0, seconds_since(start), 0.0});
+    remove_unnamed_files(o.output, m);
+    s.stages.push_back({"manifest and clean-up", seconds_since(stage_start)});
+    summarise_manifest(m, o.output, s);
+    s.seconds = seconds_since(start);
+    return result;
+}
+
+}  // namespace splat_lod::world
