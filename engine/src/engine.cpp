@@ -11,9 +11,13 @@ Engine::Engine() : renderer_(bus_, assets_), plugins_(plugin_context()) {
     renderer_.add_pass(std::make_shared<MeshPass>());
 }
 
-Engine::~Engine() { plugins_.shutdown_all(); }
+Engine::~Engine() {
+    plugins_.shutdown_all();
+}
 
-PluginContext Engine::plugin_context() { return PluginContext{components_, renderer_, bus_, assets_}; }
+PluginContext Engine::plugin_context() {
+    return PluginContext{components_, renderer_, bus_, assets_};
+}
 
 std::unique_ptr<Scene> Engine::load_scene(const std::filesystem::path& path) {
     return load_scene_file(path, components_, assets_);

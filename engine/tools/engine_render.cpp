@@ -6,8 +6,8 @@
 // Prints the GL renderer and the per-pass CPU/GPU times of the last frame.
 #include <cstdio>
 
-#include <CLI/CLI.hpp>
 #include <plugin_msgs/frame_statistics.h>
+#include <CLI/CLI.hpp>
 
 #include "engine/core/cli_values.h"
 #include "engine/core/error.h"

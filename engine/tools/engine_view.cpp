@@ -63,7 +63,8 @@ ViewSetup initial_view(const engine::Scene& scene, int width, int height) {
     view.fov_y = camera.fov_y;
     view.znear = camera.znear;
     view.zfar = camera.zfar;
-    if (const auto bounds = scene.world_bounds()) view.scene_size = std::max(glm::length(bounds->max - bounds->min), 1e-2f);
+    if (const auto bounds = scene.world_bounds())
+        view.scene_size = std::max(glm::length(bounds->max - bounds->min), 1e-2f);
     return view;
 }
 
@@ -89,17 +90,19 @@ bool changes_view(const engine::FlyCameraInput& in) {
 void present(const engine::RenderTarget& target, glm::ivec2 size) {
     const GLuint source = target.framebuffer().id();
     glNamedFramebufferReadBuffer(source, GL_COLOR_ATTACHMENT0);
-    glDisable(GL_SCISSOR_TEST);  // the blit obeys the scissor box a pass may have left set
+    glDisable(GL_SCISSOR_TEST);      // the blit obeys the scissor box a pass may have left set
     glDisable(GL_FRAMEBUFFER_SRGB);  // the target already holds display-space values
-    glBlitNamedFramebuffer(source, 0, 0, 0, target.width(), target.height(), 0, size.y, size.x, 0,
-                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBlitNamedFramebuffer(source, 0, 0, 0, target.width(), target.height(), 0, size.y, size.x, 0, GL_COLOR_BUFFER_BIT,
+                           GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, size.x, size.y);
 }
 
 // Reads the back buffer (before the swap, when its contents are defined), top row first.
 engine::Image read_window(glm::ivec2 size) {
-    engine::Image image{size.x, size.y, std::vector<std::uint8_t>(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y) * 4)};
+    engine::Image image{
+        size.x, size.y,
+        std::vector<std::uint8_t>(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y) * 4)};
     std::vector<std::uint8_t> rows(image.rgba.size());
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     glReadBuffer(GL_BACK);
@@ -108,7 +111,8 @@ engine::Image read_window(glm::ivec2 size) {
     const std::size_t stride = static_cast<std::size_t>(size.x) * 4;
     for (int y = 0; y < size.y; ++y) {
         const std::size_t from = static_cast<std::size_t>(size.y - 1 - y) * stride;
-        std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(from), stride, image.rgba.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * stride));
+        std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(from), stride,
+                    image.rgba.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * stride));
     }
     // The window's alpha is whatever ImGui's blending left; a screenshot is opaque.
     for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
@@ -139,14 +143,15 @@ private:
 
 Viewer::Viewer(const Options& options) : options_(options), show_ui_(!options.no_ui) {
     // A fixed frame count is a test or benchmark run: waiting for vertical blank only slows it.
-    window_ = engine::Window::create("engine_view: " + options.scene.filename().string(), options.width,
-                                     options.height, options.frames == 0);
+    window_ = engine::Window::create("engine_view: " + options.scene.filename().string(), options.width, options.height,
+                                     options.frames == 0);
     engine_add_static_plugins(engine_.plugins());
     scene_ = engine_.load_scene(options.scene);
     camera_.emplace(initial_view(*scene_, options.width, options.height));
     overlay_ = std::make_unique<engine::UiOverlay>(*window_, engine_.bus());
     overlay_->set_scene(scene_.get());
-    for (const std::string& name : engine_.plugins().names()) engine_.plugins().find(name)->add_ui_panels(*overlay_, engine_.bus());
+    for (const std::string& name : engine_.plugins().names())
+        engine_.plugins().find(name)->add_ui_panels(*overlay_, engine_.bus());
 }
 
 void Viewer::update_camera(float seconds) {
@@ -154,8 +159,8 @@ void Viewer::update_camera(float seconds) {
     if (f1 && !f1_was_down_) show_ui_ = !show_ui_;
     f1_was_down_ = f1;
     if (window_->key_down(engine::Key::escape)) window_->request_close();
-    const engine::FlyCameraInput input =
-        engine::read_fly_camera_input(*window_, show_ui_ && overlay_->wants_mouse(), show_ui_ && overlay_->wants_keyboard());
+    const engine::FlyCameraInput input = engine::read_fly_camera_input(*window_, show_ui_ && overlay_->wants_mouse(),
+                                                                       show_ui_ && overlay_->wants_keyboard());
     camera_->fly.update(input, seconds);
     camera_->moved = camera_->moved || changes_view(input);
 }
@@ -212,8 +217,10 @@ int main(int argc, char** argv) {
     app.add_option("--scene", options.scene, "Scene file (JSON)")->required();
     app.add_option("--width", options.width, "Window width in pixels")->check(CLI::Range(16, 16384));
     app.add_option("--height", options.height, "Window height in pixels")->check(CLI::Range(16, 16384));
-    auto* frames = app.add_option("--frames", options.frames, "Quit after this many frames")->check(CLI::PositiveNumber);
-    app.add_option("--screenshot", options.screenshot, "After the last frame, write the window (overlay included) as PNG")
+    auto* frames =
+        app.add_option("--frames", options.frames, "Quit after this many frames")->check(CLI::PositiveNumber);
+    app.add_option("--screenshot", options.screenshot,
+                   "After the last frame, write the window (overlay included) as PNG")
         ->needs(frames);
     app.add_option("--offscreen", options.offscreen,
                    "After the last frame, also write the offscreen frame without overlay as PNG (checks the blit)")

@@ -116,7 +116,8 @@ void ChunkFaults::restore_all() {
 }
 
 const ChunkFault* ChunkFaults::find(std::string_view chunk_id) const {
-    const auto it = std::find_if(active_.begin(), active_.end(), [&](const ChunkFault& f) { return f.chunk_id == chunk_id; });
+    const auto it =
+        std::find_if(active_.begin(), active_.end(), [&](const ChunkFault& f) { return f.chunk_id == chunk_id; });
     return it == active_.end() ? nullptr : &*it;
 }
 

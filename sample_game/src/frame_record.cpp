@@ -92,12 +92,14 @@ std::vector<FrameColumn> count_columns() {
          [](R r) { return integer(r.culled); }},
         {"hidden", "resident Gaussians of chunks or groups the LOD cut does not draw now, dropped before projection",
          [](R r) { return integer(r.hidden); }},
-        {"chunks_drawn", "chunks drawn from their own levels (the LOD cut)", [](R r) { return integer(r.chunks_drawn); }},
+        {"chunks_drawn", "chunks drawn from their own levels (the LOD cut)",
+         [](R r) { return integer(r.chunks_drawn); }},
         {"groups_drawn", "chunk groups drawn instead of their chunks (the LOD cut)",
          [](R r) { return integer(r.groups_drawn); }},
         {"unbudgeted", "Gaussians the selection would have drawn without the splat budget (= visible without one)",
          [](R r) { return integer(r.unbudgeted); }},
-        {"budget_threshold_px", "the size threshold the frame selected with: S_T times the splat budget's factor (S_T without one)",
+        {"budget_threshold_px",
+         "the size threshold the frame selected with: S_T times the splat budget's factor (S_T without one)",
          [](R r) { return decimal(r.budget_threshold_px, 3); }},
         {"tile_splat_pairs", "keys sorted: (Gaussian, tile) pairs", [](R r) { return integer(r.tile_splat_pairs); }},
     };
@@ -107,17 +109,18 @@ std::vector<FrameColumn> count_columns() {
 std::vector<FrameColumn> image_columns() {
     using R = const FrameRecord&;
     return {
-        {"psnr_lod_vs_baseline", "baseline rows: PSNR (dB) of the LOD run's image of this frame against this one (empty: not compared)",
+        {"psnr_lod_vs_baseline",
+         "baseline rows: PSNR (dB) of the LOD run's image of this frame against this one (empty: not compared)",
          [](R r) { return r.psnr_lod_vs_baseline < 0.0 ? std::string() : decimal(r.psnr_lod_vs_baseline, 3); }},
-        {"ssim_lod_vs_baseline", "baseline rows: SSIM of the LOD run's image of this frame against this one (empty: not compared)",
+        {"ssim_lod_vs_baseline",
+         "baseline rows: SSIM of the LOD run's image of this frame against this one (empty: not compared)",
          [](R r) { return r.ssim_lod_vs_baseline < 0.0 ? std::string() : decimal(r.ssim_lod_vs_baseline, 4); }},
         {"psnr_vs_reference",
          "PSNR (dB) of this row's image against the cached supersampled reference (-1: no reference for this frame)",
          [](R r) { return r.psnr_vs_reference < 0.0 ? std::string("-1") : decimal(r.psnr_vs_reference, 3); }},
         {"ssim_vs_reference", "SSIM of this row's image against the reference (-1: no reference for this frame)",
          [](R r) { return r.ssim_vs_reference < 0.0 ? std::string("-1") : decimal(r.ssim_vs_reference, 4); }},
-        {"seam_ratio",
-         "mean abs. error vs the reference within 4 px of projected chunk borders / elsewhere (-1: none)",
+        {"seam_ratio", "mean abs. error vs the reference within 4 px of projected chunk borders / elsewhere (-1: none)",
          [](R r) { return r.seam_ratio < 0.0 ? std::string("-1") : decimal(r.seam_ratio, 3); }},
     };
 }

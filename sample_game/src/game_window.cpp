@@ -191,8 +191,8 @@ void Game::update_camera(float seconds) {
     f1_was_down_ = f1;
     space_was_down_ = space;
     if (window_->key_down(engine::Key::escape)) window_->request_close();
-    const engine::FlyCameraInput input =
-        engine::read_fly_camera_input(*window_, show_ui_ && overlay_->wants_mouse(), show_ui_ && overlay_->wants_keyboard());
+    const engine::FlyCameraInput input = engine::read_fly_camera_input(*window_, show_ui_ && overlay_->wants_mouse(),
+                                                                       show_ui_ && overlay_->wants_keyboard());
     if (moves_camera(input)) follow_ = false;  // the user flies: leave the path where it was
     if (follow_) {
         if (playing_) {

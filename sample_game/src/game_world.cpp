@@ -8,10 +8,10 @@
 #include "engine/core/error.h"
 #include "engine/render/render_target.h"
 #include "engine/scene/builtin_components.h"
-#include "splat_lod/splat_renderer.h"
 #include "sample_game/world_path.h"
 #include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
+#include "splat_lod/splat_renderer.h"
 #include "splat_lod/stream/stream_policy.h"
 
 namespace sample_game {

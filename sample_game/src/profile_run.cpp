@@ -13,16 +13,16 @@
 #include "engine/render/render_target.h"
 #include "formatted.h"
 #include "progress.h"
-#include "splat_lod/splat_renderer.h"
+#include "sample_game/chunk_borders.h"
 #include "sample_game/frame_probe.h"
 #include "sample_game/frame_sheet.h"
 #include "sample_game/game_world.h"
-#include "sample_game/chunk_borders.h"
 #include "sample_game/profile_plots.h"
 #include "sample_game/reference_cache.h"
 #include "sample_game/world_path.h"
 #include "splat_lod/eval/image_metrics.h"
 #include "splat_lod/splat_lod_plugin.h"
+#include "splat_lod/splat_renderer.h"
 
 namespace sample_game {
 namespace {
@@ -73,7 +73,8 @@ struct Run {
     std::vector<std::size_t> reference_frames() const {
         std::vector<std::size_t> frames;
         if (cached_reference)
-            for (const auto& [frame, image] : cached_reference->frames) frames.push_back(static_cast<std::size_t>(frame));
+            for (const auto& [frame, image] : cached_reference->frames)
+                frames.push_back(static_cast<std::size_t>(frame));
         return frames;
     }
     const splat_lod::eval::FloatImage* reference_of(int frame) const {
@@ -240,6 +241,66 @@ void remove_previous_outputs(const std::filesystem::path& out) {
     }
 }
 
+// The baseline run (every chunk resident) and its CSV. `load_seconds` is how long loading every chunk
+// took, `baseline_seconds` the rest: the baseline's frames.
+std::vector<FrameRecord> baseline_run(const ProfileOptions& options, Run& run, double& load_seconds,
+                                      double& baseline_seconds) {
+    const auto baseline_start = Clock::now();
+    std::vector<FrameRecord> baseline = run.baseline_frames(load_seconds);
+    baseline_seconds = seconds_since(baseline_start) - load_seconds;
+    write_frames_csv(
+        options.out / "baseline.csv", baseline,
+        "sample_game profile, baseline (every chunk resident, mode baseline): " + describe_settings(options));
+    return baseline;
+}
+
+// The plots and the frame sheet; the files made go into outcome.pictures.
+PlotResult write_pictures(const ProfileOptions& options, const std::vector<FrameRecord>& lod,
+                          const std::vector<FrameRecord>& baseline, const FrameSheet& sheet, ProfileOutcome& outcome) {
+    const PlotResult plots = write_profile_plots(options.out, lod, baseline, options.settings.memory_budget_bytes,
+                                                 options.settings.upload_budget_bytes);
+    outcome.plot_problem = plots.problem;
+    outcome.pictures = plots.pictures;
+    if (!sheet.empty()) {
+        sheet.write(options.out / "frames_sheet.png");
+        outcome.pictures.push_back(options.out / "frames_sheet.png");
+    }
+    return plots;
+}
+
+std::string preload_note(const ProfileOptions& options, const PreloadStats& preload) {
+    return options.preload ? formatted("; first view preloaded in %llu updates (%.1f MiB resident, %.0f s)",
+                                       static_cast<unsigned long long>(preload.updates), mib(preload.resident_bytes),
+                                       preload.seconds)
+                           : std::string("; no preload (cold start)");
+}
+
+// The summary's list of what the run wrote, and why the plots are missing if they are.
+std::vector<std::string> listed_outputs(const ProfileOptions& options,
+                                        const std::vector<std::filesystem::path>& pictures, std::size_t frame_pictures,
+                                        const std::string& plot_problem) {
+    std::vector<std::string> outputs;
+    const std::string folder = options.out.string();
+    outputs.push_back(folder + "/profile.csv: one row per frame of the LOD run (columns in its # header)");
+    if (options.baseline) outputs.push_back(folder + "/baseline.csv: the baseline's frames, same columns");
+    for (const auto& picture : pictures) outputs.push_back(picture.string());
+    if (frame_pictures > 0)
+        outputs.push_back(formatted("%s/frames/: %zu frames (every %d-th)", folder.c_str(), frame_pictures,
+                                    options.frames_png_every));
+    if (!plot_problem.empty()) outputs.push_back("NO PLOTS: " + plot_problem);
+    return outputs;
+}
+
+std::string reference_note(const ProfileOptions& options, const std::optional<CachedReference>& reference,
+                           const ReferenceKey& key) {
+    return reference ? formatted("found, %s (%zu frames, %dx supersampled)", reference->folder.string().c_str(),
+                                 reference->frames.size(), key.supersample)
+                     : formatted(
+                           "none cached for this run (%s); `sample_game --reference` with the same --world, "
+                           "--width, --height, --frames and --fov-y makes it",
+                           reference_folder(options.world, key).string().c_str());
+}
+
 }  // namespace
 
 void validate_path_run(const std::filesystem::path& world, int width, int height, int frames) {
@@ -290,28 +351,14 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
                      "sample_game profile, LOD + streaming: " + describe_settings(options));
     std::vector<FrameRecord> baseline;
     double load_seconds = 0.0, baseline_seconds = 0.0;
-    if (options.baseline) {
-        const auto baseline_start = Clock::now();
-        baseline = run.baseline_frames(load_seconds);
-        baseline_seconds = seconds_since(baseline_start) - load_seconds;
-        write_frames_csv(
-            options.out / "baseline.csv", baseline,
-            "sample_game profile, baseline (every chunk resident, mode baseline): " + describe_settings(options));
-    }
+    if (options.baseline) baseline = baseline_run(options, run, load_seconds, baseline_seconds);
 
     ProfileOutcome outcome;
-    const PlotResult plots = write_profile_plots(options.out, lod, baseline, options.settings.memory_budget_bytes,
-                                                 options.settings.upload_budget_bytes);
-    outcome.plot_problem = plots.problem;
-    outcome.pictures = plots.pictures;
-    if (!run.sheet.empty()) {
-        run.sheet.write(options.out / "frames_sheet.png");
-        outcome.pictures.push_back(options.out / "frames_sheet.png");
-    }
+    const PlotResult plots = write_pictures(options, lod, baseline, run.sheet, outcome);
     outcome.summary =
         summarize(lod, baseline, options.settings.memory_budget_bytes, options.settings.upload_budget_bytes,
-                  WorldScale{std::uint64_t(options.width) * std::uint64_t(options.height), world.whole_world_gpu_bytes(),
-                             options.settings.lod.splat_budget});
+                  WorldScale{std::uint64_t(options.width) * std::uint64_t(options.height),
+                             world.whole_world_gpu_bytes(), options.settings.lod.splat_budget});
     SummaryContext context;
     context.world = describe_world(options, world);
     context.settings = describe_settings(options);
@@ -319,25 +366,9 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
     context.timing =
         formatted("LOD run %.0f s including the preload, loading every chunk %.0f s, baseline frames %.0f s",
                   lod_seconds, load_seconds, baseline_seconds);
-    context.settings +=
-        options.preload
-            ? formatted("; first view preloaded in %llu updates (%.1f MiB resident, %.0f s)",
-                        static_cast<unsigned long long>(preload.updates), mib(preload.resident_bytes), preload.seconds)
-            : std::string("; no preload (cold start)");
-    const std::string folder = options.out.string();
-    context.outputs.push_back(folder + "/profile.csv: one row per frame of the LOD run (columns in its # header)");
-    if (options.baseline) context.outputs.push_back(folder + "/baseline.csv: the baseline's frames, same columns");
-    for (const auto& picture : outcome.pictures) context.outputs.push_back(picture.string());
-    if (!run.frame_pictures.empty())
-        context.outputs.push_back(formatted("%s/frames/: %zu frames (every %d-th)", folder.c_str(),
-                                            run.frame_pictures.size(), options.frames_png_every));
-    if (!plots.problem.empty()) context.outputs.push_back("NO PLOTS: " + plots.problem);
-    context.reference =
-        reference ? formatted("found, %s (%zu frames, %dx supersampled)", reference->folder.string().c_str(),
-                              reference->frames.size(), key.supersample)
-                  : formatted("none cached for this run (%s); `sample_game --reference` with the same --world, "
-                              "--width, --height, --frames and --fov-y makes it",
-                              reference_folder(options.world, key).string().c_str());
+    context.settings += preload_note(options, preload);
+    context.outputs = listed_outputs(options, outcome.pictures, run.frame_pictures.size(), plots.problem);
+    context.reference = reference_note(options, reference, key);
     outcome.summary_text = format_summary(outcome.summary, context);
     engine::write_text_file_atomic(options.out / "summary.txt", outcome.summary_text);
     return outcome;

@@ -148,9 +148,10 @@ void reference_checks(ProfileSummary& s) {
     s.reference_loss.text =
         frames.empty() ? formatted("reference, LOD vs baseline: %s", none)
         : pairs == 0   ? std::string("reference, LOD vs baseline: no baseline frames (run without --no-baseline)")
-                       : formatted("reference, LOD vs baseline: LOD PSNR - baseline PSNR >= -%.1f dB on %d of %d "
-                                   "reference frames (worst %+.2f dB)",
-                                   kReferenceMaxLossDb, pairs - worse, pairs, worst);
+                       : formatted(
+                             "reference, LOD vs baseline: LOD PSNR - baseline PSNR >= -%.1f dB on %d of %d "
+                               "reference frames (worst %+.2f dB)",
+                             kReferenceMaxLossDb, pairs - worse, pairs, worst);
     // 5: the overview much better than the baseline, and good in itself.
     int overview = 0, good = 0;
     double least_gain = 1e9, least_psnr = 1e9;
@@ -165,10 +166,10 @@ void reference_checks(ProfileSummary& s) {
     s.reference_overview.pass = overview > 0 && good == overview;
     s.reference_overview.text =
         overview == 0 ? formatted("reference, overview: %s", frames.empty() ? none : "no overview frame in both runs")
-                      : formatted("reference, overview: LOD >= baseline + %.0f dB and >= %.0f dB on %d of %d frames "
-                                  "(least gain %+.2f dB, lowest LOD PSNR %.2f dB)",
-                                  kReferenceOverviewGainDb, kReferenceOverviewMinDb, good, overview, least_gain,
-                                  least_psnr);
+                      : formatted(
+                            "reference, overview: LOD >= baseline + %.0f dB and >= %.0f dB on %d of %d frames "
+                            "(least gain %+.2f dB, lowest LOD PSNR %.2f dB)",
+                            kReferenceOverviewGainDb, kReferenceOverviewMinDb, good, overview, least_gain, least_psnr);
     // 6: no seams.
     int measured = 0, within = 0;
     double largest = 0.0;
@@ -186,37 +187,35 @@ void reference_checks(ProfileSummary& s) {
                                   kMaxSeamRatio, within, measured, largest);
 }
 
-void scale_checks(const std::vector<FrameRecord>& lod, const WorldScale& w, ProfileSummary& s) {
-    const auto& ground = s.segments[static_cast<std::size_t>(Segment::ground)];
-    const auto& overview = s.segments[static_cast<std::size_t>(Segment::overview)];
-    // 7: the far view costs no more than the near one.
-    s.scale_time.measured = ground.frames > 0 && overview.frames > 0;
-    s.scale_time.pass = s.scale_time.measured && overview.median_ms <= ground.median_ms;
-    s.scale_time.text = formatted("scale, time: overview median %.1f ms vs ground median %.1f ms (%.2fx)",
-                                  overview.median_ms, ground.median_ms,
-                                  ground.median_ms > 0.0 ? overview.median_ms / ground.median_ms : 0.0);
-    // 8: Gaussians per output pixel.
+// 8: Gaussians per output pixel.
+void density_check(const std::vector<FrameRecord>& lod, const WorldScale& w, ProfileSummary& s) {
     double overview_max = 0.0, path_max = 0.0;
     int overview_frame = -1, path_frame = -1;
     for (const auto& r : lod) {
         if (w.pixels == 0) break;
         const double per_pixel = static_cast<double>(r.visible) / static_cast<double>(w.pixels);
         if (per_pixel > path_max) path_max = per_pixel, path_frame = r.frame;
-        if (r.segment == Segment::overview && per_pixel > overview_max) overview_max = per_pixel, overview_frame = r.frame;
+        if (r.segment == Segment::overview && per_pixel > overview_max)
+            overview_max = per_pixel, overview_frame = r.frame;
     }
     s.scale_density.measured = w.pixels > 0 && !lod.empty();
     s.scale_density.pass = s.scale_density.measured && overview_max <= kMaxOverviewGaussiansPerPixel &&
                            path_max <= kMaxPathGaussiansPerPixel;
     s.scale_density.text = formatted(
-        "scale, Gaussians per pixel: overview at most %.2f (frame %d; bar %.1f), path at most %.2f (frame %d; bar %.1f)",
+        "scale, Gaussians per pixel: overview at most %.2f (frame %d; bar %.1f), path at most %.2f (frame %d; bar "
+        "%.1f)",
         overview_max, overview_frame, kMaxOverviewGaussiansPerPixel, path_max, path_frame, kMaxPathGaussiansPerPixel);
-    // 9: work dropped before projection at ground level.
+}
+
+// 9: work dropped before projection at ground level.
+void culling_check(const std::vector<FrameRecord>& lod, ProfileSummary& s) {
     double least = 1.0;
     int ground_frames = 0;
     for (const auto& r : lod)
         if (r.segment == Segment::ground && r.considered > 0) {
             ++ground_frames;
-            least = std::min(least, static_cast<double>(r.culled + r.skipped + r.hidden) / static_cast<double>(r.considered));
+            least = std::min(least,
+                             static_cast<double>(r.culled + r.skipped + r.hidden) / static_cast<double>(r.considered));
         }
     s.scale_culling.measured = ground_frames > 0;
     s.scale_culling.pass = s.scale_culling.measured && least >= kMinGroundCulledShare;
@@ -224,17 +223,25 @@ void scale_checks(const std::vector<FrameRecord>& lod, const WorldScale& w, Prof
         "scale, culling: at least %.0f%% of the resident Gaussians culled, skipped or outside the cut before "
         "projection on every ground frame (bar %.0f%%)",
         100.0 * least, 100.0 * kMinGroundCulledShare);
-    // 10: memory at the overview against the whole world.
+}
+
+// 10: memory at the overview against the whole world.
+void memory_check(const std::vector<FrameRecord>& lod, const WorldScale& w, ProfileSummary& s) {
+    const auto& overview = s.segments[static_cast<std::size_t>(Segment::overview)];
     std::uint64_t peak = 0;
     for (const auto& r : lod)
         if (r.segment == Segment::overview) peak = std::max(peak, r.resident_bytes);
     s.scale_memory.measured = w.world_bytes > 0 && overview.frames > 0;
     const double share = w.world_bytes > 0 ? static_cast<double>(peak) / static_cast<double>(w.world_bytes) : 0.0;
     s.scale_memory.pass = s.scale_memory.measured && share <= kMaxOverviewResidentShare;
-    s.scale_memory.text = formatted("scale, memory: at the overview at most %.1f MiB resident, %.1f%% of the world's "
-                                    "%.1f MiB (bar %.0f%%)",
-                                    mib(peak), 100.0 * share, mib(w.world_bytes), 100.0 * kMaxOverviewResidentShare);
-    // 11: the splat budget.
+    s.scale_memory.text = formatted(
+        "scale, memory: at the overview at most %.1f MiB resident, %.1f%% of the world's "
+        "%.1f MiB (bar %.0f%%)",
+        mib(peak), 100.0 * share, mib(w.world_bytes), 100.0 * kMaxOverviewResidentShare);
+}
+
+// 11: the splat budget.
+void splat_budget_check(const std::vector<FrameRecord>& lod, const WorldScale& w, ProfileSummary& s) {
     std::uint64_t most = 0;
     int over = 0;
     for (const auto& r : lod) {
@@ -250,17 +257,31 @@ void scale_checks(const std::vector<FrameRecord>& lod, const WorldScale& w, Prof
                         static_cast<unsigned long long>(most), static_cast<unsigned long long>(w.splat_budget), over);
 }
 
+void scale_checks(const std::vector<FrameRecord>& lod, const WorldScale& w, ProfileSummary& s) {
+    const auto& ground = s.segments[static_cast<std::size_t>(Segment::ground)];
+    const auto& overview = s.segments[static_cast<std::size_t>(Segment::overview)];
+    // 7: the far view costs no more than the near one.
+    s.scale_time.measured = ground.frames > 0 && overview.frames > 0;
+    s.scale_time.pass = s.scale_time.measured && overview.median_ms <= ground.median_ms;
+    s.scale_time.text =
+        formatted("scale, time: overview median %.1f ms vs ground median %.1f ms (%.2fx)", overview.median_ms,
+                  ground.median_ms, ground.median_ms > 0.0 ? overview.median_ms / ground.median_ms : 0.0);
+    density_check(lod, w, s);
+    culling_check(lod, s);
+    memory_check(lod, w, s);
+    splat_budget_check(lod, w, s);
+}
+
 std::string reference_table(const ProfileSummary& s) {
     if (s.reference_frames.empty()) return "";
     const auto cell = [](double v, int digits) { return v < 0.0 ? std::string("-") : formatted("%.*f", digits, v); };
     std::string out = "\nagainst the reference (PSNR dB / SSIM; seam_ratio of the LOD image, and of the baseline's)\n";
     out += "  frame  segment    LOD psnr    ssim | baseline psnr    ssim | seam_ratio (baseline)\n";
     for (const auto& f : s.reference_frames)
-        out += formatted("  %5d  %-9s %9s %7s | %13s %7s | %10s (%s)\n", f.frame,
-                         std::string(to_string(f.segment)).c_str(), cell(f.lod_psnr, 2).c_str(),
-                         cell(f.lod_ssim, 4).c_str(), cell(f.baseline_psnr, 2).c_str(),
-                         cell(f.baseline_ssim, 4).c_str(), cell(f.seam_ratio, 3).c_str(),
-                         cell(f.baseline_seam_ratio, 3).c_str());
+        out += formatted(
+            "  %5d  %-9s %9s %7s | %13s %7s | %10s (%s)\n", f.frame, std::string(to_string(f.segment)).c_str(),
+            cell(f.lod_psnr, 2).c_str(), cell(f.lod_ssim, 4).c_str(), cell(f.baseline_psnr, 2).c_str(),
+            cell(f.baseline_ssim, 4).c_str(), cell(f.seam_ratio, 3).c_str(), cell(f.baseline_seam_ratio, 3).c_str());
     return out;
 }
 

@@ -89,8 +89,8 @@ ReferenceKey reference_key(const fs::path& world, int width, int height, const s
                            double fov_y_deg, int supersample) {
     // The chunks and meshes, not the chunk groups: the reference draws every chunk and no group.
     ReferenceKey key;
-    key.world_checksum =
-        splat_lod::world::chunks_checksum(splat_lod::world::read_world_manifest(world / splat_lod::world::kManifestFileName));
+    key.world_checksum = splat_lod::world::chunks_checksum(
+        splat_lod::world::read_world_manifest(world / splat_lod::world::kManifestFileName));
     key.width = width;
     key.height = height;
     key.frames = static_cast<int>(poses.size());

@@ -7,8 +7,8 @@
 #include "engine/render/render_target.h"
 #include "formatted.h"
 #include "progress.h"
-#include "sample_game/profile_run.h"
 #include "sample_game/game_world.h"
+#include "sample_game/profile_run.h"
 #include "sample_game/world_path.h"
 #include "splat_lod/splat_lod_plugin.h"
 

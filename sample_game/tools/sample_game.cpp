@@ -140,7 +140,9 @@ void add_options(CLI::App& app, CommandLine& c) {
     app.add_option("--width", c.width, "Image width (profile default 640, window 1280)")->check(CLI::Range(16, 16384));
     app.add_option("--height", c.height, "Image height (profile default 360, window 720)")
         ->check(CLI::Range(16, 16384));
-    app.add_option("--frames", c.frames, "Profile: poses along the path (default 400); soak: per lap (default 200); window: quit after N frames")
+    app.add_option(
+           "--frames", c.frames,
+           "Profile: poses along the path (default 400); soak: per lap (default 200); window: quit after N frames")
         ->check(CLI::PositiveNumber);
     add_lod_options(app, c);
     app.add_option("--fov-y", c.settings.fov_y_deg, "Vertical field of view in degrees")->capture_default_str();

@@ -4,7 +4,8 @@
 #include "splat_lod/core/splat_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    return splat_fuzz::fuzz_splat_reader(data, size, "fuzz.splat", [](auto bytes, const std::string& name, auto* report) {
-        return splat_lod::read_antimatter_splat(bytes, name, report);
-    });
+    return splat_fuzz::fuzz_splat_reader(data, size, "fuzz.splat",
+                                         [](auto bytes, const std::string& name, auto* report) {
+                                             return splat_lod::read_antimatter_splat(bytes, name, report);
+                                         });
 }

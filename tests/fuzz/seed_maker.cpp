@@ -1,11 +1,11 @@
 // Seeds for the fuzz harnesses (tests/fuzz/README.md), small enough to mutate fast:
 //   fuzz_seed_maker --out DIR [--shared-data DIR]
 // writes DIR/<harness>/<seed>: always the project-made binary seeds (the project's own writers,
-// the unit tests' SPZ encoders, a compressed-PLY packer and PLY re-encodings here); with
-// --shared-data also seeds cut down from the real files there (a real header with the element
-// counts cut and the data truncated to match, the first Gaussians of a real scene re-encoded,
-// small real glTF/SOG files as they are). The committed seeds in tests/fuzz/seeds/ are the
-// project-made ones plus hand-written text files.
+// the unit tests' SPZ encoders, a compressed-PLY packer and PLY re-encodings here) and seeds cut
+// down from the real files (a real header with the element counts cut and the data truncated to
+// match, the first Gaussians of a real scene re-encoded, small real glTF/SOG files as they are):
+// those kept in tests/data always, and with --shared-data also those only there. The committed
+// seeds in tests/fuzz/seeds/ are the project-made ones plus hand-written text files.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -20,10 +20,11 @@
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
 #include "fuzz_support.h"
-#include "splat_lod/core/ply_file.h"
 #include "splat_io_test_helpers.h"
+#include "splat_lod/core/ply_file.h"
 #include "splat_lod/core/splat_io.h"
 #include "splat_lod/worldgen/world_meshes.h"
+#include "test_support.h"
 
 namespace {
 
@@ -347,16 +348,29 @@ void gltf_seeds(SeedWriter& write) {
     write.text("gltf", "post_embedded.gltf", text.str());
 }
 
-// ---- Seeds cut down from the real files in ../shared/data.
+// ---- Seeds cut down from the real files in tests/data and --shared-data (../shared/data).
+
+// A real file by its path relative to the data folders: tests/data/<relative> when it is kept
+// there, else <shared>/<relative> (none without --shared-data).
+struct RealFiles {
+    fs::path shared;
+
+    fs::path operator()(const std::string& relative) const {
+        std::error_code ec;
+        const fs::path kept = engine::test::source_dir() / "data" / relative;
+        if (fs::exists(kept, ec) || shared.empty()) return kept;
+        return shared / relative;
+    }
+};
 
 Bytes read_or_empty(const fs::path& path) {
     std::error_code ec;
     return fs::is_regular_file(path, ec) ? engine::read_binary_file(path) : Bytes{};
 }
 
-void real_splat_seeds(SeedWriter& write, const fs::path& splats) {
+void real_splat_seeds(SeedWriter& write, const RealFiles& real) {
     using splat_io_test::encode_spz;
-    const auto donut = read_or_empty(splats / "gshairlod-donut/fused.ply");
+    const auto donut = read_or_empty(real("splats/gshairlod-donut/fused.ply"));
     if (!donut.empty()) {
         write("inria_ply", "real_donut_16.ply",
               write_tables(tables_of(donut), "binary_little_endian", {{"vertex", 16}}));
@@ -366,15 +380,15 @@ void real_splat_seeds(SeedWriter& write, const fs::path& splats) {
         write("antimatter_splat", "real_donut_32.splat", splat_lod::encode_antimatter_splat(cloud.permuted(first)));
     }
     for (const char* scene : {"biker", "guitar"}) {
-        const auto bytes = read_or_empty(splats / "playcanvas-engine" / (std::string(scene) + ".compressed.ply"));
+        const auto bytes = read_or_empty(real("splats/playcanvas-engine/" + std::string(scene) + ".compressed.ply"));
         if (bytes.empty()) continue;
         const auto cut =
             write_tables(tables_of(bytes), "binary_little_endian", {{"chunk", 1}, {"vertex", 256}, {"sh", 256}});
         write("compressed_ply", std::string("real_") + scene + "_256.compressed.ply", cut);
     }
-    const auto fixture = read_or_empty(splats / "playcanvas-engine/test-fixture-64.compressed.ply");
+    const auto fixture = read_or_empty(real("splats/playcanvas-engine/test-fixture-64.compressed.ply"));
     if (!fixture.empty()) write("compressed_ply", "real_test-fixture-64.compressed.ply", fixture);
-    const auto biker = read_or_empty(splats / "playcanvas-engine/biker.spz");
+    const auto biker = read_or_empty(real("splats/playcanvas-engine/biker.spz"));
     if (!biker.empty()) {
         auto cloud = splat_lod::read_spz(biker, "biker.spz");
         std::vector<std::uint32_t> first(48);
@@ -387,25 +401,24 @@ void real_splat_seeds(SeedWriter& write, const fs::path& splats) {
     }
 }
 
-void real_other_seeds(SeedWriter& write, const fs::path& data) {
-    const fs::path pc = data / "splats/playcanvas-engine";
-    const std::pair<fs::path, std::string> copies[] = {
-        {pc / "playcanvas-logo-sog/meta.json", "sog_meta/real_logo_v1.json"},
-        {pc / "playbot-lod-sog/6_0/meta.json", "sog_meta/real_playbot_6_v2.json"},
-        {pc / "playbot-lod-sog/lod-meta.json", "sog_meta/real_playbot_lod-meta.json"},
-        {data / "gltf/online3dviewer/Box/glTF-Embedded/Box.gltf", "gltf/real_box_embedded.gltf"},
-        {data / "gltf/online3dviewer/Box/glTF-Binary/Box.glb", "gltf/real_box.glb"},
-        {data / "gltf/online3dviewer/Box/glTF-Draco/Box.gltf", "gltf/real_box_draco.gltf"},
-        {data / "gltf/online3dviewer/BoxTextured/glTF-Binary/BoxTextured.glb", "gltf/real_box_textured.glb"},
-        {data / "gltf/online3dviewer/BoxTextured/glTF-Embedded/BoxTextured.gltf",
-         "gltf/real_box_textured_embedded.gltf"},
-        {data / "gltf/tinygltf/Cube/Cube.gltf", "gltf/real_cube_external.gltf"}};
+void real_other_seeds(SeedWriter& write, const RealFiles& real) {
+    const std::string pc = "splats/playcanvas-engine/";
+    const std::pair<std::string, std::string> copies[] = {
+        {pc + "playcanvas-logo-sog/meta.json", "sog_meta/real_logo_v1.json"},
+        {pc + "playbot-lod-sog/6_0/meta.json", "sog_meta/real_playbot_6_v2.json"},
+        {pc + "playbot-lod-sog/lod-meta.json", "sog_meta/real_playbot_lod-meta.json"},
+        {"gltf/online3dviewer/Box/glTF-Embedded/Box.gltf", "gltf/real_box_embedded.gltf"},
+        {"gltf/online3dviewer/Box/glTF-Binary/Box.glb", "gltf/real_box.glb"},
+        {"gltf/online3dviewer/Box/glTF-Draco/Box.gltf", "gltf/real_box_draco.gltf"},
+        {"gltf/online3dviewer/BoxTextured/glTF-Binary/BoxTextured.glb", "gltf/real_box_textured.glb"},
+        {"gltf/online3dviewer/BoxTextured/glTF-Embedded/BoxTextured.gltf", "gltf/real_box_textured_embedded.gltf"},
+        {"gltf/tinygltf/Cube/Cube.gltf", "gltf/real_cube_external.gltf"}};
     for (const auto& [from, to] : copies) {
-        const auto bytes = read_or_empty(from);
+        const auto bytes = read_or_empty(real(from));
         if (!bytes.empty()) write(fs::path(to).parent_path().string(), fs::path(to).filename().string(), bytes);
     }
     for (const char* texture : {"shN_labels", "means_u", "quats"}) {
-        auto bytes = read_or_empty(pc / "playbot-lod-sog/6_0" / (std::string(texture) + ".webp"));
+        auto bytes = read_or_empty(real(pc + "playbot-lod-sog/6_0/" + texture + ".webp"));
         if (bytes.empty()) continue;
         bytes.insert(bytes.begin(), 0);  // min_pixels
         write("sog_webp", std::string("real_playbot_6_") + texture + ".webp", bytes);
@@ -435,10 +448,9 @@ int main(int argc, char** argv) {
         gltf_seeds(write);
         world_chunk_seeds(write);
         const int made = write.written;
-        if (!shared.empty()) {
-            real_splat_seeds(write, shared / "splats");
-            real_other_seeds(write, shared);
-        }
+        const RealFiles real{shared};
+        real_splat_seeds(write, real);
+        real_other_seeds(write, real);
         std::printf("fuzz_seed_maker: %d project-made seeds, %d cut from real files, in %s\n", made,
                     write.written - made, out.c_str());
     } catch (const engine::Error& e) {

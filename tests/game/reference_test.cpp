@@ -103,7 +103,8 @@ TEST_F(ReferenceTest, IsMadeCachedAndFoundAgain) {
     }
     EXPECT_EQ(segments.size(), kSegmentCount) << "reference frames in every segment";
     const std::string key = engine::read_text_file(made.folder / "reference.json");
-    for (const char* field : {"world_chunks_crc32", "\"width\": 64", "\"supersample\": 3", "format_version", "fov_y_deg"})
+    for (const char* field :
+         {"world_chunks_crc32", "\"width\": 64", "\"supersample\": 3", "format_version", "fov_y_deg"})
         EXPECT_NE(key.find(field), std::string::npos) << key;
     std::size_t entries = 0;
     for (const auto& entry : fs::directory_iterator(world / kReferenceFolderName)) {

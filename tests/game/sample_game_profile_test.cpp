@@ -14,11 +14,11 @@
 #include "engine/render/render_target.h"
 #include "engine/scene/builtin_components.h"
 #include "gpu_fixture.h"
-#include "splat_lod/splat_renderer.h"
 #include "sample_game/frame_record.h"
 #include "sample_game/game_world.h"
 #include "sample_game/profile_run.h"
 #include "splat_lod/splat_lod_plugin.h"
+#include "splat_lod/splat_renderer.h"
 #include "splat_lod/stream/stream_policy.h"
 #include "splat_lod/worldgen/world_generator.h"
 #include "test_support.h"
@@ -112,7 +112,8 @@ TEST_F(SampleGameTest, ProfileWalksThePathWithinItsBudgetsAndWritesEveryOutput) 
             << "baseline mode draws level 1 only";
         // Every baseline frame is one the LOD run drew too: its image was compared (a PSNR in dB and an
         // SSIM in (0, 1], not a placeholder).
-        const double psnr = baseline.number(r, "psnr_lod_vs_baseline"), ssim = baseline.number(r, "ssim_lod_vs_baseline");
+        const double psnr = baseline.number(r, "psnr_lod_vs_baseline"),
+                     ssim = baseline.number(r, "ssim_lod_vs_baseline");
         EXPECT_TRUE(std::isfinite(psnr) && psnr > 5.0) << psnr;
         EXPECT_TRUE(ssim > 0.0 && ssim <= 1.0) << ssim;
     }

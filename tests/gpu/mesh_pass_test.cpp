@@ -19,8 +19,10 @@ protected:
         const std::string text = R"({"background": [0.2, 0.3, 0.4], "nodes": [
             {"name": "sun", "rotation_euler_deg": [-45, 30, 0], "components": [{"type": "light", "intensity": 2}]},
             {"name": "sky", "components": [{"type": "light", "kind": "ambient", "intensity": 0.4}]},
-            {"name": "model", "components": [{"type": "mesh", "asset": ")" + asset + R"("}]})" + extra_nodes + "]}";
-        return engine::load_scene_text(text, engine::test::source_dir() / "data/scenes/inline.json", engine.components(), engine.assets());
+            {"name": "model", "components": [{"type": "mesh", "asset": ")" +
+                                 asset + R"("}]})" + extra_nodes + "]}";
+        return engine::load_scene_text(text, engine::test::source_dir() / "data/scenes/inline.json",
+                                       engine.components(), engine.assets());
     }
 
     engine::Image render(const engine::Scene& scene, int w, int h) {
@@ -48,14 +50,16 @@ TEST_F(MeshPassTest, RealModelsMatchGoldenImages) {
     };
     for (const auto& [name, path] : models) {
         SCOPED_TRACE(name);
-        const auto scene = scene_with((engine::test::shared_data_dir() / "gltf" / path).string());
+        const auto scene = scene_with(engine::test::data_file(std::string("gltf/") + path).string());
         EXPECT_TRUE(engine::test::matches_golden(render(*scene, 192, 144), std::string("mesh_") + name));
     }
 }
 
 TEST_F(MeshPassTest, ThreeBoxVariantsRenderIdentically) {
-    ENGINE_REQUIRE_SHARED_DATA();
-    const auto dir = engine::test::shared_data_dir() / "gltf/online3dviewer/Box";
+    ENGINE_REQUIRE_DATA("gltf/online3dviewer/Box/glTF/Box.gltf");
+    ENGINE_REQUIRE_DATA("gltf/online3dviewer/Box/glTF-Binary/Box.glb");
+    ENGINE_REQUIRE_DATA("gltf/online3dviewer/Box/glTF-Embedded/Box.gltf");
+    const auto dir = engine::test::data_file("gltf/online3dviewer/Box");
     const auto a = render(*scene_with((dir / "glTF/Box.gltf").string()), 96, 72);
     const auto b = render(*scene_with((dir / "glTF-Binary/Box.glb").string()), 96, 72);
     const auto c = render(*scene_with((dir / "glTF-Embedded/Box.gltf").string()), 96, 72);
@@ -73,7 +77,8 @@ TEST_F(MeshPassTest, WritesViewDepthAndKeepsTheImageUpright) {
     model.transform().scale = glm::vec3(2.0f);
     model.transform().translation = glm::vec3(0.0f, 1.0f, 0.0f);
     const int w = 64, h = 48;
-    const auto camera = engine::make_look_at_camera({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), w, h, 0.1f, 100.0f);
+    const auto camera =
+        engine::make_look_at_camera({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), w, h, 0.1f, 100.0f);
     engine::RenderTarget target(w, h);
     engine.renderer().render(*scene, camera, target);
     const auto image = target.read_color();

@@ -1,5 +1,5 @@
-#include "engine/core/error.h"
 #include "engine/gl/shader_library.h"
+#include "engine/core/error.h"
 #include "gpu_fixture.h"
 #include "test_support.h"
 

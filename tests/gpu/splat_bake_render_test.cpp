@@ -7,13 +7,13 @@
 
 #include "engine/render/camera.h"
 #include "gpu_fixture.h"
-#include "splat_lod/splat_renderer.h"
 #include "splat_lod/bake/bake.h"
 #include "splat_lod/bake/bake_cameras.h"
 #include "splat_lod/core/camera_set.h"
-#include "splat_lod/eval/image_metrics.h"
 #include "splat_lod/core/splat_io.h"
+#include "splat_lod/eval/image_metrics.h"
 #include "splat_lod/splat_lod_plugin.h"
+#include "splat_lod/splat_renderer.h"
 #include "splat_lod/synth/fine_detail_scene.h"
 #include "splat_test_scenes.h"
 #include "test_support.h"
@@ -27,8 +27,9 @@ protected:
     engine::test::SplatRenderHarness harness;
 };
 
-engine::Image render_mode(engine::test::SplatRenderHarness& harness, const std::shared_ptr<const splat_lod::SplatCloud>& cloud,
-                          const engine::CameraView& camera, plugin_msgs::LodMode mode, std::uint32_t splat_budget = 0) {
+engine::Image render_mode(engine::test::SplatRenderHarness& harness,
+                          const std::shared_ptr<const splat_lod::SplatCloud>& cloud, const engine::CameraView& camera,
+                          plugin_msgs::LodMode mode, std::uint32_t splat_budget = 0) {
     plugin_msgs::LodSettings lod;
     lod.mode = mode;
     lod.splat_budget = splat_budget;
@@ -53,7 +54,8 @@ BakedGarden bake_garden(int refine_iterations) {
     splat_lod::bake::BakeOptions options;
     options.refine_iterations = refine_iterations;
     options.refine_cameras = 6;
-    garden.baked = splat_lod::bake::bake_lod(fine, splat_lod::bake::bake_cameras(poses, 256, 192), options, &garden.summary);
+    garden.baked =
+        splat_lod::bake::bake_lod(fine, splat_lod::bake::bake_cameras(poses, 256, 192), options, &garden.summary);
     return garden;
 }
 
@@ -69,8 +71,10 @@ TEST_F(SplatBakeRenderTest, BakedGardenLooksRightWhenSmallAndStaysExactWhenLarge
 
     // A held-out view (the evaluation's orbit, not the bake's rings).
     const auto pose = eval::orbit_poses(extent, up, 1).front();
-    const auto reference = eval::to_float(render_mode(harness, cloud, eval::make_view(pose, 256, 192), plugin_msgs::LodMode::baseline));
-    const auto full_large = eval::to_float(render_mode(harness, cloud, eval::make_view(pose, 256, 192), plugin_msgs::LodMode::full));
+    const auto reference =
+        eval::to_float(render_mode(harness, cloud, eval::make_view(pose, 256, 192), plugin_msgs::LodMode::baseline));
+    const auto full_large =
+        eval::to_float(render_mode(harness, cloud, eval::make_view(pose, 256, 192), plugin_msgs::LodMode::full));
     const double large = eval::psnr(full_large, reference);
     EXPECT_GE(large, 35.0);
 
@@ -79,7 +83,8 @@ TEST_F(SplatBakeRenderTest, BakedGardenLooksRightWhenSmallAndStaysExactWhenLarge
     const auto small_view = eval::make_view(pose, 256 / k, 192 / k);
     const double baseline_small =
         eval::psnr(eval::to_float(render_mode(harness, cloud, small_view, plugin_msgs::LodMode::baseline)), target);
-    const double full_small = eval::psnr(eval::to_float(render_mode(harness, cloud, small_view, plugin_msgs::LodMode::full)), target);
+    const double full_small =
+        eval::psnr(eval::to_float(render_mode(harness, cloud, small_view, plugin_msgs::LodMode::full)), target);
     RecordProperty("psnr_1x", std::to_string(large));
     RecordProperty("psnr_16x_baseline", std::to_string(baseline_small));
     RecordProperty("psnr_16x_full", std::to_string(full_small));
@@ -143,8 +148,8 @@ TEST_F(SplatBakeRenderTest, FrustumCullingChangesNothingButTheWork) {
     const auto orbit = eval::orbit_poses(extent, up, 1).front();
     const glm::vec3 target = orbit.eye + orbit.forward * orbit.focus_distance;
     const glm::vec3 aside = glm::normalize(glm::cross(orbit.forward, up)) * extent.radius;
-    poses.push_back(look_at(orbit.eye, target + aside, up, orbit.fov_y));               // half out of view
-    poses.push_back(look_at(orbit.eye, 2.0f * orbit.eye - target, up, orbit.fov_y));   // facing away
+    poses.push_back(look_at(orbit.eye, target + aside, up, orbit.fov_y));             // half out of view
+    poses.push_back(look_at(orbit.eye, 2.0f * orbit.eye - target, up, orbit.fov_y));  // facing away
     std::uint64_t culled = 0;
     for (std::size_t p = 0; p < poses.size(); ++p)
         for (const auto mode : {plugin_msgs::LodMode::full, plugin_msgs::LodMode::baseline})
@@ -170,7 +175,8 @@ TEST_F(SplatBakeRenderTest, FrustumCullingChangesNothingButTheWork) {
 TEST_F(SplatBakeRenderTest, FrustumCullingKeepsGaussiansWhoseTailsReachIntoTheView) {
     // A cluster of wide Gaussians just left of the view, their means outside it, their 1/255 tails
     // inside: the bound must not drop them (and far beyond the tails it does).
-    const engine::CameraView view = eval::make_view(look_at(glm::vec3(0, 0, 5), glm::vec3(0), glm::vec3(0, 1, 0), 1.0472f), 96, 64);
+    const engine::CameraView view =
+        eval::make_view(look_at(glm::vec3(0, 0, 5), glm::vec3(0), glm::vec3(0, 1, 0), 1.0472f), 96, 64);
     splat_lod::SplatRenderer pass(harness.engine().renderer());
     for (const float x : {-5.2f, -40.0f}) {
         std::vector<engine::test::GaussianSpec> specs(256);
@@ -232,7 +238,8 @@ TEST_F(SplatBakeRenderTest, SplatBudgetIsNeverExceededAndChangesNothingWhenItFit
             } else
                 EXPECT_TRUE(s.budget_scale > 1.0 || s.budget_coverage_cut_px > 0.0);
             const double psnr = eval::psnr(eval::to_float(image), eval::to_float(free));
-            RecordProperty(std::string(plugin_msgs::to_string(mode)) + "_psnr_at_" + std::to_string(share), std::to_string(psnr));
+            RecordProperty(std::string(plugin_msgs::to_string(mode)) + "_psnr_at_" + std::to_string(share),
+                           std::to_string(psnr));
             EXPECT_LE(psnr, previous_psnr + 0.5) << "a smaller budget does not get closer to the free frame";
             previous_psnr = psnr;
         }

@@ -7,15 +7,15 @@
 
 #include "engine/core/error.h"
 #include "gpu_fixture.h"
-#include "splat_lod/splat_renderer.h"
+#include "splat_lod/core/splat_io.h"
 #include "splat_lod/eval/eval_report.h"
 #include "splat_lod/eval/eval_run.h"
 #include "splat_lod/eval/eval_scene.h"
 #include "splat_lod/eval/frame_measurer.h"
 #include "splat_lod/eval/lod_chain.h"
 #include "splat_lod/splat_component.h"
-#include "splat_lod/core/splat_io.h"
 #include "splat_lod/splat_lod_plugin.h"
+#include "splat_lod/splat_renderer.h"
 #include "splat_test_scenes.h"
 #include "test_support.h"
 
@@ -286,7 +286,8 @@ TEST_F(SplatEvalTest, UpscaleMethodsSetTheSplatPassAndBadFactorsFailFirst) {
     EXPECT_FALSE(pass.settings().scaled_dilation);
     EXPECT_EQ(pass.settings().lod.mode, plugin_msgs::LodMode::full);
     pass.settings() = splat_lod::SplatPassSettings{};
-    eval::upscaled_method(eval::reference_method(), eval::select_upscalers("lanczos3").front(), 3).configure(pass.settings());
+    eval::upscaled_method(eval::reference_method(), eval::select_upscalers("lanczos3").front(), 3)
+        .configure(pass.settings());
     EXPECT_FLOAT_EQ(pass.settings().render_scale, 1.0f / 3.0f);
     EXPECT_EQ(pass.settings().upscaler, plugin_msgs::Upscaler::lanczos3);
     EXPECT_TRUE(pass.settings().scaled_dilation);

@@ -1,17 +1,17 @@
 // The GPU splat pipeline against the double-precision CPU reference (docs/algorithms.md §1).
 #include <chrono>
-#include <map>
 #include <cmath>
+#include <map>
 
 #include "engine/render/render_target.h"
 #include "engine/render/scene_camera.h"
-#include "splat_lod/splat_component.h"
 #include "engine/scene/scene_loader.h"
 #include "gpu_fixture.h"
-#include "splat_lod/splat_renderer.h"
 #include "splat_lod/core/reference_renderer.h"
 #include "splat_lod/core/splat_io.h"
+#include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
+#include "splat_lod/splat_renderer.h"
 #include "splat_test_scenes.h"
 #include "test_support.h"
 
@@ -79,8 +79,10 @@ TEST_F(SplatPipelineTest, SyntheticSceneMatchesTheReferenceClosely) {
                          {0.5f + 0.5f * std::sin(t), 0.5f + 0.5f * std::cos(t), 0.8f}});
     }
     const auto cloud = shared(engine::test::make_cloud(specs));
-    const auto camera = engine::make_look_at_camera({0.5f, 0.8f, 4.0f}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 160, 120, 0.1f, 100.0f);
-    const auto d = engine::compare_images(harness.render({cloud}, camera, {0.1f, 0.2f, 0.3f}), reference(*cloud, camera, {0.1f, 0.2f, 0.3f}));
+    const auto camera = engine::make_look_at_camera({0.5f, 0.8f, 4.0f}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 160,
+                                                    120, 0.1f, 100.0f);
+    const auto d = engine::compare_images(harness.render({cloud}, camera, {0.1f, 0.2f, 0.3f}),
+                                          reference(*cloud, camera, {0.1f, 0.2f, 0.3f}));
     EXPECT_GE(d.psnr_db, 48.0);
     EXPECT_LE(d.max_channel_difference, 3);
 }
@@ -94,14 +96,17 @@ TEST_F(SplatPipelineTest, SeveralComponentsAreSortedTogether) {
         (i % 2 == 0 ? red : blue).push_back(s);
         both.push_back(s);
     }
-    const auto camera = engine::make_look_at_camera({0, 0, 3}, {0, 0, -1}, {0, 1, 0}, glm::radians(40.0f), 96, 72, 0.1f, 100.0f);
+    const auto camera =
+        engine::make_look_at_camera({0, 0, 3}, {0, 0, -1}, {0, 1, 0}, glm::radians(40.0f), 96, 72, 0.1f, 100.0f);
     const auto merged = harness.render({shared(engine::test::make_cloud(both))}, camera);
-    const auto split = harness.render({shared(engine::test::make_cloud(red)), shared(engine::test::make_cloud(blue))}, camera);
+    const auto split =
+        harness.render({shared(engine::test::make_cloud(red)), shared(engine::test::make_cloud(blue))}, camera);
     const auto d = engine::compare_images(merged, split);
     EXPECT_EQ(d.max_channel_difference, 0);
     // And the node transform applies: moving the second component changes the image.
-    const auto moved = harness.render({shared(engine::test::make_cloud(red)), shared(engine::test::make_cloud(blue))}, camera,
-                                      glm::vec3(0.0f), {glm::mat4(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0, 0))});
+    const auto moved =
+        harness.render({shared(engine::test::make_cloud(red)), shared(engine::test::make_cloud(blue))}, camera,
+                       glm::vec3(0.0f), {glm::mat4(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0, 0))});
     EXPECT_GT(engine::compare_images(merged, moved).max_channel_difference, 50);
 }
 
@@ -110,27 +115,35 @@ TEST_F(SplatPipelineTest, SeveralComponentsAreSortedTogether) {
 TEST_F(SplatPipelineTest, HardCasesAgreeWithTheReference) {
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
     std::vector<GaussianSpec> specs = {
-        {{0.0f, 0.0f, 0.0f}, glm::vec3(-30.0f), {1, 0, 0, 0}, 3.0f, {1, 0, 0}},             // scale ≈ 0
+        {{0.0f, 0.0f, 0.0f}, glm::vec3(-30.0f), {1, 0, 0, 0}, 3.0f, {1, 0, 0}},                 // scale ≈ 0
         {{0.3f, 0.0f, 0.0f}, glm::vec3(-1.5f, -15.0f, -15.0f), {1, 0, 0, 0}, 2.0f, {0, 1, 0}},  // anisotropy 1e6:1
-        {{0.0f, 0.3f, 0.0f}, glm::vec3(-2.0f), {3, 1, 0, 0}, 2.0f, {0, 0, 1}},                // non-unit quaternion
-        {{0.0f, 0.0f, 0.0f}, glm::vec3(-2.0f), {0, 0, 0, 0}, 2.0f, {1, 1, 1}},                // zero quaternion
-        {{-0.3f, 0.0f, 0.0f}, glm::vec3(-2.0f), {1, 0, 0, 0}, 60.0f, {1, 1, 0}},              // logit +60
-        {{-0.3f, 0.3f, 0.0f}, glm::vec3(-2.0f), {1, 0, 0, 0}, -60.0f, {1, 0, 1}},             // logit −60
-        {{0.2f, -0.2f, 0.0f}, glm::vec3(-2.0f), {1, 0, 0, 0}, -5.6f, {0, 1, 1}},              // opacity < 1/255
-        {{nan, 0.0f, 0.0f}, glm::vec3(-2.0f), {1, 0, 0, 0}, 2.0f, {1, 1, 1}},                 // NaN position
-        {{0.0f, 0.0f, 0.0f}, glm::vec3(inf), {1, 0, 0, 0}, 2.0f, {1, 1, 1}},                  // Inf scale
-        {{0.0f, 0.0f, 2.8f}, glm::vec3(-2.0f), {1, 0, 0, 0}, 2.0f, {1, 1, 1}},                // at the near plane
-        {{0.0f, 0.0f, 3.0f}, glm::vec3(-2.0f), {1, 0, 0, 0}, 2.0f, {1, 1, 1}},                // on the camera centre
-        {{0.0f, 0.0f, 5.0f}, glm::vec3(-2.0f), {1, 0, 0, 0}, 2.0f, {1, 1, 1}},                // behind the camera
-        {{1e6f, 0.0f, -1e6f}, glm::vec3(10.0f), {1, 0, 0, 0}, 2.0f, {0.5f, 0.5f, 0.5f}},      // far away, huge
-        {{0.0f, -0.4f, -0.5f}, glm::vec3(12.0f), {1, 0, 0, 0}, -4.0f, {0.2f, 0.2f, 0.2f}},    // log-scale +12
+        {{0.0f, 0.3f, 0.0f}, glm::vec3(-2.0f), {3, 1, 0, 0}, 2.0f, {0, 0, 1}},                  // non-unit quaternion
+        {{0.0f, 0.0f, 0.0f}, glm::vec3(-2.0f), {0, 0, 0, 0}, 2.0f, {1, 1, 1}},                  // zero quaternion
+        {{-0.3f, 0.0f, 0.0f}, glm::vec3(-2.0f), {1, 0, 0, 0}, 60.0f, {1, 1, 0}},                // logit +60
+        {{-0.3f, 0.3f, 0.0f}, glm::vec3(-2.0f), {1, 0, 0, 0}, -60.0f, {1, 0, 1}},               // logit −60
+        {{0.2f, -0.2f, 0.0f}, glm::vec3(-2.0f), {1, 0, 0, 0}, -5.6f, {0, 1, 1}},                // opacity < 1/255
+        {{nan, 0.0f, 0.0f}, glm::vec3(-2.0f), {1, 0, 0, 0}, 2.0f, {1, 1, 1}},                   // NaN position
+        {{0.0f, 0.0f, 0.0f}, glm::vec3(inf), {1, 0, 0, 0}, 2.0f, {1, 1, 1}},                    // Inf scale
+        {{0.0f, 0.0f, 2.8f}, glm::vec3(-2.0f), {1, 0, 0, 0}, 2.0f, {1, 1, 1}},                  // at the near plane
+        {{0.0f, 0.0f, 3.0f}, glm::vec3(-2.0f), {1, 0, 0, 0}, 2.0f, {1, 1, 1}},                  // on the camera centre
+        {{0.0f, 0.0f, 5.0f}, glm::vec3(-2.0f), {1, 0, 0, 0}, 2.0f, {1, 1, 1}},                  // behind the camera
+        {{1e6f, 0.0f, -1e6f}, glm::vec3(10.0f), {1, 0, 0, 0}, 2.0f, {0.5f, 0.5f, 0.5f}},        // far away, huge
+        {{0.0f, -0.4f, -0.5f}, glm::vec3(12.0f), {1, 0, 0, 0}, -4.0f, {0.2f, 0.2f, 0.2f}},      // log-scale +12
     };
-    for (int i = 0; i < 2000; ++i) specs.push_back({{-0.2f, -0.2f, 0.0f}, glm::vec3(-3.0f), {1, 0, 0, 0}, 0.0f, {0.9f, 0.6f, 0.1f}});  // coincident
-    for (int i = 0; i < 3; ++i) specs.push_back({{0.25f, 0.25f, 0.0f}, glm::vec3(-2.5f), {1, 0, 0, 0}, 0.5f, {0.2f * i, 0.5f, 1.0f - 0.3f * i}});  // equal depths
+    for (int i = 0; i < 2000; ++i)
+        specs.push_back(
+            {{-0.2f, -0.2f, 0.0f}, glm::vec3(-3.0f), {1, 0, 0, 0}, 0.0f, {0.9f, 0.6f, 0.1f}});  // coincident
+    for (int i = 0; i < 3; ++i)
+        specs.push_back({{0.25f, 0.25f, 0.0f},
+                         glm::vec3(-2.5f),
+                         {1, 0, 0, 0},
+                         0.5f,
+                         {0.2f * i, 0.5f, 1.0f - 0.3f * i}});  // equal depths
     auto cloud_value = engine::test::make_cloud(specs);
     cloud_value.sh_dc[8] = glm::vec3(2.0f);
     const auto cloud = shared(std::move(cloud_value));
-    const auto camera = engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 128, 96, 0.1f, 1e7f);
+    const auto camera =
+        engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 128, 96, 0.1f, 1e7f);
     const auto gpu = harness.render({cloud}, camera);
     expect_no_garbage(gpu);
     const auto again = harness.render({cloud}, camera);
@@ -144,16 +157,19 @@ TEST_F(SplatPipelineTest, HardCasesAgreeWithTheReference) {
 }
 
 TEST_F(SplatPipelineTest, TinyHugeAndEmptyTargets) {
-    const auto cloud = shared(engine::test::make_cloud({{{0, 0, 0}, glm::vec3(-1.0f), {1, 0, 0, 0}, 2.0f, {1, 0.5f, 0.2f}}}));
+    const auto cloud =
+        shared(engine::test::make_cloud({{{0, 0, 0}, glm::vec3(-1.0f), {1, 0, 0, 0}, 2.0f, {1, 0.5f, 0.2f}}}));
     for (const auto& [w, h] : {std::pair{1, 1}, std::pair{4096, 1}, std::pair{17, 33}}) {
         SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
-        const auto camera = engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), w, h, 0.1f, 100.0f);
+        const auto camera =
+            engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), w, h, 0.1f, 100.0f);
         const auto gpu = harness.render({cloud}, camera);
         expect_no_garbage(gpu);
         EXPECT_LE(engine::compare_images(gpu, reference(*cloud, camera)).max_channel_difference, 2);
     }
     // An empty scene leaves the background.
-    const auto camera = engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 8, 8, 0.1f, 100.0f);
+    const auto camera =
+        engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 8, 8, 0.1f, 100.0f);
     const auto empty = harness.render({shared(splat_lod::SplatCloud{})}, camera, {0.2f, 0.4f, 0.6f});
     EXPECT_EQ(empty.pixel(3, 3)[1], 102);
 }
@@ -162,9 +178,15 @@ TEST_F(SplatPipelineTest, TinyHugeAndEmptyTargets) {
 // and the next frame has room.
 TEST_F(SplatPipelineTest, KeyBufferGrowsAfterAnOverflowedFrame) {
     std::vector<GaussianSpec> specs;
-    for (int i = 0; i < 400; ++i) specs.push_back({{0.01f * (i % 20), 0.01f * (i / 20), -0.001f * i}, glm::vec3(0.0f), {1, 0, 0, 0}, -3.0f, {0.5f, 0.5f, 0.5f}});
+    for (int i = 0; i < 400; ++i)
+        specs.push_back({{0.01f * (i % 20), 0.01f * (i / 20), -0.001f * i},
+                         glm::vec3(0.0f),
+                         {1, 0, 0, 0},
+                         -3.0f,
+                         {0.5f, 0.5f, 0.5f}});
     const auto cloud = shared(engine::test::make_cloud(specs));
-    const auto camera = engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), 512, 512, 0.1f, 100.0f);
+    const auto camera =
+        engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), 512, 512, 0.1f, 100.0f);
     engine::Scene scene;
     scene.background = glm::vec3(0.0f);
     auto component = std::make_unique<splat_lod::SplatComponent>();
@@ -230,7 +252,8 @@ TEST_F(SplatPipelineTest, MeshesAndSplatsCompositeByDepth) {
         layer.colour.push_back(glm::dvec3(p[0], p[1], p[2]) / 255.0);
     }
     const ref::ReferenceInstance instance{cloud.get(), glm::dmat4(model), splat_lod::kMaxShDegree};
-    const auto cpu = ref::to_image8(ref::render_reference(std::span(&instance, 1), camera, ref::ReferenceSettings{}, &layer));
+    const auto cpu =
+        ref::to_image8(ref::render_reference(std::span(&instance, 1), camera, ref::ReferenceSettings{}, &layer));
     EXPECT_GE(engine::compare_images(gpu, cpu).psnr_db, 40.0);
     EXPECT_TRUE(engine::test::matches_golden(gpu, "splat_composite_biker_boxes"));
     // The front box hides splats: somewhere the composite equals the mesh layer exactly while the
@@ -247,11 +270,14 @@ TEST_F(SplatPipelineTest, LodSelectionMatchesTheCpuRule) {
     for (int i = 0; i < 400; ++i) {
         const float t = static_cast<float>(i);
         specs.push_back({{1.6f * std::sin(t * 1.3f), 1.2f * std::cos(t * 0.7f), -1.5f * std::sin(t * 0.23f)},
-                         glm::vec3(-3.5f + 0.8f * std::sin(t * 0.5f)), {1, 0, 0, 0}, 1.5f,
+                         glm::vec3(-3.5f + 0.8f * std::sin(t * 0.5f)),
+                         {1, 0, 0, 0},
+                         1.5f,
                          {0.5f + 0.5f * std::sin(t), 0.4f, 0.5f + 0.5f * std::cos(t)}});
     }
     auto cloud = engine::test::make_cloud(specs);
-    const auto camera = engine::make_look_at_camera({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 160, 120, 0.1f, 100.0f);
+    const auto camera =
+        engine::make_look_at_camera({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 160, 120, 0.1f, 100.0f);
     const auto ref_camera = ref::make_reference_camera(camera);
     const ref::ReferenceSettings settings;
     std::vector<double> coverage(cloud.size());
@@ -282,7 +308,7 @@ TEST_F(SplatPipelineTest, LodSelectionMatchesTheCpuRule) {
         for (std::size_t i = 0; i < cloud.size(); ++i) {
             const bool drawn = ref::project_gaussian(cloud, i, glm::dmat4(1.0), ref_camera, settings).drawn();
             keep[i] = drawn && splat_lod::lod_selected(rule, cloud.lod_level[i], coverage[i], cloud.coverage_min[i],
-                                                        cloud.coverage_max[i]);
+                                                       cloud.coverage_max[i]);
             if (keep[i]) ++per_level[cloud.lod_level[i] - 1u];
         }
         const auto gpu = harness.render({shared_cloud}, camera);
@@ -297,18 +323,20 @@ TEST_F(SplatPipelineTest, LodSelectionMatchesTheCpuRule) {
     EXPECT_EQ(counts[M::baseline][1] + counts[M::baseline][2] + counts[M::baseline][3], 0u);
     EXPECT_LT(counts[M::filter_small][0], counts[M::baseline][0]);
     for (int l = 0; l < 4; ++l) EXPECT_GT(counts[M::insert_large][static_cast<std::size_t>(l)], 0u);
-    for (int l = 1; l < 4; ++l) EXPECT_LT(counts[M::full][static_cast<std::size_t>(l)], counts[M::insert_large][static_cast<std::size_t>(l)]);
+    for (int l = 1; l < 4; ++l)
+        EXPECT_LT(counts[M::full][static_cast<std::size_t>(l)], counts[M::insert_large][static_cast<std::size_t>(l)]);
 }
 
 TEST_F(SplatPipelineTest, LevelColouringTintsEachLevel) {
     auto cloud = engine::test::make_cloud({{{-0.6f, 0, 0}, glm::vec3(-1.5f), {1, 0, 0, 0}, 4.0f, {0.9f, 0.9f, 0.9f}},
-                                          {{0.6f, 0, 0}, glm::vec3(-1.5f), {1, 0, 0, 0}, 4.0f, {0.9f, 0.9f, 0.9f}}});
+                                           {{0.6f, 0, 0}, glm::vec3(-1.5f), {1, 0, 0, 0}, 4.0f, {0.9f, 0.9f, 0.9f}}});
     cloud.lod_level[1] = 2;
     plugin_msgs::LodSettings lod;
     lod.mode = plugin_msgs::LodMode::insert_large;
     lod.level_colouring = true;
     harness.engine().bus().publish(lod);
-    const auto camera = engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 96, 48, 0.1f, 100.0f);
+    const auto camera =
+        engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 96, 48, 0.1f, 100.0f);
     const auto image = harness.render({shared(cloud)}, camera);
     // f = 24 / tan(25°) = 51.5 px, so x = ±0.6 at distance 3 lands 10 px either side of the centre.
     const auto* grey = image.pixel(48 - 10, 24);   // level 1

@@ -7,13 +7,13 @@
 #include "engine/render/render_target.h"
 #include "engine/scene/scene.h"
 #include "gpu_fixture.h"
-#include "splat_lod/splat_renderer.h"
 #include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
-#include "splat_test_scenes.h"
+#include "splat_lod/splat_renderer.h"
 #include "splat_lod/stream/chunk_streamer.h"
 #include "splat_lod/stream/stream_scene_sink.h"
 #include "splat_lod/worldgen/world_generator.h"
+#include "splat_test_scenes.h"
 #include "test_support.h"
 #include "tiny_world.h"
 
@@ -60,14 +60,16 @@ TEST_F(SplatStreamingTest, WhatTheStreamerCountsIsWhatTheGpuHolds) {
         const float t = static_cast<float>(frame) / 59.0f;
         const float s = 1.0f - std::abs(2.0f * t - 1.0f);  // 0 → 1 → 0
         const glm::vec3 eye = glm::mix(glm::vec3(140.0f, 120.0f, 140.0f), glm::vec3(2.0f, 3.0f, 2.0f), s);
-        const auto camera = engine::make_look_at_camera(eye, {0.0f, 0.0f, 0.0f}, {0, 1, 0}, glm::radians(60.0f), w, h, 0.1f, 2000.0f);
+        const auto camera =
+            engine::make_look_at_camera(eye, {0.0f, 0.0f, 0.0f}, {0, 1, 0}, glm::radians(60.0f), w, h, 0.1f, 2000.0f);
         streamer.update({eye, camera.focal_length(), static_cast<std::uint64_t>(frame)});
         engine.renderer().render(scene, camera, target);
         const splat_lod::SplatMemory gpu = pass.memory();
         SCOPED_TRACE("frame " + std::to_string(frame));
         // The GPU uploaded within the streamer's per-frame budget (clusters of freed pages aside,
         // one GpuCluster each), and holds exactly the pages the streamer counts as resident.
-        EXPECT_LE(gpu.last_upload_bytes, settings.upload_budget_bytes_per_frame + sizeof(splat_lod::gpu::GpuCluster) * 64u);
+        EXPECT_LE(gpu.last_upload_bytes,
+                  settings.upload_budget_bytes_per_frame + sizeof(splat_lod::gpu::GpuCluster) * 64u);
         EXPECT_EQ(std::uint64_t(gpu.pages_in_use) * gpu.page_bytes, streamer.resident_bytes());
         EXPECT_LE(streamer.resident_bytes(), settings.memory_budget_bytes);
         EXPECT_EQ(sink.resident_parts(), root.children().size());
@@ -81,7 +83,8 @@ TEST_F(SplatStreamingTest, WhatTheStreamerCountsIsWhatTheGpuHolds) {
     for (std::size_t i = 3; i < image.rgba.size(); i += 4) ASSERT_EQ(image.rgba[i], 255);
     engine::write_png(engine::test::output_dir("splat_streaming") / "last_frame.png", image);
     streamer.release_all();
-    engine.renderer().render(scene, engine::make_look_at_camera({0, 50, 50}, {0, 0, 0}, {0, 1, 0}, 1.0f, w, h, 0.1f, 2000.0f), target);
+    engine.renderer().render(
+        scene, engine::make_look_at_camera({0, 50, 50}, {0, 0, 0}, {0, 1, 0}, 1.0f, w, h, 0.1f, 2000.0f), target);
     EXPECT_EQ(pass.memory().pages_in_use, 0u);
 }
 
@@ -100,7 +103,8 @@ TEST_F(SplatStreamingTest, AHiddenComponentStaysResidentAndIsNotDrawn) {
     component->cloud = std::make_shared<const splat_lod::SplatCloud>(engine::test::make_cloud({a, b}));
     splat_lod::SplatComponent& splats = scene.root().add_child("splats").add_component(std::move(component));
     const int w = 64, h = 48;
-    const auto camera = engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), w, h, 0.1f, 100.0f);
+    const auto camera =
+        engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), w, h, 0.1f, 100.0f);
     engine::RenderTarget target(w, h);
     const auto draw = [&] {
         engine.renderer().render(scene, camera, target);

@@ -4,18 +4,18 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/core/error.h"
 #include "engine/render/render_target.h"
 #include "engine/render/scene_camera.h"
 #include "engine/scene/scene_loader.h"
 #include "gpu_fixture.h"
-#include "engine/core/error.h"
-#include "splat_lod/splat_renderer.h"
 #include "splat_lod/core/lod_selection.h"
 #include "splat_lod/core/reference_renderer.h"
-#include "splat_lod/splat_component.h"
 #include "splat_lod/core/splat_io.h"
-#include "splat_lod/splat_lod_plugin.h"
 #include "splat_lod/core/upscale.h"
+#include "splat_lod/splat_component.h"
+#include "splat_lod/splat_lod_plugin.h"
+#include "splat_lod/splat_renderer.h"
 #include "splat_test_scenes.h"
 #include "test_support.h"
 
@@ -112,7 +112,8 @@ TEST_F(SplatUpscaleTest, LowResolutionDerivativesMatchTheReference) {
     settings.dilation = 0.3 * s * s;
     const ref::ReferenceInstance instance{cloud.get(), glm::dmat4(1.0), splat_lod::kMaxShDegree};
     const auto low_camera = ref::scaled_camera(ref::make_reference_camera(camera), s);
-    const up::GradientImage cpu = ref::to_gradient_image(ref::render_reference(std::span(&instance, 1), low_camera, settings));
+    const up::GradientImage cpu =
+        ref::to_gradient_image(ref::render_reference(std::span(&instance, 1), low_camera, settings));
     ASSERT_EQ(cpu.width, gpu.width);
     ASSERT_EQ(cpu.height, gpu.height);
 
@@ -145,8 +146,8 @@ TEST_F(SplatUpscaleTest, UpscalePassMatchesTheCpuUpscalers) {
     for (const Case c : {Case{96, 72, 1.0 / 3.0}, Case{96, 72, 0.5}, Case{37, 23, 1.0 / 3.0}, Case{50, 31, 1.0 / 2.5},
                          Case{45, 45, 1.0 / 1.5}, Case{64, 48, 1.0 / 3.7}}) {
         for (const Upscaler u : kUpscalers) {
-            SCOPED_TRACE(std::to_string(c.width) + "x" + std::to_string(c.height) + " s=" + std::to_string(c.scale) + " " +
-                         std::string(plugin_msgs::to_string(u)));
+            SCOPED_TRACE(std::to_string(c.width) + "x" + std::to_string(c.height) + " s=" + std::to_string(c.scale) +
+                         " " + std::string(plugin_msgs::to_string(u)));
             const auto gpu = render(cloud, front_camera(c.width, c.height), static_cast<float>(c.scale), u, background);
             const up::GradientImage low = pass().read_low_res_image();
             ASSERT_EQ(low.width, up::low_res_size(c.width, static_cast<float>(c.scale)));
@@ -283,7 +284,10 @@ TEST_F(SplatUpscaleTest, HardCasesStayFiniteAndInRange) {
     std::vector<GaussianSpec> specs;
     for (int i = 0; i < 200; ++i) {
         const float t = static_cast<float>(i);
-        specs.push_back({{std::sin(t * 1.3f), 0.7f * std::cos(t * 2.1f), 0.0f}, glm::vec3(-7.0f), {1, 0, 0, 0}, 6.0f,
+        specs.push_back({{std::sin(t * 1.3f), 0.7f * std::cos(t * 2.1f), 0.0f},
+                         glm::vec3(-7.0f),
+                         {1, 0, 0, 0},
+                         6.0f,
                          {0.9f * std::abs(std::sin(t)), 0.9f, 0.2f}});
     }
     const auto needles = shared(engine::test::make_cloud(specs));

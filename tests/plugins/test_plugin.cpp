@@ -57,7 +57,9 @@ public:
 
 }  // namespace test_plugin
 
-std::unique_ptr<engine::Plugin> make_test_plugin() { return std::make_unique<test_plugin::TestPlugin>(); }
+std::unique_ptr<engine::Plugin> make_test_plugin() {
+    return std::make_unique<test_plugin::TestPlugin>();
+}
 
 #if defined(TEST_PLUGIN_SHARED)
 ENGINE_EXPORT_PLUGIN(test_plugin::TestPlugin)

@@ -11,7 +11,8 @@ HeadlessGlContext& gl_context() {
     return *context;
 }
 
-::testing::AssertionResult matches_golden(const Image& actual, const std::string& name, const GoldenTolerance& tolerance) {
+::testing::AssertionResult matches_golden(const Image& actual, const std::string& name,
+                                          const GoldenTolerance& tolerance) {
     const auto golden_path = source_dir() / "golden" / (name + ".png");
     const char* update = std::getenv("ENGINE_UPDATE_GOLDEN");
     if (update != nullptr && update[0] == '1') {
@@ -36,8 +37,9 @@ HeadlessGlContext& gl_context() {
     write_png(out / (name + ".actual.png"), actual);
     write_png(out / (name + ".diff.png"), d.visual);
     return ::testing::AssertionFailure() << name << ": PSNR " << d.psnr_db << " dB (need >= " << tolerance.min_psnr_db
-                                         << "), " << d.fraction_over_threshold * 100.0 << "% of pixels differ by more than "
-                                         << tolerance.channel_threshold << " (allowed " << tolerance.max_fraction_differing * 100.0
+                                         << "), " << d.fraction_over_threshold * 100.0
+                                         << "% of pixels differ by more than " << tolerance.channel_threshold
+                                         << " (allowed " << tolerance.max_fraction_differing * 100.0
                                          << "%); actual and diff images in " << out;
 }
 

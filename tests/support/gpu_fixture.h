@@ -16,12 +16,11 @@ HeadlessGlContext& gl_context();
 class GpuTest : public ::testing::Test {
 protected:
     void SetUp() override { gl_context().make_current(); }
-
 };
 
 struct GoldenTolerance {
-    double min_psnr_db = 35.0;          // whole-image PSNR against the golden
-    int channel_threshold = 24;         // a pixel "differs" when a channel is off by more
+    double min_psnr_db = 35.0;   // whole-image PSNR against the golden
+    int channel_threshold = 24;  // a pixel "differs" when a channel is off by more
     double max_fraction_differing = 0.005;
 };
 

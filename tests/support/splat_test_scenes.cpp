@@ -1,7 +1,5 @@
 #include "splat_test_scenes.h"
 
-#include <algorithm>
-
 #include "engine/render/render_target.h"
 #include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
@@ -9,66 +7,14 @@
 
 namespace engine::test {
 
-std::vector<RealSplatScene> real_splat_scenes() {
-    const auto base = shared_data_dir() / "splats";
-    return {
-        {"biker", base / "playcanvas-engine/biker.compressed.ply", {0, -1, 0}},
-        {"guitar", base / "playcanvas-engine/guitar.compressed.ply", {0, -1, 0}},
-        {"donut", base / "gshairlod-donut/fused.ply", {0, 0, 1}},
-        {"playbot", base / "playcanvas-engine/playbot-lod-sog/0_0/meta.json", {0, -1, 0}},
-        {"logo", base / "playcanvas-engine/playcanvas-logo-sog/meta.json", {0, -1, 0}},
-    };
-}
-
-std::vector<CameraView> orbit_cameras(const splat_lod::SplatCloud& cloud, const glm::vec3& up, int count, int width,
-                                      int height, float distance_factor) {
-    glm::vec3 centre;
-    for (int axis = 0; axis < 3; ++axis) {
-        std::vector<float> v;
-        for (const auto& p : cloud.positions) v.push_back(p[axis]);
-        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-        centre[axis] = v[v.size() / 2];
-    }
-    std::vector<float> d;
-    for (const auto& p : cloud.positions) d.push_back(glm::length(p - centre));
-    std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() * 9 / 10), d.end());
-    const float radius = d[d.size() * 9 / 10];
-    // A frame around `up`.
-    const glm::vec3 u = glm::normalize(up);
-    const glm::vec3 a = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1)));
-    const glm::vec3 b = glm::cross(u, a);
-    std::vector<CameraView> cameras;
-    for (int i = 0; i < count; ++i) {
-        const float azimuth = 0.6f + 2.0f * 3.14159265f * static_cast<float>(i) / static_cast<float>(count);
-        const float elevation = (i % 2 == 0) ? 0.25f : -0.1f;
-        const glm::vec3 dir = std::cos(elevation) * (std::cos(azimuth) * a + std::sin(azimuth) * b) + std::sin(elevation) * u;
-        cameras.push_back(make_look_at_camera(centre + dir * radius * distance_factor, centre, u, glm::radians(50.0f), width,
-                                              height, 0.01f, 1e5f));
-    }
-    return cameras;
-}
-
-splat_lod::SplatCloud make_cloud(const std::vector<GaussianSpec>& specs) {
-    splat_lod::SplatCloud cloud;
-    cloud.resize(specs.size());
-    for (std::size_t i = 0; i < specs.size(); ++i) {
-        const auto& s = specs[i];
-        cloud.positions[i] = s.position;
-        cloud.log_scales[i] = s.log_scale;
-        cloud.rotations[i] = {s.rotation[0], s.rotation[1], s.rotation[2], s.rotation[3]};
-        cloud.opacity_logits[i] = s.opacity_logit;
-        cloud.sh_dc[i] = (s.color - 0.5f) / splat_lod::kShC0;
-    }
-    return cloud;
-}
-
 SplatRenderHarness::SplatRenderHarness() : engine_(std::make_unique<Engine>()) {
     engine_->plugins().add_static(splat_lod::make_plugin());
 }
 SplatRenderHarness::~SplatRenderHarness() = default;
 
 Image SplatRenderHarness::render(const std::vector<std::shared_ptr<const splat_lod::SplatCloud>>& clouds,
-                                 const CameraView& camera, const glm::vec3& background, const std::vector<glm::mat4>& models) {
+                                 const CameraView& camera, const glm::vec3& background,
+                                 const std::vector<glm::mat4>& models) {
     Scene scene;
     scene.background = background;
     for (std::size_t i = 0; i < clouds.size(); ++i) {

@@ -8,17 +8,32 @@
 
 namespace engine::test {
 
-std::filesystem::path source_dir();          // tests/
-std::filesystem::path repo_dir();            // the repository root
-std::filesystem::path shared_data_dir();     // ../shared/data (may be absent on a user's clone)
+std::filesystem::path source_dir();  // tests/
+std::filesystem::path repo_dir();    // the repository root
+// ../shared/data (may be absent on a user's clone), or $ENGINE_SHARED_DATA_DIR when that is set and
+// not empty (ENGINE_SHARED_DATA_DIR=/nonexistent runs the tests as on a clone without it).
+std::filesystem::path shared_data_dir();
+// A real test asset by its path relative to the data folders: tests/data/<relative> (the small
+// captures kept in the repository) when it is there, else shared_data_dir()/<relative>.
+std::filesystem::path data_file(const std::string& relative);
 // build/test_output/<suite>/<TestSuite.TestName>/ (created): each test writes only its own folder.
 std::filesystem::path output_dir(const std::string& suite);
 
 // Skips the calling test with a clear message when ../shared/data is absent.
-#define ENGINE_REQUIRE_SHARED_DATA()                                                            \
-    do {                                                                                        \
-        if (!std::filesystem::exists(::engine::test::shared_data_dir()))                        \
+#define ENGINE_REQUIRE_SHARED_DATA()                                                                 \
+    do {                                                                                             \
+        if (!std::filesystem::exists(::engine::test::shared_data_dir()))                             \
             GTEST_SKIP() << "shared data folder not found at " << ::engine::test::shared_data_dir(); \
+    } while (0)
+
+// Skips the calling test, naming the file, when `relative` is neither in tests/data nor in the
+// shared data folder (see data_file).
+#define ENGINE_REQUIRE_DATA(relative)                                             \
+    do {                                                                          \
+        if (!std::filesystem::exists(::engine::test::data_file(relative)))        \
+            GTEST_SKIP() << "test data file " << (relative) << " not found in "   \
+                         << (::engine::test::source_dir() / "data") << " nor in " \
+                         << ::engine::test::shared_data_dir();                    \
     } while (0)
 
 }  // namespace engine::test

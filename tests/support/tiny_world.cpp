@@ -8,7 +8,8 @@
 
 namespace engine::test {
 
-splat_lod::world::WorldOptions tiny_world_options(const std::filesystem::path& folder, std::uint64_t seed, int threads) {
+splat_lod::world::WorldOptions tiny_world_options(const std::filesystem::path& folder, std::uint64_t seed,
+                                                  int threads) {
     splat_lod::world::WorldOptions o;
     o.seed = seed;
     o.size_m = 96.0f;

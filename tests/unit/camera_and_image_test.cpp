@@ -7,7 +7,8 @@
 #include "test_support.h"
 
 TEST(Camera, PixelConventionsAreTheDocumentedOnes) {
-    const auto cam = engine::make_look_at_camera({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, glm::radians(90.0f), 200, 100, 0.1f, 100.0f);
+    const auto cam =
+        engine::make_look_at_camera({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, glm::radians(90.0f), 200, 100, 0.1f, 100.0f);
     EXPECT_FLOAT_EQ(cam.focal_length(), 50.0f);  // (H/2)/tan(45°)
     const glm::vec3 centre = cam.project_to_pixel({0, 0, 0});
     EXPECT_NEAR(centre.x, 100.0f, 1e-4f);
@@ -53,10 +54,12 @@ TEST(Camera, ATileViewPutsEveryPointWhereTheWholeImageHasIt) {
 }
 
 TEST(Camera, RejectsImpossibleSettings) {
-    EXPECT_THROW(engine::make_look_at_camera({0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 1.0f, 10, 10, 0.1f, 10.0f), engine::Error);
+    EXPECT_THROW(engine::make_look_at_camera({0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 1.0f, 10, 10, 0.1f, 10.0f),
+                 engine::Error);
     EXPECT_THROW(engine::make_look_at_camera({0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 1.0f, 0, 10, 0.1f, 10.0f), engine::Error);
     EXPECT_THROW(engine::make_look_at_camera({0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 1.0f, 10, 10, 1.0f, 0.5f), engine::Error);
-    EXPECT_THROW(engine::make_look_at_camera({0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 0.0f, 10, 10, 0.1f, 10.0f), engine::Error);
+    EXPECT_THROW(engine::make_look_at_camera({0, 0, 1}, {0, 0, 0}, {0, 1, 0}, 0.0f, 10, 10, 0.1f, 10.0f),
+                 engine::Error);
 }
 
 TEST(Image, PngRoundTripAndComparison) {

@@ -11,8 +11,8 @@
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
 
-#include "splat_io_test_helpers.h"
 #include "engine/core/error.h"
+#include "splat_io_test_helpers.h"
 #include "splat_lod/core/splat_io.h"
 #include "splat_lod/synth/fine_detail_scene.h"
 #include "test_support.h"

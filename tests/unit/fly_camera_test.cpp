@@ -18,7 +18,9 @@ void expect_near(const glm::vec3& a, const glm::vec3& b, float tolerance = 1e-4f
     EXPECT_NEAR(a.z, b.z, tolerance);
 }
 
-glm::vec3 column(const glm::mat4& m, int i) { return glm::vec3(m[i]); }
+glm::vec3 column(const glm::mat4& m, int i) {
+    return glm::vec3(m[i]);
+}
 
 }  // namespace
 

@@ -9,7 +9,9 @@
 
 namespace {
 
-std::filesystem::path gltf(const std::string& relative) { return engine::test::shared_data_dir() / "gltf" / relative; }
+std::filesystem::path gltf(const std::string& relative) {
+    return engine::test::data_file("gltf/" + relative);
+}
 
 std::string load_error(const std::filesystem::path& path) {
     try {
@@ -45,7 +47,8 @@ TEST(GltfLoader, LoadsTheRealModels) {
         const auto asset = engine::load_gltf(gltf(c.path));
         EXPECT_EQ(asset.triangle_count(), c.triangles);
         EXPECT_EQ(asset.images.size(), c.images);
-        for (const auto& image : asset.images) EXPECT_EQ(image.rgba.size(), std::size_t(image.width) * image.height * 4);
+        for (const auto& image : asset.images)
+            EXPECT_EQ(image.rgba.size(), std::size_t(image.width) * image.height * 4);
         EXPECT_LT(asset.bounds_min.x, asset.bounds_max.x);
         for (const auto& p : asset.primitives)
             for (const auto& v : p.vertices) ASSERT_NEAR(glm::length(v.normal), 1.0f, 0.02f);
@@ -53,7 +56,8 @@ TEST(GltfLoader, LoadsTheRealModels) {
 }
 
 TEST(GltfLoader, BoxVariantsAgree) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("gltf/online3dviewer/Box/glTF/Box.gltf");
+    ENGINE_REQUIRE_DATA("gltf/online3dviewer/Box/glTF-Binary/Box.glb");
     const auto a = engine::load_gltf(gltf("online3dviewer/Box/glTF/Box.gltf"));
     const auto b = engine::load_gltf(gltf("online3dviewer/Box/glTF-Binary/Box.glb"));
     ASSERT_EQ(a.primitives.size(), b.primitives.size());
@@ -65,7 +69,7 @@ TEST(GltfLoader, BoxVariantsAgree) {
 }
 
 TEST(GltfLoader, DracoIsAnUnsupportedRequiredExtension) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("gltf/online3dviewer/Box/glTF-Draco/Box.gltf");
     const std::string e = load_error(gltf("online3dviewer/Box/glTF-Draco/Box.gltf"));
     EXPECT_NE(e.find("Box.gltf: unsupported required extension KHR_draco_mesh_compression"), std::string::npos) << e;
 }
@@ -78,10 +82,11 @@ TEST(GltfLoader, MissingFileAndWrongExtension) {
 }
 
 TEST(GltfLoader, TruncatedGlbIsAClearError) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("gltf/online3dviewer/BoxTextured/glTF-Binary/BoxTextured.glb");
     const auto bytes = engine::read_binary_file(gltf("online3dviewer/BoxTextured/glTF-Binary/BoxTextured.glb"));
     const auto dir = engine::test::output_dir("gltf_loader");
-    for (std::size_t keep : {std::size_t{0}, std::size_t{11}, std::size_t{20}, std::size_t{100}, bytes.size() / 2, bytes.size() - 1}) {
+    for (std::size_t keep :
+         {std::size_t{0}, std::size_t{11}, std::size_t{20}, std::size_t{100}, bytes.size() / 2, bytes.size() - 1}) {
         SCOPED_TRACE(keep);
         const auto path = dir / ("truncated_" + std::to_string(keep) + ".glb");
         engine::write_file_atomic(path, std::span(bytes.data(), keep));
@@ -92,15 +97,18 @@ TEST(GltfLoader, TruncatedGlbIsAClearError) {
 }
 
 TEST(GltfLoader, CorruptJsonAndMissingTexture) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("gltf/online3dviewer/BoxTextured/glTF/BoxTextured.gltf");
+    ENGINE_REQUIRE_DATA("gltf/online3dviewer/BoxTextured/glTF/BoxTextured0.bin");
     const auto dir = engine::test::output_dir("gltf_loader");
     engine::write_text_file_atomic(dir / "corrupt.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [");
     EXPECT_NE(load_error(dir / "corrupt.gltf").find("corrupt.gltf: cannot load glTF"), std::string::npos);
 
     // BoxTextured with its .bin beside it but without the PNG it names.
     const auto src = gltf("online3dviewer/BoxTextured/glTF");
-    std::filesystem::copy_file(src / "BoxTextured.gltf", dir / "BoxTextured.gltf", std::filesystem::copy_options::overwrite_existing);
-    std::filesystem::copy_file(src / "BoxTextured0.bin", dir / "BoxTextured0.bin", std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::copy_file(src / "BoxTextured.gltf", dir / "BoxTextured.gltf",
+                               std::filesystem::copy_options::overwrite_existing);
+    std::filesystem::copy_file(src / "BoxTextured0.bin", dir / "BoxTextured0.bin",
+                               std::filesystem::copy_options::overwrite_existing);
     std::filesystem::remove(dir / "CesiumLogoFlat.png");
     const std::string e = load_error(dir / "BoxTextured.gltf");
     EXPECT_NE(e.find("BoxTextured.gltf"), std::string::npos) << e;

@@ -12,7 +12,8 @@ namespace {
 TEST(LodPanel, ValidEditsArePublishedInvalidOnesAreNot) {
     engine::MessageBus bus;
     std::vector<plugin_msgs::LodSettings> received;
-    auto subscription = bus.subscribe<plugin_msgs::LodSettings>([&](const plugin_msgs::LodSettings& s) { received.push_back(s); });
+    auto subscription =
+        bus.subscribe<plugin_msgs::LodSettings>([&](const plugin_msgs::LodSettings& s) { received.push_back(s); });
     splat_lod::LodPanel panel(bus);
 
     plugin_msgs::LodSettings edit = panel.settings();

@@ -6,6 +6,9 @@
 
 #include "engine/core/message_bus.h"
 #include "plugin_msgs/plugin_msgs.h"
+#include "splat_lod/msgs/lod_settings.h"
+#include "splat_lod/msgs/splat_statistics.h"
+#include "splat_lod/msgs/stream_events.h"
 
 using engine::MessageBus;
 using engine::Subscription;
@@ -25,8 +28,10 @@ FrameStatistics frame(std::uint64_t index) {
 TEST(MessageBus, DeliversToSubscribersInSubscriptionOrder) {
     MessageBus bus;
     std::vector<std::string> calls;
-    const auto a = bus.subscribe<FrameStatistics>([&](const FrameStatistics& m) { calls.push_back("a" + std::to_string(m.frame_index)); });
-    const auto b = bus.subscribe<FrameStatistics>([&](const FrameStatistics& m) { calls.push_back("b" + std::to_string(m.frame_index)); });
+    const auto a = bus.subscribe<FrameStatistics>(
+        [&](const FrameStatistics& m) { calls.push_back("a" + std::to_string(m.frame_index)); });
+    const auto b = bus.subscribe<FrameStatistics>(
+        [&](const FrameStatistics& m) { calls.push_back("b" + std::to_string(m.frame_index)); });
     bus.publish(frame(1));
     bus.publish(frame(2));
     EXPECT_EQ(calls, (std::vector<std::string>{"a1", "b1", "a2", "b2"}));
@@ -95,9 +100,8 @@ TEST(MessageBus, HandlerMayPublishAndSubscribeDuringDelivery) {
         if (std::exchange(subscribed_late, true)) return;
         late = bus.subscribe<FrameStatistics>([&](const FrameStatistics&) { calls.push_back("late"); });
     });
-    const auto camera_listener = bus.subscribe<CameraState>([&](const CameraState& m) {
-        calls.push_back("camera" + std::to_string(m.frame_index));
-    });
+    const auto camera_listener = bus.subscribe<CameraState>(
+        [&](const CameraState& m) { calls.push_back("camera" + std::to_string(m.frame_index)); });
     bus.publish(frame(7));
     // A subscriber added during delivery starts with the next message.
     EXPECT_EQ(calls, (std::vector<std::string>{"frame", "camera7"}));

@@ -43,12 +43,15 @@ std::string error_of(const std::function<void()>& action) {
     return "";
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
 
 // Creates a test_marker component the way the scene loader does and returns its type name.
 std::string create_marker(Engine& engine) {
     engine::ComponentLoadContext context{"scene.json", "nodes[0].components[0]", &engine.assets()};
-    const auto component = engine.components().create("test_marker", {{"type", "test_marker"}, {"label", "x"}}, context);
+    const auto component =
+        engine.components().create("test_marker", {{"type", "test_marker"}, {"label", "x"}}, context);
     return std::string(component->type_name());
 }
 
@@ -190,9 +193,9 @@ TEST(PluginManager, ShutsDownInReverseOrderOfStartup) {
         engine.plugins().add_static(std::make_unique<JournalPlugin>("a", journal));
         engine.plugins().add_static(std::make_unique<JournalPlugin>("b", journal));
     }  // the engine's destructor shuts down what is left
-    EXPECT_EQ(journal, (std::vector<std::string>{"startup first", "startup second", "startup third",
-                                                 "shutdown third", "shutdown second", "shutdown first",
-                                                 "startup a", "startup b", "shutdown b", "shutdown a"}));
+    EXPECT_EQ(journal, (std::vector<std::string>{"startup first", "startup second", "startup third", "shutdown third",
+                                                 "shutdown second", "shutdown first", "startup a", "startup b",
+                                                 "shutdown b", "shutdown a"}));
 }
 
 TEST(PluginManager, FailedStartupLeavesNothingRegistered) {

@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "plugin_msgs/plugin_msgs.h"
+#include "splat_lod/msgs/lod_settings.h"
+#include "splat_lod/msgs/splat_statistics.h"
+#include "splat_lod/msgs/stream_events.h"
 
 using nlohmann::json;
 using namespace plugin_msgs;

@@ -30,7 +30,9 @@ struct SceneLoaderTest : ::testing::Test {
     }
 };
 
-bool near(const glm::vec3& a, const glm::vec3& b) { return glm::length(a - b) < 1e-5f; }
+bool near(const glm::vec3& a, const glm::vec3& b) {
+    return glm::length(a - b) < 1e-5f;
+}
 
 }  // namespace
 
@@ -75,21 +77,30 @@ TEST_F(SceneLoaderTest, CorruptJsonNamesTheFile) {
 
 TEST_F(SceneLoaderTest, UnknownComponentTypeNamesTheKeyAndTheKnownTypes) {
     const std::string e = error_of(R"({"nodes": [{"name": "a"}, {"components": [{"type": "meshh"}]}]})");
-    EXPECT_NE(e.find("inline.json: nodes[1].components[0].type: unknown component type 'meshh'"), std::string::npos) << e;
+    EXPECT_NE(e.find("inline.json: nodes[1].components[0].type: unknown component type 'meshh'"), std::string::npos)
+        << e;
     EXPECT_NE(e.find("camera, light, mesh"), std::string::npos) << e;
 }
 
 TEST_F(SceneLoaderTest, WrongValuesNameTheirKeys) {
-    EXPECT_NE(error_of(R"({"nodes": [{"translation": [1, 2]}]})").find("nodes[0].translation: expected an array of 3"), std::string::npos);
+    EXPECT_NE(error_of(R"({"nodes": [{"translation": [1, 2]}]})").find("nodes[0].translation: expected an array of 3"),
+              std::string::npos);
     EXPECT_NE(error_of(R"({"nodes": [{"components": [{"type": "camera", "fov_y_deg": "wide"}]}]})")
-                  .find("nodes[0].components[0].fov_y_deg: expected a number"), std::string::npos);
-    EXPECT_NE(error_of(R"({"nodes": [{"components": [{"type": "camera", "fov_y_deg": 200}]}]})").find("fov_y_deg: must be in"),
+                  .find("nodes[0].components[0].fov_y_deg: expected a number"),
               std::string::npos);
-    EXPECT_NE(error_of(R"({"nodes": [{"components": [{"type": "light", "kind": "spot"}]}]})").find("unknown light kind 'spot'"),
+    EXPECT_NE(error_of(R"({"nodes": [{"components": [{"type": "camera", "fov_y_deg": 200}]}]})")
+                  .find("fov_y_deg: must be in"),
               std::string::npos);
-    EXPECT_NE(error_of(R"({"nodes": [{"rotation": [0, 0, 0, 0]}]})").find("nodes[0].rotation: zero quaternion"), std::string::npos);
-    EXPECT_NE(error_of(R"({"nodes": [{"transltion": [0, 0, 0]}]})").find("nodes[0].transltion: unknown key"), std::string::npos);
-    EXPECT_NE(error_of(R"({"nodes": [{"components": [{"fov_y_deg": 3}]}]})").find("nodes[0].components[0].type: missing"), std::string::npos);
+    EXPECT_NE(error_of(R"({"nodes": [{"components": [{"type": "light", "kind": "spot"}]}]})")
+                  .find("unknown light kind 'spot'"),
+              std::string::npos);
+    EXPECT_NE(error_of(R"({"nodes": [{"rotation": [0, 0, 0, 0]}]})").find("nodes[0].rotation: zero quaternion"),
+              std::string::npos);
+    EXPECT_NE(error_of(R"({"nodes": [{"transltion": [0, 0, 0]}]})").find("nodes[0].transltion: unknown key"),
+              std::string::npos);
+    EXPECT_NE(
+        error_of(R"({"nodes": [{"components": [{"fov_y_deg": 3}]}]})").find("nodes[0].components[0].type: missing"),
+        std::string::npos);
     EXPECT_NE(error_of(R"({"scene": []})").find("scene: unknown key"), std::string::npos);
     EXPECT_NE(error_of(R"([1, 2])").find("top level must be an object"), std::string::npos);
     EXPECT_NE(error_of(R"({"nodes": [{"translation": [1, 2, 1e999]}]})").find("inline.json"), std::string::npos);

@@ -37,9 +37,36 @@ TEST(ShaderPreprocessor, AddsVersionDefinesAndLineDirectives) {
     EXPECT_EQ(out.files[0], "a/main.comp.glsl");
 }
 
+TEST(ShaderPreprocessor, SearchesTheRootsInOrderForFilesAndIncludes) {
+    // Two roots, as when a plugin adds its shaders folder to the engine's: a plugin file includes the
+    // engine's common code, and a name in both roots comes from the first.
+    const std::map<std::string, std::string> files = {
+        {"/engine/common/math.glsl", "float sq(float x) { return x * x; }\n"},
+        {"/engine/p/shadowed.glsl", "// engine\n"},
+        {"/plugin/p/main.comp.glsl", "#include \"common/math.glsl\"\n#include \"shadowed.glsl\"\nvoid main() {}\n"},
+        {"/plugin/p/shadowed.glsl", "// plugin\n"},
+    };
+    ShaderPreprocessor pre("/engine", [files](const std::filesystem::path& p) -> std::optional<std::string> {
+        const auto it = files.find(p.generic_string());
+        if (it == files.end()) return std::nullopt;
+        return it->second;
+    });
+    EXPECT_NE(error_of(pre, "p/main.comp.glsl").find("shader file not found"), std::string::npos);
+    pre.add_root("/plugin");
+    pre.add_root("/plugin");  // once
+    ASSERT_EQ(pre.roots().size(), 2u);
+    const auto out = pre.process("p/main.comp.glsl");
+    ASSERT_EQ(out.files.size(), 3u);
+    EXPECT_EQ(out.files[1], "common/math.glsl");
+    EXPECT_NE(out.source.find("// engine"), std::string::npos) << "p/shadowed.glsl is the first root's";
+    EXPECT_EQ(out.source.find("// plugin"), std::string::npos);
+    EXPECT_NE(error_of(pre, "p/missing.comp.glsl").find("not found in /engine, /plugin"), std::string::npos);
+}
+
 TEST(ShaderPreprocessor, ResolvesIncludesRelativeThenFromRootOncePerFile) {
     const auto pre = make({
-        {"a/main.comp.glsl", "#include \"near.glsl\"\n#include \"common/math.glsl\"\n#include \"near.glsl\"\nvoid main() {}\n"},
+        {"a/main.comp.glsl",
+         "#include \"near.glsl\"\n#include \"common/math.glsl\"\n#include \"near.glsl\"\nvoid main() {}\n"},
         {"a/near.glsl", "// near\n#include \"../common/math.glsl\"\n"},
         {"common/math.glsl", "#pragma once\nfloat sq(float x) { return x * x; }\n"},
     });

@@ -40,14 +40,16 @@ TEST(SplatEvalMetrics, PsnrOfKnownNoiseMatchesClosedForm) {
 }
 
 TEST(SplatEvalMetrics, PsnrRefusesDifferentSizes) {
-    expect_error([] { eval::psnr(eval::make_float_image(4, 4), eval::make_float_image(4, 2)); }, {"psnr", "4x4", "4x2"});
+    expect_error([] { eval::psnr(eval::make_float_image(4, 4), eval::make_float_image(4, 2)); },
+                 {"psnr", "4x4", "4x2"});
 }
 
 eval::FloatImage ramp(int width, int height, float start, float step) {
     eval::FloatImage image = eval::make_float_image(width, height);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
-            for (int c = 0; c < 3; ++c) image.at(x, y, c) = start + step * static_cast<float>(x) + 0.01f * static_cast<float>(c);
+            for (int c = 0; c < 3; ++c)
+                image.at(x, y, c) = start + step * static_cast<float>(x) + 0.01f * static_cast<float>(c);
     return image;
 }
 
@@ -138,12 +140,14 @@ TEST(SplatEvalCameras, InriaCamerasConvertOpenCvAxes) {
 }
 
 TEST(SplatEvalCameras, CorruptInriaFilesNameFileAndProblem) {
-    expect_error([] { eval::read_inria_cameras(write_file("broken.json", "[{\"id\": 0,")); }, {"broken.json", "not valid JSON"});
+    expect_error([] { eval::read_inria_cameras(write_file("broken.json", "[{\"id\": 0,")); },
+                 {"broken.json", "not valid JSON"});
     expect_error([] { eval::read_inria_cameras(write_file("empty.json", "[]")); }, {"empty.json", "empty"});
     expect_error([] { eval::read_inria_cameras(write_file("object.json", "{}")); }, {"object.json", "array"});
     std::string no_fy = kInriaCamera;
     no_fy.replace(no_fy.find("\"fy\""), 4, "\"fz\"");
-    expect_error([&] { eval::read_inria_cameras(write_file("no_fy.json", no_fy)); }, {"no_fy.json", "camera 0", "\"fy\""});
+    expect_error([&] { eval::read_inria_cameras(write_file("no_fy.json", no_fy)); },
+                 {"no_fy.json", "camera 0", "\"fy\""});
     std::string bad_rotation = kInriaCamera;
     bad_rotation.replace(bad_rotation.find("[0, 0, 1]]"), 10, "[0, 0, 1, 4]]");
     expect_error([&] { eval::read_inria_cameras(write_file("rot.json", bad_rotation)); }, {"rot.json", "\"rotation\""});
@@ -164,8 +168,9 @@ TEST(SplatEvalCameras, CameraPathFile) {
                  {"p1.json", "camera 0", "missing \"target\""});
     expect_error([] { eval::read_camera_path(write_file("p2.json", R"([{"eye": [1, 1, 1], "target": [1, 1, 1]}])")); },
                  {"p2.json", "coincide"});
-    expect_error([] { eval::read_camera_path(write_file("p3.json", R"([{"eye": [0, "a", 5], "target": [0, 0, 0]}])")); },
-                 {"p3.json", "\"eye\""});
+    expect_error(
+        [] { eval::read_camera_path(write_file("p3.json", R"([{"eye": [0, "a", 5], "target": [0, 0, 0]}])")); },
+        {"p3.json", "\"eye\""});
     expect_error([] { eval::load_camera_set("orbit:zero", {}, {0, 1, 0}); }, {"orbit:zero"});
 }
 

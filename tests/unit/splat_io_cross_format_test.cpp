@@ -59,9 +59,13 @@ struct Stats {
     }
 };
 
-double half_step(float lo, float hi, int bits) { return (static_cast<double>(hi) - lo) / (2.0 * ((1 << bits) - 1)); }
+double half_step(float lo, float hi, int bits) {
+    return (static_cast<double>(hi) - lo) / (2.0 * ((1 << bits) - 1));
+}
 
-double sigmoid(double x) { return 1.0 / (1.0 + std::exp(-x)); }
+double sigmoid(double x) {
+    return 1.0 / (1.0 + std::exp(-x));
+}
 
 }  // namespace
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <random>
 
-#include <glm/glm.hpp>
 #include <gtest/gtest.h>
+#include <glm/glm.hpp>
 
 #include "splat_io_test_helpers.h"
 #include "splat_lod/core/splat_io.h"
@@ -19,7 +19,9 @@ using splat_lod::SplatCloud;
 
 namespace {
 
-double sigmoid(double x) { return 1.0 / (1.0 + std::exp(-x)); }
+double sigmoid(double x) {
+    return 1.0 / (1.0 + std::exp(-x));
+}
 
 double rotation_distance(const Rotation& a, const Rotation& b) {
     auto d = [&](double s) {

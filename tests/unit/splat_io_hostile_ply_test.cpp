@@ -20,7 +20,9 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 
-Bytes text_bytes(const std::string& s) { return {s.begin(), s.end()}; }
+Bytes text_bytes(const std::string& s) {
+    return {s.begin(), s.end()};
+}
 
 // Replaces the first occurrence of `from` in the file's bytes.
 Bytes replaced(const Bytes& bytes, const std::string& from, const std::string& to) {
@@ -56,9 +58,10 @@ std::string reduced_header(std::size_t count) {
 }  // namespace
 
 TEST(SplatIoHostilePly, TruncatedRealFilesFailWithTheFileName) {
-    ENGINE_REQUIRE_SHARED_DATA();
-    for (const char* file : {"gshairlod-donut/fused.ply", "playcanvas-engine/biker.compressed.ply",
-                             "playcanvas-engine/test-fixture-64.compressed.ply"}) {
+    const char* const files[] = {"gshairlod-donut/fused.ply", "playcanvas-engine/biker.compressed.ply",
+                                 "playcanvas-engine/test-fixture-64.compressed.ply"};
+    for (const char* file : files) ENGINE_REQUIRE_DATA(std::string("splats/") + file);
+    for (const char* file : files) {
         const Bytes bytes = engine::read_binary_file(splat_io_test::real_splat(file));
         const std::string name = std::filesystem::path(file).filename().string();
         for (std::size_t cut : cut_points(bytes.size())) {
@@ -71,7 +74,8 @@ TEST(SplatIoHostilePly, TruncatedRealFilesFailWithTheFileName) {
 }
 
 TEST(SplatIoHostilePly, LyingVertexCounts) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("splats/gshairlod-donut/fused.ply");
+    ENGINE_REQUIRE_DATA("splats/playcanvas-engine/biker.compressed.ply");
     const Bytes donut = engine::read_binary_file(splat_io_test::real_splat("gshairlod-donut/fused.ply"));
     expect_error(read_ply_error(replaced(donut, "vertex 45624", "vertex 45625"), "d.ply"), "d.ply",
                  "offset 361: element \"vertex\" needs 2555000 bytes (45625 rows of 56)");
@@ -152,7 +156,7 @@ TEST(SplatIoHostilePly, AsciiValuesAreCheckedBeforeAllocating) {
 }
 
 TEST(SplatIoHostilePly, NanChunkBoundsDropTheirGaussiansInCompressedPly) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("splats/playcanvas-engine/test-fixture-64.compressed.ply");
     Bytes fixture =
         engine::read_binary_file(splat_io_test::real_splat("playcanvas-engine/test-fixture-64.compressed.ply"));
     const std::string text(fixture.begin(), fixture.end());
@@ -167,7 +171,7 @@ TEST(SplatIoHostilePly, NanChunkBoundsDropTheirGaussiansInCompressedPly) {
 }
 
 TEST(SplatIoHostilePly, CompressedPlyWithWrongPropertyTypes) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("splats/playcanvas-engine/test-fixture-64.compressed.ply");
     const Bytes fixture =
         engine::read_binary_file(splat_io_test::real_splat("playcanvas-engine/test-fixture-64.compressed.ply"));
     // Same byte size, wrong meaning: a float packed field must be rejected, not reinterpreted.

@@ -65,7 +65,7 @@ TEST(SplatIoMutation, InriaPly) {
 }
 
 TEST(SplatIoMutation, CompressedPly) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("splats/playcanvas-engine/test-fixture-64.compressed.ply");
     const Bytes bytes =
         engine::read_binary_file(splat_io_test::real_splat("playcanvas-engine/test-fixture-64.compressed.ply"));
     EXPECT_GT(mutate_and_read(bytes, 1500, read_ply, 2), 0u);

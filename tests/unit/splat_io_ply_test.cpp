@@ -18,7 +18,9 @@ using splat_lod::SplatCloud;
 
 namespace {
 
-std::vector<std::uint8_t> text_bytes(const std::string& s) { return {s.begin(), s.end()}; }
+std::vector<std::uint8_t> text_bytes(const std::string& s) {
+    return {s.begin(), s.end()};
+}
 
 std::string header_of(const std::vector<std::uint8_t>& bytes) {
     const std::string text(bytes.begin(), bytes.end());
@@ -111,7 +113,7 @@ TEST(SplatIoPly, LodAttributesAreWrittenWhenAnyGaussianUsesThem) {
 }
 
 TEST(SplatIoPly, ReducedLayoutOfTheDonut) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("splats/gshairlod-donut/fused.ply");
     LoadReport report;
     const SplatCloud cloud = splat_lod::read_ply(splat_io_test::real_splat("gshairlod-donut/fused.ply"), &report);
     EXPECT_EQ(cloud.size(), 45624u);

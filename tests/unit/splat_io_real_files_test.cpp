@@ -1,5 +1,5 @@
-// The real files in shared/data: Gaussian counts, SH degrees, load times, sanity of the decoded
-// values, and a cross-format check of biker.compressed.ply against biker.spz.
+// The real files (in tests/data or ../shared/data): Gaussian counts, SH degrees, load times, sanity
+// of the decoded values, and a cross-format check of biker.compressed.ply against biker.spz.
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -45,19 +45,19 @@ void expect_sane(const Loaded& l, std::size_t count, int sh_degree) {
 }  // namespace
 
 TEST(SplatIoRealFiles, CompressedPlyBiker) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("splats/playcanvas-engine/biker.compressed.ply");
     const Loaded l = timed_load("playcanvas-engine/biker.compressed.ply");
     EXPECT_EQ(l.report.format, "PlayCanvas compressed PLY");
     expect_sane(l, 152746, 0);
 }
 
 TEST(SplatIoRealFiles, CompressedPlyGuitar) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("splats/playcanvas-engine/guitar.compressed.ply");
     expect_sane(timed_load("playcanvas-engine/guitar.compressed.ply"), 90854, 0);
 }
 
 TEST(SplatIoRealFiles, CompressedPlyFixtureWithShDegree3) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("splats/playcanvas-engine/test-fixture-64.compressed.ply");
     const Loaded l = timed_load("playcanvas-engine/test-fixture-64.compressed.ply");
     expect_sane(l, 64, 3);
     // Quantised SH lie in [-4, 4] and are not all zero.
@@ -77,7 +77,7 @@ TEST(SplatIoRealFiles, SpzV4Biker) {
 }
 
 TEST(SplatIoRealFiles, DonutPly) {
-    ENGINE_REQUIRE_SHARED_DATA();
+    ENGINE_REQUIRE_DATA("splats/gshairlod-donut/fused.ply");
     expect_sane(timed_load("gshairlod-donut/fused.ply"), 45624, 0);
 }
 

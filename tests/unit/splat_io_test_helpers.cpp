@@ -15,7 +15,9 @@
 namespace splat_io_test {
 namespace {
 
-std::uint8_t to_byte(float v) { return static_cast<std::uint8_t>(std::clamp(std::round(v), 0.0f, 255.0f)); }
+std::uint8_t to_byte(float v) {
+    return static_cast<std::uint8_t>(std::clamp(std::round(v), 0.0f, 255.0f));
+}
 
 void push_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
     for (int k = 0; k < 4; ++k) out.push_back(static_cast<std::uint8_t>(v >> (8 * k)));
@@ -100,7 +102,7 @@ splat_lod::SplatCloud make_cloud(std::size_t n, int sh_degree, std::uint32_t see
 }
 
 std::filesystem::path real_splat(const std::string& relative) {
-    return engine::test::shared_data_dir() / "splats" / relative;
+    return engine::test::data_file("splats/" + relative);
 }
 
 std::string error_of(const std::function<void()>& f) {

@@ -19,7 +19,7 @@ namespace splat_io_test {
 splat_lod::SplatCloud make_cloud(std::size_t n, int sh_degree, std::uint32_t seed, bool lod = false,
                                  bool extras = false);
 
-// shared/data/splats/<relative>
+// splats/<relative> in tests/data when it is kept there, else in the shared data folder (data_file).
 std::filesystem::path real_splat(const std::string& relative);
 
 // The engine::Error message thrown by `f`, or "" if it returned normally. Any other exception

@@ -5,8 +5,8 @@
 #include <limits>
 #include <string>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/core/error.h"
 #include "splat_lod/core/reference_renderer.h"
@@ -143,7 +143,8 @@ TEST(ReferenceHardCases, NonFiniteValuesInEveryAttributeAreDroppedAndCounted) {
     attributes.push_back({"rotation.w", [](auto& s, float v) { s.rotations[1].w = v; }});
     attributes.push_back({"rotation.z", [](auto& s, float v) { s.rotations[1].z = v; }});
     attributes.push_back({"opacity", [](auto& s, float v) { s.opacity_logits[1] = v; }});
-    for (const int k : {1, 8, 15}) attributes.push_back({"sh_rest", [k](auto& s, float v) { s.sh_rest_at(1, k, 2) = v; }});
+    for (const int k : {1, 8, 15})
+        attributes.push_back({"sh_rest", [k](auto& s, float v) { s.sh_rest_at(1, k, 2) = v; }});
     const float inf = std::numeric_limits<float>::infinity();
     for (const auto& [name, poison] : attributes)
         for (const float bad : {std::numeric_limits<float>::quiet_NaN(), inf, -inf}) {
@@ -296,7 +297,8 @@ TEST(ReferenceHardCases, EmptySceneIsTheBackground) {
     EXPECT_EQ(stats.considered, 0u);
     const splat_lod::SplatCloud empty;
     const std::vector<ref::ReferenceInstance> instances{{nullptr, glm::dmat4(1.0)}, {&empty, glm::dmat4(1.0)}};
-    EXPECT_TRUE(is_background(ref::render_reference(instances, axis_camera(20, 10), settings, nullptr, &stats), settings.background));
+    EXPECT_TRUE(is_background(ref::render_reference(instances, axis_camera(20, 10), settings, nullptr, &stats),
+                              settings.background));
     EXPECT_EQ(stats.considered, 0u);
 }
 
@@ -327,7 +329,7 @@ TEST(ReferenceHardCases, MeshInFrontOfHalfTheImageHidesTheSplats) {
             mesh.colour.push_back(x < w / 2 ? surface : background);
         }
     splat_lod::SplatCloud cloud;
-    add_gaussian(cloud, {0.0f, 0.0f, -5.0f}, 3.0f, 0.7, kGrey);      // behind the mesh, covers everything
+    add_gaussian(cloud, {0.0f, 0.0f, -5.0f}, 3.0f, 0.7, kGrey);        // behind the mesh, covers everything
     add_gaussian(cloud, {-0.1f, 0.0f, -2.0f}, -3.5f, 0.6, {1, 0, 0});  // in front of it, left of centre
     const std::vector<ref::ReferenceInstance> instances{{&cloud, glm::dmat4(1.0)}};
     const auto image = ref::render_reference(instances, axis_camera(w, h), {}, &mesh);

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <random>
 
+#include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <gtest/gtest.h>
 
 #include "engine/core/error.h"
 #include "engine/render/camera.h"
@@ -64,7 +64,8 @@ splat_lod::SplatCloud random_cloud(std::size_t n, unsigned seed) {
         cloud.log_scales[i] = {-4.0f + 3.0f * u01(rng), -4.0f + 3.0f * u01(rng), -4.0f + 3.0f * u01(rng)};
         cloud.opacity_logits[i] = logit(0.02 + 0.97 * u01(rng));
         cloud.sh_dc[i] = {unit(rng), unit(rng), unit(rng)};
-        for (std::size_t k = 0; k < cloud.sh_rest_stride(); ++k) cloud.sh_rest[i * cloud.sh_rest_stride() + k] = 0.3f * unit(rng);
+        for (std::size_t k = 0; k < cloud.sh_rest_stride(); ++k)
+            cloud.sh_rest[i * cloud.sh_rest_stride() + k] = 0.3f * unit(rng);
     }
     return cloud;
 }
@@ -97,7 +98,8 @@ TEST(ReferenceRenderer, IsotropicGaussianHasClosedFormPeakAndFalloff) {
             double alpha = std::min(0.99, opacity * std::exp(-0.5 * r2 / variance));
             if (alpha < 1.0 / 255.0) alpha = 0.0;
             const glm::dvec3 got = image.colour_at(pixel.x, pixel.y);
-            for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], colour[c] * alpha, 1e-12) << "pixel " << pixel.x << "," << pixel.y;
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(got[c], colour[c] * alpha, 1e-12) << "pixel " << pixel.x << "," << pixel.y;
             EXPECT_NEAR(image.alpha_at(pixel.x, pixel.y), alpha, 1e-12);
         }
     const auto g = ref::project_gaussian(cloud, 0, glm::dmat4(1.0), camera, {});
@@ -118,7 +120,8 @@ TEST(ReferenceRenderer, MipFilterScalesOpacityByTheDeterminantRatio) {
 }
 
 TEST(ReferenceRenderer, CameraConventionsMatchCameraView) {
-    const auto view = engine::make_look_at_camera({3, 2, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), 160, 120, 0.1f, 100.0f);
+    const auto view =
+        engine::make_look_at_camera({3, 2, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), 160, 120, 0.1f, 100.0f);
     const auto camera = ref::make_reference_camera(view);
     EXPECT_DOUBLE_EQ(camera.fx, 60.0 / std::tan(0.5 * double(glm::radians(60.0f))));
     EXPECT_DOUBLE_EQ(camera.cx, 80.0);
@@ -136,7 +139,8 @@ TEST(ReferenceRenderer, CameraConventionsMatchCameraView) {
 }
 
 TEST(ReferenceRenderer, ProjectedCovarianceMatchesANumericalJacobian) {
-    const auto view = engine::make_look_at_camera({3, 2, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), 160, 120, 0.1f, 100.0f);
+    const auto view =
+        engine::make_look_at_camera({3, 2, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), 160, 120, 0.1f, 100.0f);
     const auto camera = ref::make_reference_camera(view);
     const glm::dmat4 camera_to_world = glm::inverse(camera.view);
     const auto pixel = [&](const glm::dvec3& v) {  // view space → image, as camera.h states it
@@ -144,8 +148,10 @@ TEST(ReferenceRenderer, ProjectedCovarianceMatchesANumericalJacobian) {
     };
     splat_lod::SplatCloud cloud;
     const double off_axis = 1.35 * camera.tan_half_fov_x() * 5.0;  // beyond the 1.3·tan(fov/2) clamp
-    for (const glm::dvec3 v : {glm::dvec3(0.3, -0.2, -5.0), glm::dvec3(-1.0, 0.9, -4.0), glm::dvec3(off_axis, -0.2, -5.0)}) {
-        const std::size_t i = add_gaussian(cloud, glm::vec3(camera_to_world * glm::dvec4(v, 1.0)), 0.0f, 0.9, {0.5, 0.5, 0.5});
+    for (const glm::dvec3 v :
+         {glm::dvec3(0.3, -0.2, -5.0), glm::dvec3(-1.0, 0.9, -4.0), glm::dvec3(off_axis, -0.2, -5.0)}) {
+        const std::size_t i =
+            add_gaussian(cloud, glm::vec3(camera_to_world * glm::dvec4(v, 1.0)), 0.0f, 0.9, {0.5, 0.5, 0.5});
         cloud.log_scales[i] = {-0.5f, -2.0f, -1.0f};
         cloud.rotations[i] = {0.8f, 0.2f, -0.5f, 0.26f};
     }
@@ -175,7 +181,8 @@ TEST(ReferenceRenderer, ProjectedCovarianceMatchesANumericalJacobian) {
 }
 
 TEST(ReferenceRenderer, DisplacementAlongCameraUpRendersHigher) {
-    const auto view = engine::make_look_at_camera({3, 2, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), 80, 60, 0.1f, 100.0f);
+    const auto view =
+        engine::make_look_at_camera({3, 2, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), 80, 60, 0.1f, 100.0f);
     const glm::dmat4 camera_to_world = glm::inverse(glm::dmat4(view.view));
     const glm::vec3 up(camera_to_world[1]), right(camera_to_world[0]);
     const auto peak = [&](const glm::vec3& p) {
@@ -200,7 +207,8 @@ TEST(ReferenceRenderer, ShDegreeOneFollowsTheViewDirection) {
     splat_lod::SplatCloud cloud;
     cloud.set_sh_degree(1);
     add_gaussian(cloud, {0.2f, -0.1f, 0.3f}, -3.0f, 0.9, {0.5, 0.5, 0.5});
-    const float rest[3][3] = {{0.4f, -0.2f, 0.1f}, {-0.3f, 0.5f, 0.2f}, {0.25f, 0.1f, -0.6f}};  // [coefficient][channel]
+    const float rest[3][3] = {
+        {0.4f, -0.2f, 0.1f}, {-0.3f, 0.5f, 0.2f}, {0.25f, 0.1f, -0.6f}};  // [coefficient][channel]
     for (int k = 1; k <= 3; ++k)
         for (int c = 0; c < 3; ++c) cloud.sh_rest_at(0, k, c) = rest[k - 1][c];
     const auto expected = [&](const glm::dvec3& direction) {
@@ -250,7 +258,8 @@ TEST(ReferenceRenderer, ShBasisUpToDegreeThreeIsOrthonormal) {
                 for (int j = 0; j < 16; ++j) gram[std::size_t(i * 16 + j)] += y[i] * y[j] * area;
         }
     for (int i = 0; i < 16; ++i)
-        for (int j = 0; j < 16; ++j) EXPECT_NEAR(gram[std::size_t(i * 16 + j)], i == j ? 1.0 : 0.0, 1e-3) << i << "," << j;
+        for (int j = 0; j < 16; ++j)
+            EXPECT_NEAR(gram[std::size_t(i * 16 + j)], i == j ? 1.0 : 0.0, 1e-3) << i << "," << j;
 }
 
 TEST(ReferenceRenderer, NonUniformModelScaleUsesTheLocalViewDirection) {
@@ -258,11 +267,13 @@ TEST(ReferenceRenderer, NonUniformModelScaleUsesTheLocalViewDirection) {
     cloud.set_sh_degree(1);
     add_gaussian(cloud, {0.3f, 0.2f, 0.0f}, -3.0f, 0.9, {0.5, 0.5, 0.5});
     cloud.sh_rest_at(0, 3, 0) = 0.8f;  // red varies with the local x of the direction
-    const glm::dmat4 model = glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, -4)) * glm::scale(glm::dmat4(1.0), glm::dvec3(3.0, 1.0, 0.5));
+    const glm::dmat4 model =
+        glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, -4)) * glm::scale(glm::dmat4(1.0), glm::dvec3(3.0, 1.0, 0.5));
     const auto camera = axis_camera(64, 64);
     const auto g = ref::project_gaussian(cloud, 0, model, camera, {});
     // Documented choice: d_local = normalise(M⁻¹(μ_world − c)) = normalise(p − model⁻¹·c).
-    const glm::dvec3 d = glm::normalize(glm::dvec3(cloud.positions[0]) - glm::dvec3(glm::inverse(model) * glm::dvec4(0, 0, 0, 1)));
+    const glm::dvec3 d =
+        glm::normalize(glm::dvec3(cloud.positions[0]) - glm::dvec3(glm::inverse(model) * glm::dvec4(0, 0, 0, 1)));
     EXPECT_NEAR(g.colour.x, 0.5 + kC0 * cloud.sh_dc[0].x - kC1 * d.x * 0.8, 1e-9);
     EXPECT_NEAR(g.mean.x, 32.0 + 100.0 * 3.0 * double(cloud.positions[0].x) / 4.0, 1e-9);  // world x = 3·0.3 at depth 4
 }
@@ -281,7 +292,8 @@ TEST(ReferenceRenderer, OverlappingGaussiansBlendFrontToBackWhateverTheStorageOr
     EXPECT_EQ(a.rgb, b.rgb);
     EXPECT_EQ(a.alpha, b.alpha);
     const double of = sigmoid(front_first.opacity_logits[0]), ob = sigmoid(front_first.opacity_logits[1]);
-    const glm::dvec3 expected = dc_colour(front_first.sh_dc[0]) * of + dc_colour(front_first.sh_dc[1]) * ob * (1.0 - of);
+    const glm::dvec3 expected =
+        dc_colour(front_first.sh_dc[0]) * of + dc_colour(front_first.sh_dc[1]) * ob * (1.0 - of);
     EXPECT_NEAR(glm::length(a.colour_at(16, 16) - expected), 0.0, 1e-12);
     EXPECT_NEAR(a.alpha_at(16, 16), 1.0 - (1.0 - of) * (1.0 - ob), 1e-12);
     EXPECT_EQ(a.contributors_at(16, 16), 2u);
@@ -295,7 +307,8 @@ TEST(ReferenceRenderer, ModelMatrixPlacesAndScalesTheCloud) {
     splat_lod::SplatCloud local, world;
     add_gaussian(local, {0.1f, 0.2f, -1.0f}, -2.5f, 0.7, {0.2, 0.8, 0.4});
     add_gaussian(world, {0.2f, 0.4f - 0.5f, -2.0f - 3.0f}, -2.5f + std::log(2.0f), 0.7, {0.2, 0.8, 0.4});
-    const glm::dmat4 model = glm::translate(glm::dmat4(1.0), glm::dvec3(0, -0.5, -3)) * glm::scale(glm::dmat4(1.0), glm::dvec3(2.0));
+    const glm::dmat4 model =
+        glm::translate(glm::dmat4(1.0), glm::dvec3(0, -0.5, -3)) * glm::scale(glm::dmat4(1.0), glm::dvec3(2.0));
     const auto camera = axis_camera(48, 40);
     EXPECT_LT(max_difference(render_cloud(local, camera, {}, nullptr, model), render_cloud(world, camera)), 1e-6);
 }
@@ -345,12 +358,12 @@ TEST(ReferenceRenderer, ToImage8RoundsAndClamps) {
 }
 
 TEST(ReferenceRenderer, RendersARealCaptureWithoutBadPixels) {
-    ENGINE_REQUIRE_SHARED_DATA();
-    const auto path = engine::test::shared_data_dir() / "splats/playcanvas-engine/biker.compressed.ply";
-    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not found";
+    ENGINE_REQUIRE_DATA("splats/playcanvas-engine/biker.compressed.ply");
+    const auto path = engine::test::data_file("splats/playcanvas-engine/biker.compressed.ply");
     const splat_lod::SplatCloud cloud = splat_lod::load_splat_file(path);
     // The capture is Y-down: view it with up = (0, −1, 0).
-    const auto view = engine::make_look_at_camera({0, -1.6f, -4.5f}, {0, -1.6f, 0}, {0, -1, 0}, glm::radians(50.0f), 96, 72, 0.1f, 100.0f);
+    const auto view = engine::make_look_at_camera({0, -1.6f, -4.5f}, {0, -1.6f, 0}, {0, -1, 0}, glm::radians(50.0f), 96,
+                                                  72, 0.1f, 100.0f);
     ref::ReferenceStats stats;
     const std::vector<ref::ReferenceInstance> instances{{&cloud, glm::dmat4(1.0)}};
     const auto image = ref::render_reference(instances, view, {}, nullptr, &stats);

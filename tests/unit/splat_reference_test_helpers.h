@@ -14,12 +14,20 @@ namespace splat_lod::reference::test {
 inline constexpr double kC0 = 0.28209479177387814;
 inline constexpr double kC1 = 0.4886025119029199;
 
-inline float logit(double opacity) { return static_cast<float>(std::log(opacity / (1.0 - opacity))); }
-inline double sigmoid(float logit_value) { return 1.0 / (1.0 + std::exp(-static_cast<double>(logit_value))); }
+inline float logit(double opacity) {
+    return static_cast<float>(std::log(opacity / (1.0 - opacity)));
+}
+inline double sigmoid(float logit_value) {
+    return 1.0 / (1.0 + std::exp(-static_cast<double>(logit_value)));
+}
 
 // DC coefficients whose degree-0 colour is `colour` (0.5 + C0·dc = colour).
-inline glm::vec3 dc_for(const glm::dvec3& colour) { return glm::vec3((colour - 0.5) / kC0); }
-inline glm::dvec3 dc_colour(const glm::vec3& dc) { return glm::max(0.5 + kC0 * glm::dvec3(dc), glm::dvec3(0.0)); }
+inline glm::vec3 dc_for(const glm::dvec3& colour) {
+    return glm::vec3((colour - 0.5) / kC0);
+}
+inline glm::dvec3 dc_colour(const glm::vec3& dc) {
+    return glm::max(0.5 + kC0 * glm::dvec3(dc), glm::dvec3(0.0));
+}
 
 // Appends an isotropic Gaussian with identity rotation.
 inline std::size_t add_gaussian(SplatCloud& cloud, const glm::vec3& position, float log_scale, double opacity,
@@ -61,7 +69,8 @@ inline ReferenceImage render_cloud(const SplatCloud& cloud, const ReferenceCamer
 
 inline ::testing::AssertionResult all_finite(const ReferenceImage& image) {
     for (std::size_t i = 0; i < image.rgb.size(); ++i)
-        if (!std::isfinite(image.rgb[i])) return ::testing::AssertionFailure() << "rgb value " << i << " is " << image.rgb[i];
+        if (!std::isfinite(image.rgb[i]))
+            return ::testing::AssertionFailure() << "rgb value " << i << " is " << image.rgb[i];
     for (std::size_t i = 0; i < image.alpha.size(); ++i)
         if (!(image.alpha[i] >= 0.0 && image.alpha[i] <= 1.0))
             return ::testing::AssertionFailure() << "alpha " << i << " is " << image.alpha[i];

@@ -42,9 +42,11 @@ Moments rgb_moments(const engine::Image& image) {
 int run_stats(const std::filesystem::path& path, double min_stddev) {
     const engine::Image image = engine::read_png(path);
     const Moments m = rgb_moments(image);
-    std::printf("%s: %dx%d mean %.2f stddev %.2f\n", path.filename().c_str(), image.width, image.height, m.mean, m.stddev);
+    std::printf("%s: %dx%d mean %.2f stddev %.2f\n", path.filename().c_str(), image.width, image.height, m.mean,
+                m.stddev);
     if (m.stddev < min_stddev) {
-        std::fprintf(stderr, "png_stats: %s is nearly uniform (stddev %.2f < %.2f)\n", path.c_str(), m.stddev, min_stddev);
+        std::fprintf(stderr, "png_stats: %s is nearly uniform (stddev %.2f < %.2f)\n", path.c_str(), m.stddev,
+                     min_stddev);
         return 1;
     }
     return 0;

@@ -11,9 +11,8 @@ std::string AssetCache::canonical_key(const std::filesystem::path& path) {
 }
 
 std::shared_ptr<const MeshAsset> AssetCache::mesh(const std::filesystem::path& path) {
-    return get<MeshAsset>(path, [](const std::filesystem::path& p) {
-        return std::make_shared<const MeshAsset>(load_gltf(p));
-    });
+    return get<MeshAsset>(
+        path, [](const std::filesystem::path& p) { return std::make_shared<const MeshAsset>(load_gltf(p)); });
 }
 
 void AssetCache::clear() {

@@ -3,11 +3,11 @@
 #include <cstring>
 #include <limits>
 
+#include <stb_image.h>
+#include <tiny_gltf.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
-#include <stb_image.h>
-#include <tiny_gltf.h>
 
 #include "engine/assets/mesh_asset.h"
 #include "engine/core/error.h"
@@ -22,7 +22,8 @@ constexpr const char* supported_required_extensions[] = {"KHR_materials_unlit", 
 
 float decode(const std::uint8_t* p, int type, bool normalized) {
     switch (type) {
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? static_cast<float>(*p) / 255.0f : static_cast<float>(*p);
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return normalized ? static_cast<float>(*p) / 255.0f : static_cast<float>(*p);
         case TINYGLTF_COMPONENT_TYPE_BYTE: {
             const auto v = static_cast<float>(static_cast<std::int8_t>(*p));
             return normalized ? std::max(v / 127.0f, -1.0f) : v;
@@ -57,7 +58,9 @@ bool finite(const glm::vec<N, float>& v) {
         if (!std::isfinite(v[i])) return false;
     return true;
 }
-bool finite(const glm::mat4& m) { return finite(m[0]) && finite(m[1]) && finite(m[2]) && finite(m[3]); }
+bool finite(const glm::mat4& m) {
+    return finite(m[0]) && finite(m[1]) && finite(m[2]) && finite(m[3]);
+}
 
 struct Loader {
     const std::filesystem::path& path;
@@ -74,7 +77,8 @@ struct Loader {
             error(where + ": accessor index out of range");
         const auto& a = model.accessors[static_cast<std::size_t>(accessor_index)];
         const int have = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
-        if (have != components) error(where + ": expected " + std::to_string(components) + " components, found " + std::to_string(have));
+        if (have != components)
+            error(where + ": expected " + std::to_string(components) + " components, found " + std::to_string(have));
         // Without a buffer view the specification says all zeros (or sparse values, not supported),
         // in any count the file claims: nothing backs it, so it is refused rather than allocated.
         if (a.bufferView < 0) error(where + ": no buffer view (sparse or zero-filled accessors are not supported)");
@@ -83,14 +87,16 @@ struct Loader {
         const auto& bytes = buffer_of(a).data;
         for (std::size_t i = 0; i < a.count; ++i)
             for (int c = 0; c < components; ++c)
-                values[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] = decode(
-                    bytes.data() + base + i * stride + static_cast<std::size_t>(c) * size, a.componentType, a.normalized);
+                values[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] =
+                    decode(bytes.data() + base + i * stride + static_cast<std::size_t>(c) * size, a.componentType,
+                           a.normalized);
         return values;
     }
 
     std::vector<std::uint32_t> read_indices(int accessor_index) const {
         const std::string where = "indices (accessor " + std::to_string(accessor_index) + ")";
-        if (static_cast<std::size_t>(accessor_index) >= model.accessors.size()) error(where + ": accessor index out of range");
+        if (static_cast<std::size_t>(accessor_index) >= model.accessors.size())
+            error(where + ": accessor index out of range");
         const auto& a = model.accessors[static_cast<std::size_t>(accessor_index)];
         if (a.type != TINYGLTF_TYPE_SCALAR || a.bufferView < 0) error(where + ": must be scalar with a buffer view");
         const auto [base, stride, size] = view_span(a, 1, where);
@@ -99,10 +105,20 @@ struct Loader {
         for (std::size_t i = 0; i < a.count; ++i) {
             const std::uint8_t* p = bytes.data() + base + i * stride;
             switch (a.componentType) {
-                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: indices[i] = *p; break;
-                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t v; std::memcpy(&v, p, 2); indices[i] = v; break; }
-                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&indices[i], p, 4); break;
-                default: error(where + ": unsupported index component type " + std::to_string(a.componentType));
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                    indices[i] = *p;
+                    break;
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+                    std::uint16_t v;
+                    std::memcpy(&v, p, 2);
+                    indices[i] = v;
+                    break;
+                }
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+                    std::memcpy(&indices[i], p, 4);
+                    break;
+                default:
+                    error(where + ": unsupported index component type " + std::to_string(a.componentType));
             }
         }
         return indices;
@@ -117,10 +133,12 @@ struct Loader {
         std::size_t base, stride, component_size;
     };
     Span view_span(const tinygltf::Accessor& a, int components, const std::string& where) const {
-        if (static_cast<std::size_t>(a.bufferView) >= model.bufferViews.size()) error(where + ": buffer view out of range");
+        if (static_cast<std::size_t>(a.bufferView) >= model.bufferViews.size())
+            error(where + ": buffer view out of range");
         const auto& view = model.bufferViews[static_cast<std::size_t>(a.bufferView)];
         if (a.componentType == TINYGLTF_COMPONENT_TYPE_DOUBLE) error(where + ": double components are not supported");
-        if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size()) error(where + ": buffer out of range");
+        if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size())
+            error(where + ": buffer out of range");
         const auto& buffer = model.buffers[static_cast<std::size_t>(view.buffer)];
         const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
         if (size <= 0) error(where + ": unknown component type " + std::to_string(a.componentType));
@@ -129,7 +147,8 @@ struct Loader {
         if (stride < element) error(where + ": byte stride smaller than an element");
         const std::size_t base = view.byteOffset + a.byteOffset;
         if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset)
-            error(where + ": buffer view exceeds its buffer (" + std::to_string(buffer.data.size()) + " bytes; truncated file?)");
+            error(where + ": buffer view exceeds its buffer (" + std::to_string(buffer.data.size()) +
+                  " bytes; truncated file?)");
         if (a.count > 0) {
             const std::size_t last = a.byteOffset + (a.count - 1) * stride + element;
             if (a.count > std::numeric_limits<std::size_t>::max() / stride || last > view.byteLength)
@@ -138,19 +157,20 @@ struct Loader {
         return {base, stride, static_cast<std::size_t>(size)};
     }
 
-
     glm::mat4 node_matrix(const tinygltf::Node& node) const {
         if (node.matrix.size() == 16) {
             glm::mat4 m;
-            for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = static_cast<float>(node.matrix[static_cast<std::size_t>(i)]);
+            for (int i = 0; i < 16; ++i)
+                glm::value_ptr(m)[i] = static_cast<float>(node.matrix[static_cast<std::size_t>(i)]);
             return m;
         }
         glm::mat4 m(1.0f);
         if (node.translation.size() == 3)
             m = glm::translate(m, glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
         if (node.rotation.size() == 4)
-            m *= glm::mat4_cast(glm::normalize(glm::quat(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
-                                                         static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]))));
+            m *= glm::mat4_cast(
+                glm::normalize(glm::quat(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
+                                         static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]))));
         if (node.scale.size() == 3) m = glm::scale(m, glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
         return m;
     }
@@ -158,7 +178,8 @@ struct Loader {
     void add_primitive(const tinygltf::Primitive& p, const glm::mat4& transform, const std::string& mesh_name) {
         const std::string what = "mesh '" + mesh_name + "'";
         if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) {
-            log_warning(path.string() + ": " + what + ": skipping a primitive with mode " + std::to_string(p.mode) + " (only triangles are drawn)");
+            log_warning(path.string() + ": " + what + ": skipping a primitive with mode " + std::to_string(p.mode) +
+                        " (only triangles are drawn)");
             return;
         }
         const auto pos_it = p.attributes.find("POSITION");
@@ -166,8 +187,10 @@ struct Loader {
         const auto positions = read_floats(pos_it->second, 3, what + " POSITION");
         const std::size_t n = positions.size() / 3;
         std::vector<float> normals, uvs;
-        if (auto it = p.attributes.find("NORMAL"); it != p.attributes.end()) normals = read_floats(it->second, 3, what + " NORMAL");
-        if (auto it = p.attributes.find("TEXCOORD_0"); it != p.attributes.end()) uvs = read_floats(it->second, 2, what + " TEXCOORD_0");
+        if (auto it = p.attributes.find("NORMAL"); it != p.attributes.end())
+            normals = read_floats(it->second, 3, what + " NORMAL");
+        if (auto it = p.attributes.find("TEXCOORD_0"); it != p.attributes.end())
+            uvs = read_floats(it->second, 2, what + " TEXCOORD_0");
         if ((!normals.empty() && normals.size() != n * 3) || (!uvs.empty() && uvs.size() != n * 2))
             error(what + ": attribute counts differ from POSITION's " + std::to_string(n));
 
@@ -181,7 +204,8 @@ struct Loader {
             v.position = {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
             if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y) || !std::isfinite(v.position.z))
                 error(what + ": non-finite vertex position at index " + std::to_string(i));
-            v.normal = normals.empty() ? glm::vec3(0) : glm::vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
+            v.normal =
+                normals.empty() ? glm::vec3(0) : glm::vec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
             v.uv = uvs.empty() ? glm::vec2(0) : glm::vec2(uvs[2 * i], uvs[2 * i + 1]);
             if (!std::isfinite(v.normal.x) || !std::isfinite(v.normal.y) || !std::isfinite(v.normal.z))
                 error(what + ": non-finite NORMAL at index " + std::to_string(i));
@@ -196,7 +220,8 @@ struct Loader {
         }
         prim.indices.resize(prim.indices.size() / 3 * 3);
         for (auto index : prim.indices)
-            if (index >= n) error(what + ": index " + std::to_string(index) + " beyond " + std::to_string(n) + " vertices");
+            if (index >= n)
+                error(what + ": index " + std::to_string(index) + " beyond " + std::to_string(n) + " vertices");
         if (normals.empty()) compute_normals(prim);
         out.primitives.push_back(std::move(prim));
     }
@@ -207,7 +232,8 @@ struct Loader {
         std::vector<glm::dvec3> sums(prim.vertices.size(), glm::dvec3(0.0));
         for (std::size_t t = 0; t + 2 < prim.indices.size(); t += 3) {
             const std::uint32_t ia = prim.indices[t], ib = prim.indices[t + 1], ic = prim.indices[t + 2];
-            const glm::dvec3 a(prim.vertices[ia].position), b(prim.vertices[ib].position), c(prim.vertices[ic].position);
+            const glm::dvec3 a(prim.vertices[ia].position), b(prim.vertices[ib].position),
+                c(prim.vertices[ic].position);
             const glm::dvec3 n = glm::cross(b - a, c - a);
             sums[ia] += n;
             sums[ib] += n;
@@ -220,16 +246,19 @@ struct Loader {
     }
 
     void visit(int node_index, const glm::mat4& parent, int depth) {
-        if (node_index < 0 || static_cast<std::size_t>(node_index) >= model.nodes.size()) error("node index out of range: " + std::to_string(node_index));
+        if (node_index < 0 || static_cast<std::size_t>(node_index) >= model.nodes.size())
+            error("node index out of range: " + std::to_string(node_index));
         if (depth > 256) error("node hierarchy deeper than 256 (a cycle?)");
         const auto& node = model.nodes[static_cast<std::size_t>(node_index)];
         const glm::mat4 world = parent * node_matrix(node);
         if (!finite(world))
             error("node " + std::to_string(node_index) + ": transform is not finite (values beyond float range?)");
         if (node.mesh >= 0) {
-            if (static_cast<std::size_t>(node.mesh) >= model.meshes.size()) error("mesh index out of range: " + std::to_string(node.mesh));
+            if (static_cast<std::size_t>(node.mesh) >= model.meshes.size())
+                error("mesh index out of range: " + std::to_string(node.mesh));
             const auto& mesh = model.meshes[static_cast<std::size_t>(node.mesh)];
-            for (const auto& p : mesh.primitives) add_primitive(p, world, mesh.name.empty() ? std::to_string(node.mesh) : mesh.name);
+            for (const auto& p : mesh.primitives)
+                add_primitive(p, world, mesh.name.empty() ? std::to_string(node.mesh) : mesh.name);
         }
         for (int child : node.children) visit(child, world, depth + 1);
     }
@@ -245,9 +274,11 @@ struct Loader {
             mat.double_sided = m.doubleSided;
             const int texture = m.pbrMetallicRoughness.baseColorTexture.index;
             if (texture >= 0) {
-                if (static_cast<std::size_t>(texture) >= model.textures.size()) error("material '" + m.name + "': texture index out of range");
+                if (static_cast<std::size_t>(texture) >= model.textures.size())
+                    error("material '" + m.name + "': texture index out of range");
                 const int source = model.textures[static_cast<std::size_t>(texture)].source;
-                if (source < 0 || static_cast<std::size_t>(source) >= model.images.size()) error("material '" + m.name + "': image index out of range");
+                if (source < 0 || static_cast<std::size_t>(source) >= model.images.size())
+                    error("material '" + m.name + "': image index out of range");
                 mat.base_color_image = source;
             }
             out.materials.push_back(mat);
@@ -257,12 +288,16 @@ struct Loader {
     void read_images() {
         for (std::size_t i = 0; i < model.images.size(); ++i) {
             const auto& im = model.images[i];
-            const std::string name = im.uri.empty() ? (im.name.empty() ? "image " + std::to_string(i) : im.name) : im.uri;
-            if (im.image.empty() || im.width <= 0 || im.height <= 0) error("texture '" + name + "' could not be loaded (missing or not an image)");
+            const std::string name =
+                im.uri.empty() ? (im.name.empty() ? "image " + std::to_string(i) : im.name) : im.uri;
+            if (im.image.empty() || im.width <= 0 || im.height <= 0)
+                error("texture '" + name + "' could not be loaded (missing or not an image)");
             MeshImage image{name, im.width, im.height, {}};
             const std::size_t pixels = static_cast<std::size_t>(im.width) * static_cast<std::size_t>(im.height);
-            if (im.bits != 8 || im.component < 1 || im.component > 4 || im.image.size() != pixels * static_cast<std::size_t>(im.component))
-                error("texture '" + name + "': unsupported pixel format (" + std::to_string(im.component) + " channels, " + std::to_string(im.bits) + " bits)");
+            if (im.bits != 8 || im.component < 1 || im.component > 4 ||
+                im.image.size() != pixels * static_cast<std::size_t>(im.component))
+                error("texture '" + name + "': unsupported pixel format (" + std::to_string(im.component) +
+                      " channels, " + std::to_string(im.bits) + " bits)");
             image.rgba.resize(pixels * 4);
             for (std::size_t p = 0; p < pixels; ++p) {
                 const std::uint8_t* src = &im.image[p * static_cast<std::size_t>(im.component)];
@@ -418,7 +453,8 @@ MeshAsset load_gltf(std::span<const std::uint8_t> bytes, const std::filesystem::
     l.read_materials();
     const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
     if (!model.scenes.empty()) {
-        if (static_cast<std::size_t>(scene) >= model.scenes.size()) fail(path.string() + ": default scene index out of range");
+        if (static_cast<std::size_t>(scene) >= model.scenes.size())
+            fail(path.string() + ": default scene index out of range");
         for (int root : model.scenes[static_cast<std::size_t>(scene)].nodes) l.visit(root, glm::mat4(1.0f), 0);
     } else {
         for (std::size_t i = 0; i < model.nodes.size(); ++i) l.visit(static_cast<int>(i), glm::mat4(1.0f), 0);

@@ -24,7 +24,9 @@ namespace fs = std::filesystem;
 
 constexpr const char* kTemporaryInfix = ".tmp-";
 
-std::string reason() { return std::strerror(errno); }
+std::string reason() {
+    return std::strerror(errno);
+}
 
 // Numbers the temporaries of this process: threads may write files of one folder at once.
 std::atomic<std::uint64_t> temporary_serial{0};
@@ -45,7 +47,9 @@ private:
     int fd_;
 };
 
-fs::path folder_of(const fs::path& path) { return path.parent_path().empty() ? fs::path(".") : path.parent_path(); }
+fs::path folder_of(const fs::path& path) {
+    return path.parent_path().empty() ? fs::path(".") : path.parent_path();
+}
 
 // Creates `folder` and its missing parents, syncing each parent after a folder was made in it: a
 // file synced later into the new folder is then reachable after a power loss too.

@@ -27,8 +27,8 @@ std::string shell_quoted(const std::filesystem::path& path) {
 }
 
 void run_gnuplot(const std::filesystem::path& folder, const std::string& script, const std::string& log) {
-    const std::string command = "cd " + shell_quoted(folder) + " && gnuplot " + shell_quoted(script) + " > " +
-                                shell_quoted(log) + " 2>&1";
+    const std::string command =
+        "cd " + shell_quoted(folder) + " && gnuplot " + shell_quoted(script) + " > " + shell_quoted(log) + " 2>&1";
     if (std::system(command.c_str()) != 0)
         fail((folder / script).string() + ": gnuplot failed; its messages are in " + (folder / log).string());
 }

@@ -25,18 +25,26 @@ std::atomic<LogLevel>& current_level() {
 
 const char* prefix(LogLevel level) {
     switch (level) {
-        case LogLevel::debug: return "debug";
-        case LogLevel::info: return "info";
-        case LogLevel::warning: return "warning";
-        case LogLevel::error: return "error";
+        case LogLevel::debug:
+            return "debug";
+        case LogLevel::info:
+            return "info";
+        case LogLevel::warning:
+            return "warning";
+        case LogLevel::error:
+            return "error";
     }
     return "?";
 }
 
 }  // namespace
 
-void set_log_level(LogLevel level) { current_level() = level; }
-LogLevel log_level() { return current_level(); }
+void set_log_level(LogLevel level) {
+    current_level() = level;
+}
+LogLevel log_level() {
+    return current_level();
+}
 
 void log(LogLevel level, std::string_view message) {
     if (level < current_level().load()) return;

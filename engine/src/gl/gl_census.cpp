@@ -89,20 +89,29 @@ std::string GlCensus::describe() const {
 GlCensus take_gl_census(std::uint32_t gap) {
     GlCensus c;
     const auto none = [](GLuint) {};
-    c.buffers = scan(gap, [](GLuint n) { return glIsBuffer(n); }, [&](GLuint n) {
-        GLint64 size = 0;
-        glGetNamedBufferParameteri64v(n, GL_BUFFER_SIZE, &size);
-        c.buffer_bytes += static_cast<std::uint64_t>(size);
-    });
-    c.textures = scan(gap, [](GLuint n) { return glIsTexture(n); },
-                      [&](GLuint n) { c.texture_bytes += texture_bytes(n); });
-    c.vertex_arrays = scan(gap, [](GLuint n) { return glIsVertexArray(n); }, none);
-    c.framebuffers = scan(gap, [](GLuint n) { return glIsFramebuffer(n); }, none);
-    c.renderbuffers = scan(gap, [](GLuint n) { return glIsRenderbuffer(n); }, none);
-    c.programs = scan(gap, [](GLuint n) { return glIsProgram(n); }, none);
-    c.shaders = scan(gap, [](GLuint n) { return glIsShader(n); }, none);
-    c.samplers = scan(gap, [](GLuint n) { return glIsSampler(n); }, none);
-    c.queries = scan(gap, [](GLuint n) { return glIsQuery(n); }, none);
+    c.buffers = scan(
+        gap, [](GLuint n) { return glIsBuffer(n); },
+        [&](GLuint n) {
+            GLint64 size = 0;
+            glGetNamedBufferParameteri64v(n, GL_BUFFER_SIZE, &size);
+            c.buffer_bytes += static_cast<std::uint64_t>(size);
+        });
+    c.textures = scan(
+        gap, [](GLuint n) { return glIsTexture(n); }, [&](GLuint n) { c.texture_bytes += texture_bytes(n); });
+    c.vertex_arrays = scan(
+        gap, [](GLuint n) { return glIsVertexArray(n); }, none);
+    c.framebuffers = scan(
+        gap, [](GLuint n) { return glIsFramebuffer(n); }, none);
+    c.renderbuffers = scan(
+        gap, [](GLuint n) { return glIsRenderbuffer(n); }, none);
+    c.programs = scan(
+        gap, [](GLuint n) { return glIsProgram(n); }, none);
+    c.shaders = scan(
+        gap, [](GLuint n) { return glIsShader(n); }, none);
+    c.samplers = scan(
+        gap, [](GLuint n) { return glIsSampler(n); }, none);
+    c.queries = scan(
+        gap, [](GLuint n) { return glIsQuery(n); }, none);
     return c;
 }
 

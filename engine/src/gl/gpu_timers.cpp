@@ -63,7 +63,9 @@ int GpuTimers::begin(const std::string& name) {
     return static_cast<int>(frame.used++);
 }
 
-void GpuTimers::end(int span) { glQueryCounter(current_->stop[static_cast<std::size_t>(span)].id(), GL_TIMESTAMP); }
+void GpuTimers::end(int span) {
+    glQueryCounter(current_->stop[static_cast<std::size_t>(span)].id(), GL_TIMESTAMP);
+}
 
 void GpuTimers::end_frame() {
     // Submit the frame's commands so its queries can complete while the CPU moves on (a window's

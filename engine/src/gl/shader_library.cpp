@@ -13,11 +13,15 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 
 std::string info_log(GLuint object, bool is_program) {
     GLint length = 0;
-    if (is_program) glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length);
-    else glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
+    if (is_program)
+        glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length);
+    else
+        glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-    if (is_program) glGetProgramInfoLog(object, length, nullptr, log.data());
-    else glGetShaderInfoLog(object, length, nullptr, log.data());
+    if (is_program)
+        glGetProgramInfoLog(object, length, nullptr, log.data());
+    else
+        glGetShaderInfoLog(object, length, nullptr, log.data());
     while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
     return log;
 }
@@ -71,7 +75,8 @@ Program ShaderLibrary::build(const std::vector<std::string>& files, const std::v
         if (ok != GL_TRUE) {
             const std::string log = map_shader_log(info_log(shader, false), pre.files);
             cleanup();
-            fail("shader compile failed: " + file + (defines.empty() ? "" : " [" + join(defines, ", ") + "]") + "\n" + log);
+            fail("shader compile failed: " + file + (defines.empty() ? "" : " [" + join(defines, ", ") + "]") + "\n" +
+                 log);
         }
         glAttachShader(program.id(), shader);
     }

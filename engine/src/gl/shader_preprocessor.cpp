@@ -15,7 +15,8 @@ namespace {
 constexpr long line_stride = 100000;
 
 std::string line_directive(int line, int index) {
-    return "#line " + std::to_string(static_cast<long>(index) * line_stride + line) + " " + std::to_string(index) + "\n";
+    return "#line " + std::to_string(static_cast<long>(index) * line_stride + line) + " " + std::to_string(index) +
+           "\n";
 }
 
 std::string trim(const std::string& s) {
@@ -35,7 +36,7 @@ bool starts_with_directive(const std::string& line, const char* directive) {
 }  // namespace
 
 ShaderPreprocessor::ShaderPreprocessor(std::filesystem::path root, FileReader reader)
-    : root_(std::move(root)), reader_(std::move(reader)) {
+    : roots_{std::move(root)}, reader_(std::move(reader)) {
     if (!reader_) {
         reader_ = [](const std::filesystem::path& path) -> std::optional<std::string> {
             std::ifstream in(path, std::ios::binary);
@@ -47,8 +48,20 @@ ShaderPreprocessor::ShaderPreprocessor(std::filesystem::path root, FileReader re
     }
 }
 
+void ShaderPreprocessor::add_root(std::filesystem::path root) {
+    if (std::find(roots_.begin(), roots_.end(), root) == roots_.end()) roots_.push_back(std::move(root));
+}
+
 std::optional<std::string> ShaderPreprocessor::read(const std::filesystem::path& file) const {
-    return reader_(root_ / file);
+    for (const auto& root : roots_)
+        if (auto text = reader_(root / file)) return text;
+    return std::nullopt;
+}
+
+std::string ShaderPreprocessor::roots_text() const {
+    std::string text;
+    for (const auto& root : roots_) text += (text.empty() ? "" : ", ") + root.string();
+    return text;
 }
 
 PreprocessedShader ShaderPreprocessor::process(const std::string& file, const std::vector<std::string>& defines) const {
@@ -57,7 +70,9 @@ PreprocessedShader ShaderPreprocessor::process(const std::string& file, const st
     for (const auto& define : defines) {
         const auto eq = define.find('=');
         const std::string name = define.substr(0, eq);
-        if (name.empty() || !std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }))
+        if (name.empty() || !std::all_of(name.begin(), name.end(), [](char c) {
+                return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+            }))
             fail(file + ": invalid shader define '" + define + "'");
         out.source += "#define " + name + (eq == std::string::npos ? "" : " " + define.substr(eq + 1)) + "\n";
     }
@@ -74,8 +89,11 @@ void ShaderPreprocessor::expand(const std::filesystem::path& file, PreprocessedS
     if (std::find(out.files.begin(), out.files.end(), name) != out.files.end()) return;  // once per file
     const auto text = read(file);
     if (!text) {
-        if (included_from.empty()) fail((root_ / file).string() + ": shader file not found");
-        fail(included_from + ": cannot find include '" + name + "' (searched next to the file and in " + root_.string() + ")");
+        if (included_from.empty() && roots_.size() == 1)
+            fail((roots_.front() / file).string() + ": shader file not found");
+        if (included_from.empty()) fail(name + ": shader file not found in " + roots_text());
+        fail(included_from + ": cannot find include '" + name + "' (searched next to the file and in " + roots_text() +
+             ")");
     }
     const int index = static_cast<int>(out.files.size());
     out.files.push_back(name);
@@ -101,7 +119,8 @@ void ShaderPreprocessor::expand(const std::filesystem::path& file, PreprocessedS
             out.source += line + "\n";
         } else if (starts_with_directive(line, "include")) {
             std::smatch match;
-            if (!std::regex_match(line, match, include_re)) fail(where + ": malformed #include (use #include \"file\")");
+            if (!std::regex_match(line, match, include_re))
+                fail(where + ": malformed #include (use #include \"file\")");
             std::filesystem::path target = (file.parent_path() / match[1].str()).lexically_normal();
             if (!read(target)) target = std::filesystem::path(match[1].str()).lexically_normal();
             expand(target, out, stack, where);

@@ -16,17 +16,28 @@ namespace {
 
 std::string egl_error_name(EGLint code) {
     switch (code) {
-        case EGL_SUCCESS: return "EGL_SUCCESS";
-        case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-        case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-        case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-        case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-        case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-        case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-        case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-        case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-        case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-        default: return "EGL error " + std::to_string(code);
+        case EGL_SUCCESS:
+            return "EGL_SUCCESS";
+        case EGL_NOT_INITIALIZED:
+            return "EGL_NOT_INITIALIZED";
+        case EGL_BAD_ACCESS:
+            return "EGL_BAD_ACCESS";
+        case EGL_BAD_ALLOC:
+            return "EGL_BAD_ALLOC";
+        case EGL_BAD_ATTRIBUTE:
+            return "EGL_BAD_ATTRIBUTE";
+        case EGL_BAD_CONFIG:
+            return "EGL_BAD_CONFIG";
+        case EGL_BAD_CONTEXT:
+            return "EGL_BAD_CONTEXT";
+        case EGL_BAD_DISPLAY:
+            return "EGL_BAD_DISPLAY";
+        case EGL_BAD_MATCH:
+            return "EGL_BAD_MATCH";
+        case EGL_BAD_PARAMETER:
+            return "EGL_BAD_PARAMETER";
+        default:
+            return "EGL error " + std::to_string(code);
     }
 }
 
@@ -103,8 +114,8 @@ GlInfo query_current_gl_info(const std::string& platform) {
 void require_compute_support(const GlInfo& info) {
     const bool ok = info.major > 4 || (info.major == 4 && info.minor >= 3);
     if (!ok) {
-        fail("OpenGL 4.3 with compute shaders is required; found OpenGL " + info.version + " on '" +
-             info.renderer + "' (" + info.vendor + ") through " + info.platform);
+        fail("OpenGL 4.3 with compute shaders is required; found OpenGL " + info.version + " on '" + info.renderer +
+             "' (" + info.vendor + ") through " + info.platform);
     }
 }
 
@@ -114,8 +125,10 @@ void GLAPIENTRY debug_callback(GLenum, GLenum type, GLuint id, GLenum severity, 
                                const void*) {
     if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
     const std::string text = "GL[" + std::to_string(id) + "] " + message;
-    if (severity == GL_DEBUG_SEVERITY_HIGH || type == GL_DEBUG_TYPE_ERROR) log_error(text);
-    else log_warning(text);
+    if (severity == GL_DEBUG_SEVERITY_HIGH || type == GL_DEBUG_TYPE_ERROR)
+        log_error(text);
+    else
+        log_warning(text);
 }
 
 }  // namespace
@@ -140,20 +153,27 @@ std::unique_ptr<HeadlessGlContext> HeadlessGlContext::create(bool debug) {
     std::string tried;
     DisplayChoice choice = open_surfaceless(tried);
     if (choice.display == EGL_NO_DISPLAY) choice = open_device(tried);
-    if (choice.display == EGL_NO_DISPLAY)
-        fail("headless OpenGL: no usable EGL display (tried:" + tried + ")");
+    if (choice.display == EGL_NO_DISPLAY) fail("headless OpenGL: no usable EGL display (tried:" + tried + ")");
 
-    if (!eglBindAPI(EGL_OPENGL_API)) fail("headless OpenGL: eglBindAPI(EGL_OPENGL_API) failed: " + egl_error_name(eglGetError()));
+    if (!eglBindAPI(EGL_OPENGL_API))
+        fail("headless OpenGL: eglBindAPI(EGL_OPENGL_API) failed: " + egl_error_name(eglGetError()));
     const char* display_ext = eglQueryString(choice.display, EGL_EXTENSIONS);
-    if (!has_extension(display_ext, "EGL_KHR_no_config_context") && !has_extension(display_ext, "EGL_MESA_configless_context"))
+    if (!has_extension(display_ext, "EGL_KHR_no_config_context") &&
+        !has_extension(display_ext, "EGL_MESA_configless_context"))
         fail("headless OpenGL: EGL display (" + choice.platform + ") lacks EGL_KHR_no_config_context");
 
     // Ask for 4.5 first, then the 4.3 minimum so that the error below can say what was found.
     EGLContext context = EGL_NO_CONTEXT;
     for (EGLint minor : {5, 3}) {
-        const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, minor,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                     EGL_CONTEXT_OPENGL_DEBUG, debug ? EGL_TRUE : EGL_FALSE, EGL_NONE};
+        const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                     4,
+                                     EGL_CONTEXT_MINOR_VERSION,
+                                     minor,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                     EGL_CONTEXT_OPENGL_DEBUG,
+                                     debug ? EGL_TRUE : EGL_FALSE,
+                                     EGL_NONE};
         context = eglCreateContext(choice.display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
         if (context != EGL_NO_CONTEXT) break;
     }
@@ -180,7 +200,8 @@ std::unique_ptr<HeadlessGlContext> HeadlessGlContext::create(bool debug) {
     result->info_ = query_current_gl_info(choice.platform);
     require_compute_support(result->info_);
     if (debug) install_gl_debug_output();
-    log(LogLevel::debug, "GL " + result->info_.version + " on " + result->info_.renderer + " (EGL " + choice.platform + ")");
+    log(LogLevel::debug,
+        "GL " + result->info_.version + " on " + result->info_.renderer + " (EGL " + choice.platform + ")");
     return result;
 }
 

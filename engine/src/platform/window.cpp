@@ -72,9 +72,10 @@ GLFWwindow* open_window(const ContextRequest& request, const std::string& title,
 // attempt failed so that the final error can say it.
 GLFWwindow* open_gl45_window(const std::string& title, int width, int height, std::string& platform,
                              std::string& tried) {
-    const ContextRequest requests[] = {
-        {GLFW_EGL_CONTEXT_API, 4, 5, "glfw-egl"}, {GLFW_NATIVE_CONTEXT_API, 4, 5, "glfw-glx"},
-        {GLFW_EGL_CONTEXT_API, 4, 3, "glfw-egl"}, {GLFW_NATIVE_CONTEXT_API, 4, 3, "glfw-glx"}};
+    const ContextRequest requests[] = {{GLFW_EGL_CONTEXT_API, 4, 5, "glfw-egl"},
+                                       {GLFW_NATIVE_CONTEXT_API, 4, 5, "glfw-glx"},
+                                       {GLFW_EGL_CONTEXT_API, 4, 3, "glfw-egl"},
+                                       {GLFW_NATIVE_CONTEXT_API, 4, 3, "glfw-glx"}};
     for (const ContextRequest& request : requests) {
         if (GLFWwindow* window = open_window(request, title, width, height)) {
             platform = request.platform;
@@ -108,25 +109,38 @@ GLFWwindow* open_gl45_window(const std::string& title, int width, int height, st
 
 int glfw_key(Key key) {
     switch (key) {
-        case Key::w: return GLFW_KEY_W;
-        case Key::a: return GLFW_KEY_A;
-        case Key::s: return GLFW_KEY_S;
-        case Key::d: return GLFW_KEY_D;
-        case Key::q: return GLFW_KEY_Q;
-        case Key::e: return GLFW_KEY_E;
-        case Key::left_shift: return GLFW_KEY_LEFT_SHIFT;
-        case Key::escape: return GLFW_KEY_ESCAPE;
-        case Key::f1: return GLFW_KEY_F1;
-        case Key::space: return GLFW_KEY_SPACE;
+        case Key::w:
+            return GLFW_KEY_W;
+        case Key::a:
+            return GLFW_KEY_A;
+        case Key::s:
+            return GLFW_KEY_S;
+        case Key::d:
+            return GLFW_KEY_D;
+        case Key::q:
+            return GLFW_KEY_Q;
+        case Key::e:
+            return GLFW_KEY_E;
+        case Key::left_shift:
+            return GLFW_KEY_LEFT_SHIFT;
+        case Key::escape:
+            return GLFW_KEY_ESCAPE;
+        case Key::f1:
+            return GLFW_KEY_F1;
+        case Key::space:
+            return GLFW_KEY_SPACE;
     }
     return GLFW_KEY_UNKNOWN;
 }
 
 int glfw_button(MouseButton button) {
     switch (button) {
-        case MouseButton::left: return GLFW_MOUSE_BUTTON_LEFT;
-        case MouseButton::right: return GLFW_MOUSE_BUTTON_RIGHT;
-        case MouseButton::middle: return GLFW_MOUSE_BUTTON_MIDDLE;
+        case MouseButton::left:
+            return GLFW_MOUSE_BUTTON_LEFT;
+        case MouseButton::right:
+            return GLFW_MOUSE_BUTTON_RIGHT;
+        case MouseButton::middle:
+            return GLFW_MOUSE_BUTTON_MIDDLE;
     }
     return GLFW_MOUSE_BUTTON_LEFT;
 }
@@ -164,9 +178,13 @@ Window::~Window() {
     release_glfw();
 }
 
-bool Window::should_close() const { return glfwWindowShouldClose(window_) == GLFW_TRUE; }
+bool Window::should_close() const {
+    return glfwWindowShouldClose(window_) == GLFW_TRUE;
+}
 
-void Window::request_close() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
+void Window::request_close() {
+    glfwSetWindowShouldClose(window_, GLFW_TRUE);
+}
 
 void Window::poll_events() {
     glfwPollEvents();
@@ -181,7 +199,9 @@ void Window::poll_events() {
     scroll_accumulated_ = 0.0f;
 }
 
-void Window::swap_buffers() { glfwSwapBuffers(window_); }
+void Window::swap_buffers() {
+    glfwSwapBuffers(window_);
+}
 
 glm::ivec2 Window::framebuffer_size() const {
     int width = 0, height = 0;
@@ -189,14 +209,17 @@ glm::ivec2 Window::framebuffer_size() const {
     return {width, height};
 }
 
-bool Window::key_down(Key key) const { return glfwGetKey(window_, glfw_key(key)) == GLFW_PRESS; }
+bool Window::key_down(Key key) const {
+    return glfwGetKey(window_, glfw_key(key)) == GLFW_PRESS;
+}
 
 bool Window::mouse_down(MouseButton button) const {
     return glfwGetMouseButton(window_, glfw_button(button)) == GLFW_PRESS;
 }
 
 void Window::scroll_callback(GLFWwindow* handle, double, double y) {
-    if (auto* self = static_cast<Window*>(glfwGetWindowUserPointer(handle))) self->scroll_accumulated_ += static_cast<float>(y);
+    if (auto* self = static_cast<Window*>(glfwGetWindowUserPointer(handle)))
+        self->scroll_accumulated_ += static_cast<float>(y);
 }
 
 }  // namespace engine

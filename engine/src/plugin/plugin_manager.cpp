@@ -23,7 +23,9 @@ struct LibraryCloser {
 using LibraryHandle = std::unique_ptr<void, LibraryCloser>;
 
 using PluginDeleter = void (*)(Plugin*);
-void delete_linked_plugin(Plugin* plugin) { delete plugin; }
+void delete_linked_plugin(Plugin* plugin) {
+    delete plugin;
+}
 
 // What a plugin's startup added, found by comparing the registries before and after it. The
 // manager can then guarantee that a failed startup or a forgetful shutdown leaves nothing
@@ -150,9 +152,12 @@ EnginePluginBuildInfo read_build_info(plugin_abi::BuildInfoFunction function) {
 
 std::string std_library_name(std::int32_t library) {
     switch (library) {
-        case plugin_abi::libstdcxx: return "libstdc++";
-        case plugin_abi::libcxx: return "libc++";
-        default: return "unknown";
+        case plugin_abi::libstdcxx:
+            return "libstdc++";
+        case plugin_abi::libcxx:
+            return "libc++";
+        default:
+            return "unknown";
     }
 }
 
@@ -166,7 +171,8 @@ std::vector<std::string> abi_differences(const EnginePluginBuildInfo& plugin, co
     compare("libstdc++ dual ABI (_GLIBCXX_USE_CXX11_ABI)", std::to_string(plugin.cxx11_string_abi),
             std::to_string(engine.cxx11_string_abi));
     compare("sizeof(std::string)", std::to_string(plugin.sizeof_std_string), std::to_string(engine.sizeof_std_string));
-    compare("_GLIBCXX_DEBUG containers", plugin.debug_containers ? "on" : "off", engine.debug_containers ? "on" : "off");
+    compare("_GLIBCXX_DEBUG containers", plugin.debug_containers ? "on" : "off",
+            engine.debug_containers ? "on" : "off");
     return out;
 }
 
@@ -210,7 +216,9 @@ LibraryHandle open_library(const std::filesystem::path& library, const std::stri
 
 PluginManager::PluginManager(PluginContext context) : context_(context) {}
 
-PluginManager::~PluginManager() { shutdown_all(); }
+PluginManager::~PluginManager() {
+    shutdown_all();
+}
 
 Plugin& PluginManager::add_static(std::unique_ptr<Plugin> plugin) {
     if (plugin == nullptr) fail("engine::PluginManager::add_static(): null plugin");

@@ -40,8 +40,10 @@ glm::vec3 CameraView::project_to_pixel(const glm::vec3& world) const {
 
 CameraView make_camera(const glm::mat4& camera_to_world, float fov_y_radians, int width, int height, float znear,
                        float zfar) {
-    if (width <= 0 || height <= 0) fail("camera: image size must be positive, got " + std::to_string(width) + "x" + std::to_string(height));
-    if (!(fov_y_radians > 0.0f && fov_y_radians < 3.14f)) fail("camera: vertical field of view must be in (0, 180) degrees");
+    if (width <= 0 || height <= 0)
+        fail("camera: image size must be positive, got " + std::to_string(width) + "x" + std::to_string(height));
+    if (!(fov_y_radians > 0.0f && fov_y_radians < 3.14f))
+        fail("camera: vertical field of view must be in (0, 180) degrees");
     if (!(znear > 0.0f && zfar > znear)) fail("camera: need 0 < znear < zfar");
     CameraView c;
     c.view = glm::inverse(camera_to_world);
@@ -55,8 +57,8 @@ CameraView make_camera(const glm::mat4& camera_to_world, float fov_y_radians, in
     return c;
 }
 
-CameraView make_look_at_camera(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up,
-                               float fov_y_radians, int width, int height, float znear, float zfar) {
+CameraView make_look_at_camera(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float fov_y_radians,
+                               int width, int height, float znear, float zfar) {
     if (glm::length(target - eye) <= 0.0f) fail("camera: eye and target coincide");
     Transform t;
     t.translation = eye;

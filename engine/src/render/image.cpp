@@ -17,13 +17,15 @@ Image read_png(const std::filesystem::path& path) {
     int w = 0, h = 0, n = 0;
     stbi_uc* data = stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()), &w, &h, &n, 4);
     if (data == nullptr) fail(path.string() + ": cannot decode image: " + stbi_failure_reason());
-    Image image{w, h, std::vector<std::uint8_t>(data, data + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4)};
+    Image image{w, h,
+                std::vector<std::uint8_t>(data, data + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4)};
     stbi_image_free(data);
     return image;
 }
 
 void write_png(const std::filesystem::path& path, const Image& image) {
-    if (image.width <= 0 || image.height <= 0 || image.rgba.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4)
+    if (image.width <= 0 || image.height <= 0 ||
+        image.rgba.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4)
         fail(path.string() + ": cannot write an empty or inconsistent image");
     std::vector<std::uint8_t> png;
     const auto append = [](void* context, void* data, int size) {
@@ -48,7 +50,8 @@ ImageDifference compare_images(const Image& a, const Image& b, int threshold) {
     for (std::size_t p = 0; p < pixels; ++p) {
         int pixel_max = 0;
         for (int c = 0; c < 3; ++c) {
-            const int diff = std::abs(int(a.rgba[p * 4 + static_cast<std::size_t>(c)]) - int(b.rgba[p * 4 + static_cast<std::size_t>(c)]));
+            const int diff = std::abs(int(a.rgba[p * 4 + static_cast<std::size_t>(c)]) -
+                                      int(b.rgba[p * 4 + static_cast<std::size_t>(c)]));
             squared += double(diff) * double(diff);
             pixel_max = std::max(pixel_max, diff);
             d.visual.rgba[p * 4 + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(std::min(255, diff * 4));

@@ -131,7 +131,8 @@ void MeshPass::execute(FrameContext& frame) {
     const auto light_count = static_cast<GLsizei>(lights.directions.size());
     glProgramUniform1i(p, glGetUniformLocation(p, "u_light_count"), light_count);
     if (light_count > 0) {
-        glProgramUniform3fv(p, glGetUniformLocation(p, "u_light_direction"), light_count, glm::value_ptr(lights.directions[0]));
+        glProgramUniform3fv(p, glGetUniformLocation(p, "u_light_direction"), light_count,
+                            glm::value_ptr(lights.directions[0]));
         glProgramUniform3fv(p, glGetUniformLocation(p, "u_light_color"), light_count, glm::value_ptr(lights.colors[0]));
     }
 
@@ -166,7 +167,8 @@ void MeshPass::execute(FrameContext& frame) {
             }
             glUniform4fv(factor_loc, 1, glm::value_ptr(factor));
             glUniform1i(has_tex_loc, image >= 0);
-            if (image >= 0) glBindTextureUnit(MESH_BASE_COLOR_TEXTURE_UNIT, gpu.textures[static_cast<std::size_t>(image)].id());
+            if (image >= 0)
+                glBindTextureUnit(MESH_BASE_COLOR_TEXTURE_UNIT, gpu.textures[static_cast<std::size_t>(image)].id());
             glBindVertexArray(prim.vao.id());
             glDrawElements(GL_TRIANGLES, prim.index_count, GL_UNSIGNED_INT, nullptr);
         }

@@ -17,7 +17,8 @@ RenderTarget::RenderTarget(int width, int height) : width_(width), height_(heigh
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
     if (width <= 0 || height <= 0 || width > max_size || height > max_size)
-        fail("render target size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." + std::to_string(max_size));
+        fail("render target size " + std::to_string(width) + "x" + std::to_string(height) + " is outside 1.." +
+             std::to_string(max_size));
     color_ = gl::Texture(GL_TEXTURE_2D, "frame colour");
     glTextureStorage2D(color_.id(), 1, GL_RGBA8, width, height);
     depth_ = gl::Texture(GL_TEXTURE_2D, "frame depth");
@@ -35,7 +36,8 @@ RenderTarget::RenderTarget(int width, int height) : width_(width), height_(heigh
     const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glNamedFramebufferDrawBuffers(framebuffer_.id(), 2, buffers);
     const GLenum status = glCheckNamedFramebufferStatus(framebuffer_.id(), GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE) fail("render target framebuffer incomplete: status " + std::to_string(status));
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        fail("render target framebuffer incomplete: status " + std::to_string(status));
 }
 
 void RenderTarget::clear(float r, float g, float b) {
@@ -48,15 +50,18 @@ void RenderTarget::clear(float r, float g, float b) {
 }
 
 Image RenderTarget::read_color() const {
-    Image image{width_, height_, std::vector<std::uint8_t>(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4)};
+    Image image{width_, height_,
+                std::vector<std::uint8_t>(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4)};
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(color_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(image.rgba.size()), image.rgba.data());
+    glGetTextureImage(color_.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(image.rgba.size()),
+                      image.rgba.data());
     return image;
 }
 
 std::vector<float> RenderTarget::read_view_depth() const {
     std::vector<float> out(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
-    glGetTextureImage(view_depth_.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(float)), out.data());
+    glGetTextureImage(view_depth_.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(float)),
+                      out.data());
     return out;
 }
 

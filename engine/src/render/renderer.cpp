@@ -45,7 +45,8 @@ void Renderer::add_pass(std::shared_ptr<RenderPass> pass) {
     if (std::any_of(passes_.begin(), passes_.end(), [&](const auto& p) { return p->name() == name; }))
         fail("render pass '" + name + "' is already registered");
     passes_.push_back(std::move(pass));
-    std::stable_sort(passes_.begin(), passes_.end(), [](const auto& a, const auto& b) { return a->order() < b->order(); });
+    std::stable_sort(passes_.begin(), passes_.end(),
+                     [](const auto& a, const auto& b) { return a->order() < b->order(); });
 }
 
 void Renderer::remove_pass(const std::string& name) {
@@ -65,8 +66,16 @@ RenderPass* Renderer::find_pass(const std::string& name) const {
 }
 
 gl::ShaderLibrary& Renderer::shaders() {
-    if (!shaders_) shaders_ = std::make_unique<gl::ShaderLibrary>();
+    if (!shaders_) {
+        shaders_ = std::make_unique<gl::ShaderLibrary>();
+        for (const auto& root : shader_roots_) shaders_->add_root(root);
+    }
     return *shaders_;
+}
+
+void Renderer::add_shader_root(const std::filesystem::path& root) {
+    shader_roots_.push_back(root);
+    if (shaders_) shaders_->add_root(root);
 }
 
 void Renderer::render(const Scene& scene, const CameraView& camera, RenderTarget& target) {

@@ -40,9 +40,12 @@ std::unique_ptr<Component> make_light(const nlohmann::json& spec, const Componen
     jf::only_keys(spec, {"type", "kind", "color", "intensity"}, ctx);
     auto light = std::make_unique<LightComponent>();
     const std::string kind = jf::string(spec, "kind", "directional", ctx);
-    if (kind == "directional") light->kind = LightComponent::Kind::directional;
-    else if (kind == "ambient") light->kind = LightComponent::Kind::ambient;
-    else ctx.error("kind", "unknown light kind '" + kind + "' (known: directional, ambient)");
+    if (kind == "directional")
+        light->kind = LightComponent::Kind::directional;
+    else if (kind == "ambient")
+        light->kind = LightComponent::Kind::ambient;
+    else
+        ctx.error("kind", "unknown light kind '" + kind + "' (known: directional, ambient)");
     light->color = jf::vec3(spec, "color", light->color, ctx);
     light->intensity = jf::number(spec, "intensity", light->intensity, ctx);
     if (light->intensity < 0.0f) ctx.error("intensity", "must not be negative");

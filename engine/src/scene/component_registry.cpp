@@ -18,11 +18,14 @@ void ComponentLoadContext::error(const std::string& field, const std::string& me
 void ComponentRegistry::add(const std::string& type, ComponentFactory factory, const std::string& owner) {
     const auto it = factories_.find(type);
     if (it != factories_.end())
-        fail("component type '" + type + "' is already registered by " + it->second.owner + " (registering " + owner + ")");
+        fail("component type '" + type + "' is already registered by " + it->second.owner + " (registering " + owner +
+             ")");
     factories_.emplace(type, Entry{std::move(factory), owner});
 }
 
-void ComponentRegistry::remove(const std::string& type) { factories_.erase(type); }
+void ComponentRegistry::remove(const std::string& type) {
+    factories_.erase(type);
+}
 
 std::vector<std::string> ComponentRegistry::types() const {
     std::vector<std::string> out;

@@ -29,7 +29,8 @@ glm::vec<N, float> vector(const nlohmann::json& object, const char* key, const g
         ctx.error(key, "expected an array of " + std::to_string(N) + " numbers, got " + value->dump());
     glm::vec<N, float> out;
     for (int i = 0; i < N; ++i)
-        out[i] = finite_number((*value)[static_cast<std::size_t>(i)], std::string(key) + "[" + std::to_string(i) + "]", ctx);
+        out[i] =
+            finite_number((*value)[static_cast<std::size_t>(i)], std::string(key) + "[" + std::to_string(i) + "]", ctx);
     return out;
 }
 
@@ -73,15 +74,18 @@ std::string required_string(const nlohmann::json& object, const char* key, const
     return string(object, key, "", ctx);
 }
 
-glm::vec3 vec3(const nlohmann::json& object, const char* key, const glm::vec3& fallback, const ComponentLoadContext& ctx) {
+glm::vec3 vec3(const nlohmann::json& object, const char* key, const glm::vec3& fallback,
+               const ComponentLoadContext& ctx) {
     return vector<3>(object, key, fallback, ctx);
 }
 
-glm::vec4 vec4(const nlohmann::json& object, const char* key, const glm::vec4& fallback, const ComponentLoadContext& ctx) {
+glm::vec4 vec4(const nlohmann::json& object, const char* key, const glm::vec4& fallback,
+               const ComponentLoadContext& ctx) {
     return vector<4>(object, key, fallback, ctx);
 }
 
-void only_keys(const nlohmann::json& object, std::initializer_list<const char*> allowed, const ComponentLoadContext& ctx) {
+void only_keys(const nlohmann::json& object, std::initializer_list<const char*> allowed,
+               const ComponentLoadContext& ctx) {
     for (const auto& item : object.items()) {
         bool ok = false;
         for (const char* a : allowed) ok = ok || item.key() == a;

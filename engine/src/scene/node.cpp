@@ -75,7 +75,8 @@ std::optional<Bounds> Scene::world_bounds() const {
             const auto local = component->local_bounds();
             if (!local) continue;
             for (int corner = 0; corner < 8; ++corner) {
-                const glm::vec3 p((corner & 1) ? local->max.x : local->min.x, (corner & 2) ? local->max.y : local->min.y,
+                const glm::vec3 p((corner & 1) ? local->max.x : local->min.x,
+                                  (corner & 2) ? local->max.y : local->min.y,
                                   (corner & 4) ? local->max.z : local->min.z);
                 const glm::vec3 w = glm::vec3(world * glm::vec4(p, 1.0f));
                 if (!result) result = Bounds{w, w};

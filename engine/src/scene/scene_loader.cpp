@@ -40,8 +40,10 @@ void read_transform(const nlohmann::json& spec, Node& node, const ComponentLoadC
     if (spec.contains("rotation_euler_deg"))
         t.rotation = glm::quat(glm::radians(jf::vec3(spec, "rotation_euler_deg", glm::vec3(0), ctx)));
     if (spec.contains("scale")) {
-        if (spec["scale"].is_number()) t.scale = glm::vec3(jf::number(spec, "scale", 1.0f, ctx));
-        else t.scale = jf::vec3(spec, "scale", t.scale, ctx);
+        if (spec["scale"].is_number())
+            t.scale = glm::vec3(jf::number(spec, "scale", 1.0f, ctx));
+        else
+            t.scale = jf::vec3(spec, "scale", t.scale, ctx);
     }
     if (spec.contains("look_at")) {
         if (spec.contains("rotation") || spec.contains("rotation_euler_deg"))
@@ -57,7 +59,9 @@ void read_transform(const nlohmann::json& spec, Node& node, const ComponentLoadC
 void read_node(const nlohmann::json& spec, Node& parent, const std::string& key, const LoadState& state) {
     const ComponentLoadContext ctx = context_for(state, key);
     if (!spec.is_object()) ctx.error("", "expected an object, got " + spec.dump());
-    jf::only_keys(spec, {"name", "translation", "rotation", "rotation_euler_deg", "scale", "look_at", "components", "children"}, ctx);
+    jf::only_keys(
+        spec, {"name", "translation", "rotation", "rotation_euler_deg", "scale", "look_at", "components", "children"},
+        ctx);
     Node& node = parent.add_child(jf::string(spec, "name", key, ctx));
     read_transform(spec, node, ctx);
 

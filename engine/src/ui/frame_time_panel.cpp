@@ -36,8 +36,10 @@ void draw_pass_row(const FrameHistory& history, const std::string& pass) {
     ImGui::Text("%.3f", static_cast<double>(FrameHistory::mean(cpu)));
     ImGui::TableNextColumn();
     // GPU timer queries are read a few frames late; until then there is nothing to show.
-    if (gpu.empty()) ImGui::TextDisabled("pending");
-    else ImGui::Text("%.3f", static_cast<double>(FrameHistory::mean(gpu)));
+    if (gpu.empty())
+        ImGui::TextDisabled("pending");
+    else
+        ImGui::Text("%.3f", static_cast<double>(FrameHistory::mean(gpu)));
     ImGui::TableNextColumn();
     ImGui::PushID(pass.c_str());
     plot("##pass_graph", gpu.empty() ? cpu : gpu, nullptr, 22.0f);

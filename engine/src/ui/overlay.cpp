@@ -1,8 +1,8 @@
 #include "engine/ui/overlay.h"
 
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 
 #include <algorithm>
 
@@ -49,10 +49,11 @@ UiOverlay::UiOverlay(Window& window, MessageBus& bus) : scene_tree_(std::make_un
     }
     const GlInfo& info = window.info();
     gl_description_ = info.renderer + "\nOpenGL " + info.version + " (" + info.platform + ")";
-    statistics_subscription_ = bus.subscribe<plugin_msgs::FrameStatistics>([this](const plugin_msgs::FrameStatistics& frame) {
-        std::lock_guard lock(history_mutex_);
-        history_.push(frame);
-    });
+    statistics_subscription_ =
+        bus.subscribe<plugin_msgs::FrameStatistics>([this](const plugin_msgs::FrameStatistics& frame) {
+            std::lock_guard lock(history_mutex_);
+            history_.push(frame);
+        });
     overlay_alive = true;
 }
 

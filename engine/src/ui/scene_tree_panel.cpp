@@ -67,7 +67,8 @@ void SceneTreePanel::draw_transform(const Node& node) {
     ImGui::TextUnformatted(node.name().c_str());
     show_vec3("translation", t.translation);
     ImGui::Text("%-12s %9.3f %9.3f %9.3f %9.3f", "rot (wxyz)", static_cast<double>(t.rotation.w),
-                static_cast<double>(t.rotation.x), static_cast<double>(t.rotation.y), static_cast<double>(t.rotation.z));
+                static_cast<double>(t.rotation.x), static_cast<double>(t.rotation.y),
+                static_cast<double>(t.rotation.z));
     show_vec3("euler (deg)", glm::degrees(glm::eulerAngles(t.rotation)));
     show_vec3("scale", t.scale);
     show_vec3("world pos", glm::vec3(node.world_matrix()[3]));

@@ -24,7 +24,7 @@ struct CameraState {
     friend bool operator==(const CameraState&, const CameraState&) = default;
 };
 
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CameraState, frame_index, position, forward, up, fov_y_deg, znear,
-                                                zfar, width, height)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(CameraState, frame_index, position, forward, up, fov_y_deg, znear, zfar,
+                                                width, height)
 
 }  // namespace plugin_msgs

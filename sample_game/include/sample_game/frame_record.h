@@ -39,10 +39,10 @@ struct FrameRecord {
     int redraws = 0;  // frames drawn again because the key buffer overflowed (it grows after each)
 
     std::uint64_t considered = 0, visible = 0, skipped = 0, tile_splat_pairs = 0;
-    std::uint64_t culled = 0;           // Gaussians in clusters outside the view frustum, dropped before projection
-    std::uint64_t hidden = 0;           // resident Gaussians of chunks or groups outside the LOD cut (not drawn)
-    std::uint64_t unbudgeted = 0;       // what the selection would draw without the splat budget (= visible without one)
-    double budget_threshold_px = 0.0;   // the size threshold the frame selected with (S_T × the budget's β)
+    std::uint64_t culled = 0;          // Gaussians in clusters outside the view frustum, dropped before projection
+    std::uint64_t hidden = 0;          // resident Gaussians of chunks or groups outside the LOD cut (not drawn)
+    std::uint64_t unbudgeted = 0;      // what the selection would draw without the splat budget (= visible without one)
+    double budget_threshold_px = 0.0;  // the size threshold the frame selected with (S_T × the budget's β)
     std::array<std::uint64_t, 4> drawn_per_level{};  // visible per LOD level 1..4
 
     std::uint64_t resident_bytes = 0;   // the streamer's count of resident GPU bytes (pages)
@@ -53,7 +53,7 @@ struct FrameRecord {
     std::uint64_t gpu_upload_bytes = 0;  // bytes the GPU scene sent this frame (+48 per freed page's cluster record)
     ChunkCensus chunks;
     std::uint32_t chunks_drawn = 0, groups_drawn = 0;  // the LOD cut: chunks and chunk groups drawn
-    std::uint64_t failures_total = 0;  // chunk failures so far
+    std::uint64_t failures_total = 0;                  // chunk failures so far
     // Baseline rows only: the LOD run's image of the same path frame against this one (every chunk
     // resident, `baseline` mode) as the reference; −1 where not compared.
     double psnr_lod_vs_baseline = -1.0, ssim_lod_vs_baseline = -1.0;

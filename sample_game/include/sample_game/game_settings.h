@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include <plugin_msgs/lod_settings.h>
+#include "splat_lod/msgs/lod_settings.h"
 
 #include "splat_lod/stream/chunk_streamer.h"
 

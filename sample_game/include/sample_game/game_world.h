@@ -16,11 +16,11 @@
 #include "sample_game/camera_path.h"
 #include "sample_game/frame_record.h"
 #include "sample_game/game_settings.h"
+#include "splat_lod/core/world_manifest.h"
+#include "splat_lod/splat_renderer.h"
 #include "splat_lod/stream/chunk_streamer.h"
 #include "splat_lod/stream/stream_scene_sink.h"
 #include "splat_lod/worldgen/world_lock.h"
-#include "splat_lod/core/world_manifest.h"
-#include "splat_lod/splat_renderer.h"
 #include "splat_lod/worldgen/world_terrain.h"
 
 namespace sample_game {

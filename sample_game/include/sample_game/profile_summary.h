@@ -43,9 +43,9 @@ inline constexpr double kMaxOverviewResidentShare = 0.15;
 
 // What the scale checks (7–11) need beyond the rows; zeros leave those checks unmeasured.
 struct WorldScale {
-    std::uint64_t pixels = 0;         // output pixels per frame
-    std::uint64_t world_bytes = 0;    // the whole world's GPU bytes with every level resident
-    std::uint64_t splat_budget = 0;   // the run's splat budget (0: none)
+    std::uint64_t pixels = 0;        // output pixels per frame
+    std::uint64_t world_bytes = 0;   // the whole world's GPU bytes with every level resident
+    std::uint64_t splat_budget = 0;  // the run's splat budget (0: none)
 };
 
 struct SegmentTimes {

@@ -5,12 +5,12 @@
 //   <world>/reference/<key>/frame_<NNNN>.png   one per chosen path frame, 8-bit lossless
 //   <world>/reference/<key>/reference.json     the key's inputs (below), written last
 // The key names everything the images depend on: the world (chunks_checksum of world_manifest.h:
-// world.json without its chunk groups, which the reference does not draw), width, height, path frame count, vertical field of view,
-// supersampling factor, the chosen frames and the format version; its folder name is readable and
-// ends with the CRC-32 of reference.json's text, so different inputs never share a folder. A folder
-// appears complete or not at all: it is written under a temporary name and renamed. splat_world
-// leaves reference/ alone (it removes only its own gen-<n>/ folders and temporaries), so a
-// regenerated world keeps old references, which no longer match its key. GL-free.
+// world.json without its chunk groups, which the reference does not draw), width, height, path frame count, vertical
+// field of view, supersampling factor, the chosen frames and the format version; its folder name is readable and ends
+// with the CRC-32 of reference.json's text, so different inputs never share a folder. A folder appears complete or not
+// at all: it is written under a temporary name and renamed. splat_world leaves reference/ alone (it removes only its
+// own gen-<n>/ folders and temporaries), so a regenerated world keeps old references, which no longer match its key.
+// GL-free.
 #include <array>
 #include <cstdint>
 #include <filesystem>

@@ -5,7 +5,8 @@
 //
 // Each lap walks the whole path (which ends where it starts), then settles: it keeps updating at
 // the last pose until nothing is being read or uploaded and no chunk is failed (at most 400
-// updates, so the streamer's retry must come within 300 frames) and measures there, so every lap ends in the same place and state:
+// updates, so the streamer's retry must come within 300 frames) and measures there, so every lap ends in the same place
+// and state:
 //   - the GL objects the driver holds (engine/gl/gl_census.h: counts per kind, buffer and texture
 //     bytes), the process's resident memory (RSS; on llvmpipe this includes the "GPU" memory),
 //     the streamer's resident bytes and failed chunks, and the frame itself.

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include <plugin_msgs/stream_events.h>
+#include "splat_lod/msgs/stream_events.h"
 
 #include "engine/core/message_bus.h"
 #include "sample_game/frame_record.h"

@@ -21,7 +21,8 @@ public:
         const Key key{std::type_index(typeid(T)), canonical_key(path)};
         {
             std::lock_guard lock(mutex_);
-            if (auto it = entries_.find(key); it != entries_.end()) return std::static_pointer_cast<const T>(it->second);
+            if (auto it = entries_.find(key); it != entries_.end())
+                return std::static_pointer_cast<const T>(it->second);
         }
         auto loaded = loader(path);  // outside the lock: loads may be slow
         std::lock_guard lock(mutex_);

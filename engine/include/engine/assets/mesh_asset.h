@@ -26,8 +26,8 @@ struct MeshPrimitive {
 
 struct MeshMaterial {
     std::string name;
-    glm::vec4 base_color_factor{1.0f};   // linear
-    int base_color_image = -1;           // index into MeshAsset::images, sRGB-encoded texels
+    glm::vec4 base_color_factor{1.0f};  // linear
+    int base_color_image = -1;          // index into MeshAsset::images, sRGB-encoded texels
     bool double_sided = false;
 };
 

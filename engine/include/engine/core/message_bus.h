@@ -26,7 +26,8 @@ public:
     Subscription() = default;
     Subscription(MessageBus* bus, std::string kind, std::uint64_t id) : bus_(bus), kind_(std::move(kind)), id_(id) {}
     ~Subscription() { reset(); }
-    Subscription(Subscription&& o) noexcept : bus_(std::exchange(o.bus_, nullptr)), kind_(std::move(o.kind_)), id_(o.id_) {}
+    Subscription(Subscription&& o) noexcept
+        : bus_(std::exchange(o.bus_, nullptr)), kind_(std::move(o.kind_)), id_(o.id_) {}
     Subscription& operator=(Subscription&& o) noexcept {
         if (this != &o) {
             reset();

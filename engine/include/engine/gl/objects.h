@@ -54,17 +54,29 @@ protected:
 namespace kinds {
 struct Buffer {
     static constexpr GLenum identifier = GL_BUFFER;
-    static GLuint create() { GLuint id = 0; glCreateBuffers(1, &id); return id; }
+    static GLuint create() {
+        GLuint id = 0;
+        glCreateBuffers(1, &id);
+        return id;
+    }
     static void destroy(GLuint id) { glDeleteBuffers(1, &id); }
 };
 struct VertexArray {
     static constexpr GLenum identifier = GL_VERTEX_ARRAY;
-    static GLuint create() { GLuint id = 0; glCreateVertexArrays(1, &id); return id; }
+    static GLuint create() {
+        GLuint id = 0;
+        glCreateVertexArrays(1, &id);
+        return id;
+    }
     static void destroy(GLuint id) { glDeleteVertexArrays(1, &id); }
 };
 struct Framebuffer {
     static constexpr GLenum identifier = GL_FRAMEBUFFER;
-    static GLuint create() { GLuint id = 0; glCreateFramebuffers(1, &id); return id; }
+    static GLuint create() {
+        GLuint id = 0;
+        glCreateFramebuffers(1, &id);
+        return id;
+    }
     static void destroy(GLuint id) { glDeleteFramebuffers(1, &id); }
 };
 struct Program {
@@ -74,7 +86,11 @@ struct Program {
 };
 struct Sampler {
     static constexpr GLenum identifier = GL_SAMPLER;
-    static GLuint create() { GLuint id = 0; glCreateSamplers(1, &id); return id; }
+    static GLuint create() {
+        GLuint id = 0;
+        glCreateSamplers(1, &id);
+        return id;
+    }
     static void destroy(GLuint id) { glDeleteSamplers(1, &id); }
 };
 }  // namespace kinds

@@ -22,6 +22,9 @@ public:
     // The program made of `files` (one per stage) with `defines`; compiled on first use.
     const Program& program(const std::vector<std::string>& files, const std::vector<std::string>& defines = {});
 
+    // Another folder of shader files, searched after the ones before it (a plugin's own shaders).
+    void add_root(std::filesystem::path root) { preprocessor_.add_root(std::move(root)); }
+
     const ShaderPreprocessor& preprocessor() const { return preprocessor_; }
     std::size_t cached_programs() const { return programs_.size(); }
 

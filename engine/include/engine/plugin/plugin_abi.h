@@ -37,13 +37,13 @@ extern "C" {
 // stay first forever; the engine reads only the fields that `struct_size` covers.
 struct EnginePluginBuildInfo {
     std::uint32_t struct_size;
-    std::int32_t abi_version;        // ENGINE_PLUGIN_ABI_VERSION
-    std::int32_t std_library;        // engine::plugin_abi::StdLibrary
-    std::int32_t cxx11_string_abi;   // _GLIBCXX_USE_CXX11_ABI (1 new, 0 old), −1 outside libstdc++
-    std::int32_t debug_containers;   // 1 under _GLIBCXX_DEBUG, whose containers differ in layout
+    std::int32_t abi_version;       // ENGINE_PLUGIN_ABI_VERSION
+    std::int32_t std_library;       // engine::plugin_abi::StdLibrary
+    std::int32_t cxx11_string_abi;  // _GLIBCXX_USE_CXX11_ABI (1 new, 0 old), −1 outside libstdc++
+    std::int32_t debug_containers;  // 1 under _GLIBCXX_DEBUG, whose containers differ in layout
     std::uint32_t sizeof_std_string;
-    std::int32_t itanium_abi;        // __GXX_ABI_VERSION; informational, GCC and Clang differ yet agree
-    char engine_version[24];         // ENGINE_VERSION_STRING, NUL-terminated, informational
+    std::int32_t itanium_abi;  // __GXX_ABI_VERSION; informational, GCC and Clang differ yet agree
+    char engine_version[24];   // ENGINE_VERSION_STRING, NUL-terminated, informational
 };
 
 ENGINE_PLUGIN_EXPORT int engine_plugin_abi_version();
@@ -98,11 +98,17 @@ using DestroyFunction = void (*)(Plugin*);
 
 // Defines the four entry points for a plugin class with a default constructor. Use it once, in
 // a plugin built with engine_add_plugin(<name> SHARED ...), outside any namespace.
-#define ENGINE_EXPORT_PLUGIN(ClassName)                                                         \
-    extern "C" ENGINE_PLUGIN_EXPORT int engine_plugin_abi_version() { return ENGINE_PLUGIN_ABI_VERSION; } \
-    extern "C" ENGINE_PLUGIN_EXPORT const EnginePluginBuildInfo* engine_plugin_build_info() {    \
+#define ENGINE_EXPORT_PLUGIN(ClassName)                                                           \
+    extern "C" ENGINE_PLUGIN_EXPORT int engine_plugin_abi_version() {                             \
+        return ENGINE_PLUGIN_ABI_VERSION;                                                         \
+    }                                                                                             \
+    extern "C" ENGINE_PLUGIN_EXPORT const EnginePluginBuildInfo* engine_plugin_build_info() {     \
         static constexpr EnginePluginBuildInfo info = ::engine::plugin_abi::current_build_info(); \
-        return &info;                                                                           \
-    }                                                                                           \
-    extern "C" ENGINE_PLUGIN_EXPORT ::engine::Plugin* engine_plugin_create() { return new ClassName(); } \
-    extern "C" ENGINE_PLUGIN_EXPORT void engine_plugin_destroy(::engine::Plugin* plugin) { delete plugin; }
+        return &info;                                                                             \
+    }                                                                                             \
+    extern "C" ENGINE_PLUGIN_EXPORT ::engine::Plugin* engine_plugin_create() {                    \
+        return new ClassName();                                                                   \
+    }                                                                                             \
+    extern "C" ENGINE_PLUGIN_EXPORT void engine_plugin_destroy(::engine::Plugin* plugin) {        \
+        delete plugin;                                                                            \
+    }

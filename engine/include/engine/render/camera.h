@@ -25,17 +25,17 @@ struct CameraView {
     glm::ivec2 full_size{0};
     glm::ivec2 tile_origin{0};
 
-    float focal_length() const;          // fx = fy in pixels (of the whole image's height)
-    glm::vec2 principal_point() const;   // (W/2, H/2) of the whole image, in this view's pixels
-    float aspect() const;                // the whole image's W / H
+    float focal_length() const;         // fx = fy in pixels (of the whole image's height)
+    glm::vec2 principal_point() const;  // (W/2, H/2) of the whole image, in this view's pixels
+    float aspect() const;               // the whole image's W / H
     // Image coordinates of a world point (top-left origin) and its depth z = −z_view.
     glm::vec3 project_to_pixel(const glm::vec3& world) const;
 };
 
 CameraView make_camera(const glm::mat4& camera_to_world, float fov_y_radians, int width, int height, float znear,
                        float zfar);
-CameraView make_look_at_camera(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up,
-                               float fov_y_radians, int width, int height, float znear, float zfar);
+CameraView make_look_at_camera(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float fov_y_radians,
+                               int width, int height, float znear, float zfar);
 // The pixels [origin, origin + size) of `whole` (itself possibly a tile) as a view of their own:
 // same pose, field of view and focal length, an off-centre projection. Throws engine::Error when
 // the window is empty or leaves the image.

@@ -11,18 +11,22 @@ struct Image {
     int height = 0;
     std::vector<std::uint8_t> rgba;  // row-major, top row first
 
-    std::uint8_t* pixel(int x, int y) { return &rgba[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4]; }
-    const std::uint8_t* pixel(int x, int y) const { return &rgba[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4]; }
+    std::uint8_t* pixel(int x, int y) {
+        return &rgba[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4];
+    }
+    const std::uint8_t* pixel(int x, int y) const {
+        return &rgba[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 4];
+    }
 };
 
-Image read_png(const std::filesystem::path& path);            // throws naming the file
+Image read_png(const std::filesystem::path& path);                      // throws naming the file
 void write_png(const std::filesystem::path& path, const Image& image);  // atomic replace
 
 struct ImageDifference {
-    double psnr_db = 0.0;          // over RGB, values in [0, 1]; +inf for identical images
+    double psnr_db = 0.0;  // over RGB, values in [0, 1]; +inf for identical images
     int max_channel_difference = 0;
     double fraction_over_threshold = 0.0;  // pixels whose RGB difference exceeds the threshold
-    Image visual;                  // |a − b| × 4, for looking at
+    Image visual;                          // |a − b| × 4, for looking at
 };
 
 // Compares RGB of two images of the same size (throws if sizes differ).

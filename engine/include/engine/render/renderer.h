@@ -30,6 +30,9 @@ public:
     void render(const Scene& scene, const CameraView& camera, RenderTarget& target);
 
     gl::ShaderLibrary& shaders();
+    // A folder of shader files that passes may name, searched after the engine's own (a plugin adds
+    // its shaders folder at startup, before or after the first frame).
+    void add_shader_root(const std::filesystem::path& root);
     gl::GpuTimers& timers() { return timers_; }
     unsigned long long frame_index() const { return frame_index_; }
 
@@ -37,6 +40,7 @@ private:
     MessageBus& bus_;
     AssetCache& assets_;
     std::unique_ptr<gl::ShaderLibrary> shaders_;  // created with the first frame (needs GL)
+    std::vector<std::filesystem::path> shader_roots_;
     gl::GpuTimers timers_;
     std::vector<std::shared_ptr<RenderPass>> passes_;
     unsigned long long frame_index_ = 0;

@@ -15,9 +15,12 @@ bool boolean(const nlohmann::json& object, const char* key, bool fallback, const
 std::string string(const nlohmann::json& object, const char* key, const std::string& fallback,
                    const ComponentLoadContext& ctx);
 std::string required_string(const nlohmann::json& object, const char* key, const ComponentLoadContext& ctx);
-glm::vec3 vec3(const nlohmann::json& object, const char* key, const glm::vec3& fallback, const ComponentLoadContext& ctx);
-glm::vec4 vec4(const nlohmann::json& object, const char* key, const glm::vec4& fallback, const ComponentLoadContext& ctx);
+glm::vec3 vec3(const nlohmann::json& object, const char* key, const glm::vec3& fallback,
+               const ComponentLoadContext& ctx);
+glm::vec4 vec4(const nlohmann::json& object, const char* key, const glm::vec4& fallback,
+               const ComponentLoadContext& ctx);
 // Fails when the object has a key outside `allowed` (catches typos such as "fov_deg").
-void only_keys(const nlohmann::json& object, std::initializer_list<const char*> allowed, const ComponentLoadContext& ctx);
+void only_keys(const nlohmann::json& object, std::initializer_list<const char*> allowed,
+               const ComponentLoadContext& ctx);
 
 }  // namespace engine::json_fields

@@ -11,9 +11,9 @@ namespace engine {
 struct FlyCameraInput {
     bool forward = false, back = false, left = false, right = false, up = false, down = false;
     bool fast = false;
-    bool look = false;               // right mouse button held
-    glm::vec2 mouse_delta{0.0f};     // pixels, +x right, +y down
-    float scroll = 0.0f;             // wheel steps, + away from the user
+    bool look = false;            // right mouse button held
+    glm::vec2 mouse_delta{0.0f};  // pixels, +x right, +y down
+    float scroll = 0.0f;          // wheel steps, + away from the user
 };
 
 class FlyCamera {
@@ -28,7 +28,7 @@ public:
 
     glm::mat4 camera_to_world() const;
     glm::vec3 position() const { return position_; }
-    glm::vec3 forward() const;  // unit view direction
+    glm::vec3 forward() const;              // unit view direction
     float yaw() const { return yaw_; }      // radians; 0 looks along −Z, positive turns left
     float pitch() const { return pitch_; }  // radians, within ±89°
 

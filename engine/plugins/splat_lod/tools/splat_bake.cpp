@@ -43,7 +43,8 @@ void check_output_writable(const std::filesystem::path& output, const std::files
     if (fs::exists(input, ec) && fs::exists(output, ec) && fs::equivalent(input, output, ec))
         engine::fail(output.string() + ": the output would replace the input; choose another file");
     const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-    if (!fs::is_directory(folder, ec)) engine::fail(output.string() + ": the folder " + folder.string() + " does not exist");
+    if (!fs::is_directory(folder, ec))
+        engine::fail(output.string() + ": the folder " + folder.string() + " does not exist");
     const fs::path probe = folder / (".splat_bake_probe_" + std::to_string(::getpid()));
     std::FILE* file = std::fopen(probe.c_str(), "wb");
     if (file == nullptr) engine::fail(output.string() + ": cannot write in " + folder.string());
@@ -68,7 +69,8 @@ int run(Options& o) {
     const auto extent = splat_lod::eval::robust_extent(fine.positions);
     const auto poses = bake::bake_camera_poses(o.cameras, extent, engine::parse_vec3(o.up, "--up"));
     const auto cameras = bake::bake_cameras(poses, o.width, o.height);
-    std::fprintf(stderr, "splat_bake: %zu cameras (%s) at %dx%d\n", cameras.size(), o.cameras.c_str(), o.width, o.height);
+    std::fprintf(stderr, "splat_bake: %zu cameras (%s) at %dx%d\n", cameras.size(), o.cameras.c_str(), o.width,
+                 o.height);
 
     std::string last_stage;
     int last_percent = -1;
@@ -102,7 +104,8 @@ int run(Options& o) {
 int main(int argc, char** argv) {
     Options o;
     CLI::App app{"Bake levels of detail (multi-scale 3DGS) into a trained splat scene"};
-    app.add_option("--input", o.input, "trained scene (.ply, .compressed.ply, .splat, .spz, SOG meta.json)")->required();
+    app.add_option("--input", o.input, "trained scene (.ply, .compressed.ply, .splat, .spz, SOG meta.json)")
+        ->required();
     app.add_option("--output", o.output, "LOD asset to write (INRIA PLY)")->required();
     app.add_option("--cameras", o.cameras,
                    "auto (rings:3x8), rings:RxA, orbit:N, an INRIA cameras.json or a camera-path JSON");
@@ -134,7 +137,8 @@ int main(int argc, char** argv) {
     app.add_option("--seed", o.bake.seed, "seed of the refinement's camera order");
     CLI11_PARSE(app, argc, argv);
     o.bake.ranges_after_refine = !o.keep_ranges;
-    o.bake.pooling = o.pooling == "moments" ? splat_lod::bake::PoolingRule::moments : splat_lod::bake::PoolingRule::mean;
+    o.bake.pooling =
+        o.pooling == "moments" ? splat_lod::bake::PoolingRule::moments : splat_lod::bake::PoolingRule::mean;
     o.bake.cells = o.cells == "grid" ? splat_lod::bake::CellRule::grid : splat_lod::bake::CellRule::adaptive;
     o.bake.choose_recipe = o.cells == "auto" && enlargement->count() == 0;
     if (cells->count() > 0 && o.cells != "auto" && enlargement->count() == 0)

@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <map>
 
-#include <CLI/CLI.hpp>
 #include <plugin_msgs/frame_statistics.h>
+#include <CLI/CLI.hpp>
 
 #include "engine/core/cli_values.h"
 #include "engine/core/error.h"
@@ -17,10 +17,10 @@
 #include "engine/platform/gl_context.h"
 #include "engine/render/image.h"
 #include "engine/render/render_target.h"
-#include "splat_lod/splat_renderer.h"
-#include "splat_lod/splat_component.h"
 #include "splat_lod/core/splat_io.h"
+#include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
+#include "splat_lod/splat_renderer.h"
 
 namespace {
 
@@ -55,14 +55,15 @@ int run(const Options& o) {
     scene.root().add_child("splats").attach(std::move(splat));
 
     const glm::vec3 eye = engine::parse_vec3(o.eye, "--eye"), target = engine::parse_vec3(o.target, "--target");
-    const auto camera = engine::make_look_at_camera(eye, target, engine::parse_vec3(o.up, "--up"), glm::radians(o.fov_y_deg),
-                                                    o.width, o.height, 0.01f, 1e6f);
+    const auto camera = engine::make_look_at_camera(eye, target, engine::parse_vec3(o.up, "--up"),
+                                                    glm::radians(o.fov_y_deg), o.width, o.height, 0.01f, 1e6f);
     splat_lod::SplatRenderer pass(engine.renderer());
     pass.settings().mip_filter = o.mip_filter;
     pass.settings().render_scale = o.render_scale;
     pass.settings().tile_size = o.tile;
     pass.settings().low_res_tile_size = o.low_res_tile;
-    pass.settings().upscaler = plugin_msgs::detail::enum_from_json<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, o.upscaler);
+    pass.settings().upscaler =
+        plugin_msgs::detail::enum_from_json<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, o.upscaler);
     engine::RenderTarget target_image(o.width, o.height);
 
     // Warm-up: the first frame compiles shaders and sizes the key buffer; the second is a plain one.
@@ -111,7 +112,8 @@ int main(int argc, char** argv) {
     app.add_option("--upscaler", o.upscaler, "spline, bicubic, bilinear or lanczos3")
         ->check(CLI::IsMember({"spline", "bicubic", "bilinear", "lanczos3"}));
     app.add_option("--tile", o.tile, "raster tile side at render scale 1")->check(CLI::IsMember({4u, 8u, 16u}));
-    app.add_option("--low-res-tile", o.low_res_tile, "raster tile side below render scale 1")->check(CLI::IsMember({4u, 8u, 16u}));
+    app.add_option("--low-res-tile", o.low_res_tile, "raster tile side below render scale 1")
+        ->check(CLI::IsMember({4u, 8u, 16u}));
     CLI11_PARSE(app, argc, argv);
     try {
         return run(o);

@@ -24,7 +24,6 @@ struct Options {
     float detail = 1.0f;
 };
 
-
 int run(const Options& o) {
     namespace synth = splat_lod::synth;
     // Checked here as well as in the library so that the message names the option.

@@ -35,13 +35,14 @@
 
 namespace {
 
-
 std::string duration(double seconds) {
     if (seconds < 0.0) return "?";
     const auto s = static_cast<long long>(seconds + 0.5);
     char text[32];
-    if (s >= 3600) std::snprintf(text, sizeof text, "%lldh%02lldm%02llds", s / 3600, s / 60 % 60, s % 60);
-    else std::snprintf(text, sizeof text, "%lldm%02llds", s / 60, s % 60);
+    if (s >= 3600)
+        std::snprintf(text, sizeof text, "%lldh%02lldm%02llds", s / 3600, s / 60 % 60, s % 60);
+    else
+        std::snprintf(text, sizeof text, "%lldm%02llds", s / 60, s % 60);
     return text;
 }
 
@@ -63,10 +64,12 @@ void print_progress(const splat_lod::world::WorldProgress& p) {
     const bool last_chunk = p.chunks_done == p.chunks_total;
     if (p.chunks_total > 64 && !last_chunk && now - last < std::chrono::seconds(2)) return;
     last = now;
-    std::fprintf(stderr, "splat_world: chunks %zu/%zu (%.1f%%), %llu Gaussians, %s elapsed, ETA %s\n", p.chunks_done,
-                 p.chunks_total, p.chunks_total ? 100.0 * static_cast<double>(p.chunks_done) / static_cast<double>(p.chunks_total) : 100.0,
-                 static_cast<unsigned long long>(p.gaussians), duration(p.elapsed_seconds).c_str(),
-                 duration(p.eta_seconds).c_str());
+    std::fprintf(
+        stderr, "splat_world: chunks %zu/%zu (%.1f%%), %llu Gaussians, %s elapsed, ETA %s\n", p.chunks_done,
+        p.chunks_total,
+        p.chunks_total ? 100.0 * static_cast<double>(p.chunks_done) / static_cast<double>(p.chunks_total) : 100.0,
+        static_cast<unsigned long long>(p.gaussians), duration(p.elapsed_seconds).c_str(),
+        duration(p.eta_seconds).c_str());
 }
 
 // The merge's summary: what it committed (the bake statistics stay with the shards that baked).
@@ -102,14 +105,16 @@ void add_world_options(CLI::App& app, CommandLine& c) {
     app.add_option("--seed", c.seed_text, "random seed, 0 to 2^64 - 1 (the same seed gives the same bytes)");
     app.add_option("--size", options.size_m, "world size in metres (a multiple of --chunk); 1024 by default")
         ->check(CLI::Range(4.0, 65536.0));
-    app.add_option("--chunk", options.chunk_size_m, "chunk size in metres; 64 by default")->check(CLI::Range(4.0, 65536.0));
+    app.add_option("--chunk", options.chunk_size_m, "chunk size in metres; 64 by default")
+        ->check(CLI::Range(4.0, 65536.0));
     app.add_option("--density", options.density, "scales every Gaussian count, (0, 8]; 1 by default")
         ->check(CLI::Range(0.0, 8.0));
     app.add_option("--threads", options.threads, "chunks baked at once (0: all cores)")->check(CLI::Range(0, 1024));
     app.add_option("--refine-iterations", options.bake.refine_iterations,
                    "Adam iterations per coarse level of each chunk's bake (0: off)")
         ->check(CLI::Range(0, 100000));
-    app.add_option("--bake-width", options.bake_width, "chunk bake camera width (a multiple of 64)")->check(CLI::Range(64, 8192));
+    app.add_option("--bake-width", options.bake_width, "chunk bake camera width (a multiple of 64)")
+        ->check(CLI::Range(64, 8192));
     app.add_option("--bake-height", options.bake_height, "chunk bake camera height (a multiple of 64)")
         ->check(CLI::Range(64, 8192));
     app.add_flag("--no-terrain-mesh", c.no_terrain_mesh, "do not write the coarse terrain mesh");
@@ -128,8 +133,8 @@ void add_run_options(CLI::App& app, CommandLine& c) {
     auto* count_flag = app.add_flag("--count-only", c.count_only,
                                     "only generate the content and print its Gaussian counts (no bake, no files)");
     c.shard_option = app.add_option("--shard", c.shard_text,
-                                        "bake only shard I of N (I is 1-based: 1..N), chunks k with k mod N = I - 1, "
-                                        "into --out/staging-<hash>/; then --merge")
+                                    "bake only shard I of N (I is 1-based: 1..N), chunks k with k mod N = I - 1, "
+                                    "into --out/staging-<hash>/; then --merge")
                          ->excludes(count_flag);
     app.add_flag("--merge", c.merge, "commit the world that --shard runs baked into --out (all must be done)")
         ->excludes(count_flag)

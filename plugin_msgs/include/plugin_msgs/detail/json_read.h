@@ -29,7 +29,8 @@ inline void require_object(const nlohmann::json& json, std::string_view kind) {
 }
 
 // Rejects keys outside `allowed` (catches typos such as "render_scal").
-inline void only_keys(const nlohmann::json& json, std::string_view kind, std::initializer_list<std::string_view> allowed) {
+inline void only_keys(const nlohmann::json& json, std::string_view kind,
+                      std::initializer_list<std::string_view> allowed) {
     for (const auto& item : json.items()) {
         bool known = false;
         for (const auto key : allowed) known = known || key == item.key();
@@ -44,10 +45,10 @@ inline void only_keys(const nlohmann::json& json, std::string_view kind, std::in
 template <class T>
 void check_number_kind(const nlohmann::json& value, std::string_view kind, std::string_view key) {
     if constexpr (std::is_same_v<T, bool>) {
-        if (!value.is_boolean()) field_error(kind, key, std::string("expected true or false, got ") + value.type_name());
+        if (!value.is_boolean())
+            field_error(kind, key, std::string("expected true or false, got ") + value.type_name());
     } else if constexpr (std::is_unsigned_v<T>) {
-        if (!value.is_number_unsigned())
-            field_error(kind, key, "expected a non-negative integer, got " + value.dump());
+        if (!value.is_number_unsigned()) field_error(kind, key, "expected a non-negative integer, got " + value.dump());
         if (value.get<std::uint64_t>() > static_cast<std::uint64_t>(std::numeric_limits<T>::max()))
             field_error(kind, key, value.dump() + " is out of range");
     } else if constexpr (std::is_integral_v<T>) {

@@ -117,19 +117,20 @@ void build_level(SplatCloud& cloud, detail::CoverageTable& table, int level, con
     const std::size_t first_new = cloud.size();
     cloud.resize(first_new + groups);
     std::vector<double> factors(groups, 1.0);
-    reference::detail::parallel_for(groups, reference::detail::resolve_thread_count(options.threads), [&](std::size_t g) {
-        const std::span<const std::uint32_t> cell(members.data() + starts[g], starts[g + 1] - starts[g]);
-        const std::size_t out = first_new + g;
-        cloud.lod_level[out] = static_cast<std::uint8_t>(level);
-        if (options.pooling == PoolingRule::moments) {
-            detail::pool_moments(cloud, cell, cloud, out);
-            return;
-        }
-        detail::pool(cloud, cell, cloud, out);
-        const double s_avg = detail::mean_median_coverage(table, cell, scale);
-        factors[g] = detail::enlargement(options.size_threshold_px, s_avg, options.max_enlargement);
-        cloud.log_scales[out] += glm::vec3(static_cast<float>(std::log(factors[g])));
-    });
+    reference::detail::parallel_for(
+        groups, reference::detail::resolve_thread_count(options.threads), [&](std::size_t g) {
+            const std::span<const std::uint32_t> cell(members.data() + starts[g], starts[g + 1] - starts[g]);
+            const std::size_t out = first_new + g;
+            cloud.lod_level[out] = static_cast<std::uint8_t>(level);
+            if (options.pooling == PoolingRule::moments) {
+                detail::pool_moments(cloud, cell, cloud, out);
+                return;
+            }
+            detail::pool(cloud, cell, cloud, out);
+            const double s_avg = detail::mean_median_coverage(table, cell, scale);
+            factors[g] = detail::enlargement(options.size_threshold_px, s_avg, options.max_enlargement);
+            cloud.log_scales[out] += glm::vec3(static_cast<float>(std::log(factors[g])));
+        });
     double sum = 0.0;
     for (const double f : factors) {
         sum += f;
@@ -146,10 +147,12 @@ void validate(const BakeOptions& o) {
     const auto bad = [](const std::string& what) { engine::fail("bake options: " + what); };
     if (o.coarsest_level < 1 || o.coarsest_level > kMaxLevel) bad("the coarsest level must be 1..4");
     if (!(o.size_threshold_px > 0.0) || !std::isfinite(o.size_threshold_px)) bad("S_T must be positive");
-    if (!(o.rel_min > 0.0 && o.rel_max > 0.0) || !std::isfinite(o.rel_min + o.rel_max)) bad("S_rel_min/max must be positive");
+    if (!(o.rel_min > 0.0 && o.rel_max > 0.0) || !std::isfinite(o.rel_min + o.rel_max))
+        bad("S_rel_min/max must be positive");
     if (!(o.znear > 0.0) || !std::isfinite(o.znear)) bad("znear must be positive");
     if (o.grid_cells < 1 || o.grid_cells > 2'000'000) bad("grid cells must be 1..2000000");
-    if (!(o.max_enlargement >= 1.0) || !std::isfinite(o.max_enlargement)) bad("the enlargement clamp must be at least 1");
+    if (!(o.max_enlargement >= 1.0) || !std::isfinite(o.max_enlargement))
+        bad("the enlargement clamp must be at least 1");
     if (!(o.range_low_percentile >= 0.0 && o.range_low_percentile <= o.range_high_percentile &&
           o.range_high_percentile <= 100.0))
         bad("range percentiles must satisfy 0 <= low <= high <= 100");
@@ -199,7 +202,8 @@ SplatCloud bake_lod(const SplatCloud& fine, const std::vector<reference::Referen
     std::vector<std::pair<std::string, double>> scores;
     const auto targets_start = std::chrono::steady_clock::now();
     const detail::Refiner refiner(fine, cameras, options);
-    const double targets_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - targets_start).count();
+    const double targets_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - targets_start).count();
     double seconds = 0.0;
     for (BakeOptions* candidate : {&adaptive, &grid}) {
         const std::string name = recipe_name(*candidate);
@@ -241,8 +245,9 @@ void check_input(const SplatCloud& fine, const std::vector<reference::ReferenceC
     if (cameras.empty()) engine::fail("bake: no cameras");
     fine.check_consistent();
     if (fine.has_lod_attributes())
-        engine::fail("bake: the scene already has LOD attributes (levels above 1 or coverage ranges); bake the original "
-                     "level-1 scene");
+        engine::fail(
+            "bake: the scene already has LOD attributes (levels above 1 or coverage ranges); bake the original "
+            "level-1 scene");
     for (const auto& camera : cameras) reference::detail::check_camera(camera, "bake");
 }
 
@@ -269,8 +274,8 @@ const detail::Refiner* refine_levels(SplatCloud& cloud, const SplatCloud& fine,
                                      const std::vector<reference::ReferenceCamera>& cameras, const BakeOptions& options,
                                      const detail::Refiner* shared_refiner, std::optional<detail::Refiner>& own_refiner,
                                      BakeSummary& summary, StageClock& clock) {
-    const bool any_added = std::any_of(summary.levels.begin(), summary.levels.end(),
-                                       [](const LevelSummary& l) { return l.added > 0; });
+    const bool any_added =
+        std::any_of(summary.levels.begin(), summary.levels.end(), [](const LevelSummary& l) { return l.added > 0; });
     if (options.refine_iterations == 0 || !any_added) return nullptr;
     const detail::Refiner* refiner = shared_refiner;
     if (refiner == nullptr) {
@@ -328,7 +333,8 @@ SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::Refere
     if (refined) {
         // Each level as the finished asset draws it, on the refinement's cameras.
         clock.start("final check");
-        for (auto& level_summary : summary.levels) level_summary.final_psnr = refiner->evaluate(cloud, level_summary.level);
+        for (auto& level_summary : summary.levels)
+            level_summary.final_psnr = refiner->evaluate(cloud, level_summary.level);
     }
     own_refiner.reset();
 
@@ -366,9 +372,10 @@ std::string format_summary(const BakeSummary& s) {
         out << ")\n";
     }
     for (const auto& l : s.levels) {
-        std::snprintf(line, sizeof line,
-                      "level %d (scale %d): %zu candidates, %zu small, %zu added; enlargement mean %.2f, %zu at the clamp",
-                      l.level, l.scale, l.candidates, l.small, l.added, l.mean_enlargement, l.at_max_enlargement);
+        std::snprintf(
+            line, sizeof line,
+            "level %d (scale %d): %zu candidates, %zu small, %zu added; enlargement mean %.2f, %zu at the clamp",
+            l.level, l.scale, l.candidates, l.small, l.added, l.mean_enlargement, l.at_max_enlargement);
         out << line;
         if (l.refine_iterations > 0) {
             std::snprintf(line, sizeof line, "; refined %d iterations: %.2f -> %.2f dB (baseline %.2f dB)",

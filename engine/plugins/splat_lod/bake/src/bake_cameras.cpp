@@ -39,12 +39,13 @@ std::vector<eval::CameraPose> bake_camera_poses(const std::string& spec, const e
     const float distance = 2.2f * extent.radius;
     std::vector<eval::CameraPose> poses;
     for (int r = 0; r < rings; ++r) {
-        const float elevation = rings == 3 ? std::array<float, 3>{-0.15f, 0.2f, 0.55f}[static_cast<std::size_t>(r)]
+        const float elevation = rings == 3   ? std::array<float, 3>{-0.15f, 0.2f, 0.55f}[static_cast<std::size_t>(r)]
                                 : rings == 1 ? 0.2f
                                              : -0.2f + 0.9f * static_cast<float>(r) / static_cast<float>(rings - 1);
         for (int j = 0; j < per_ring; ++j) {
             // Rings are offset by a fraction of the azimuth step so that no two share a meridian.
-            const float azimuth = 2.0f * kPi * (static_cast<float>(j) + static_cast<float>(r) / static_cast<float>(rings)) /
+            const float azimuth = 2.0f * kPi *
+                                  (static_cast<float>(j) + static_cast<float>(r) / static_cast<float>(rings)) /
                                   static_cast<float>(per_ring);
             const glm::vec3 dir =
                 std::cos(elevation) * (std::cos(azimuth) * a + std::sin(azimuth) * b) + std::sin(elevation) * u;
@@ -61,11 +62,13 @@ std::vector<eval::CameraPose> bake_camera_poses(const std::string& spec, const e
     return poses;
 }
 
-std::vector<reference::ReferenceCamera> bake_cameras(const std::vector<eval::CameraPose>& poses, int width, int height) {
+std::vector<reference::ReferenceCamera> bake_cameras(const std::vector<eval::CameraPose>& poses, int width,
+                                                     int height) {
     if (width < 1 || height < 1) engine::fail("bake cameras: the image size must be positive");
     std::vector<reference::ReferenceCamera> cameras;
     cameras.reserve(poses.size());
-    for (const auto& pose : poses) cameras.push_back(reference::make_reference_camera(eval::make_view(pose, width, height)));
+    for (const auto& pose : poses)
+        cameras.push_back(reference::make_reference_camera(eval::make_view(pose, width, height)));
     return cameras;
 }
 

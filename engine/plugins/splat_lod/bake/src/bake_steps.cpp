@@ -10,8 +10,8 @@
 
 #include "engine/core/error.h"
 #include "splat_lod/core/instance_frame.h"
-#include "splat_lod/core/parallel_for.h"
 #include "splat_lod/core/lod_selection.h"
+#include "splat_lod/core/parallel_for.h"
 
 namespace splat_lod::bake::detail {
 namespace {
@@ -65,8 +65,8 @@ double projected_coverage(const reference::ProjectedGaussian& g) {
     return pixel_coverage(g.cov2d.x, g.cov2d.y, g.cov2d.z, g.opacity);
 }
 
-void CoverageTable::append(const SplatCloud& cloud, std::size_t begin, const std::vector<reference::ReferenceCamera>& cameras,
-                           double znear, int threads) {
+void CoverageTable::append(const SplatCloud& cloud, std::size_t begin,
+                           const std::vector<reference::ReferenceCamera>& cameras, double znear, int threads) {
     if (cameras.size() != cameras_) engine::fail("bake: coverage table built for a different camera count");
     if (begin != gaussians()) engine::fail("bake: coverage rows must be appended in order");
     const std::size_t old_rows = gaussians();
@@ -170,7 +170,8 @@ std::uint64_t cell_key(const glm::dvec3& p, int level, int grid_cells, const Nor
     }
     const double d = std::max(options.znear, nearest);
     const int b = static_cast<int>(std::floor(std::log2(d)));
-    const double edge = 2.0 * options.size_threshold_px * std::ldexp(1.0, b) * level_scale(level) / std::max(camera->fx, camera->fy);
+    const double edge =
+        2.0 * options.size_threshold_px * std::ldexp(1.0, b) * level_scale(level) / std::max(camera->fx, camera->fy);
     if (!(edge > grid_edge) || !std::isfinite(edge)) return grid_key & ~(1ULL << 63);
     // Distance cell: (b, floor(p / edge)) hashed into the 63 low bits, the top bit set.
     std::uint64_t hash = 1469598103934665603ULL ^ static_cast<std::uint64_t>(static_cast<std::int64_t>(b) + 1024);
@@ -185,7 +186,8 @@ std::uint64_t cell_key(const glm::dvec3& p, int level, int grid_cells, const Nor
 
 using reference::detail::sigmoid;
 
-void pool_moments(const SplatCloud& source, std::span<const std::uint32_t> members, SplatCloud& target, std::size_t out) {
+void pool_moments(const SplatCloud& source, std::span<const std::uint32_t> members, SplatCloud& target,
+                  std::size_t out) {
     pool(source, members, target, out);
     double weight_sum = 0.0;
     glm::dvec3 mean(0.0);
@@ -314,7 +316,8 @@ std::vector<std::uint32_t> output_order(const SplatCloud& cloud, const Normalise
         glm::vec3 s = cloud.log_scales[i];
         std::sort(&s.x, &s.x + 3);
         const double log_extent = std::min(static_cast<double>(s.z), 0.5 * std::log(2.0) + s.y);
-        size_class[i] = cloud.coverage_min[i] > 0.0f ? static_cast<int>(std::floor(log_extent / std::log(2.0))) : 1 << 20;
+        size_class[i] =
+            cloud.coverage_min[i] > 0.0f ? static_cast<int>(std::floor(log_extent / std::log(2.0))) : 1 << 20;
     }
     std::vector<std::uint32_t> order(cloud.size());
     std::iota(order.begin(), order.end(), 0u);
@@ -350,7 +353,8 @@ std::vector<std::size_t> refinement_cameras(const std::vector<reference::Referen
     }
     if (limit <= 0 || usable.size() <= static_cast<std::size_t>(limit)) return usable;
     std::vector<std::size_t> spread;
-    for (int j = 0; j < limit; ++j) spread.push_back(usable[static_cast<std::size_t>(j) * usable.size() / static_cast<std::size_t>(limit)]);
+    for (int j = 0; j < limit; ++j)
+        spread.push_back(usable[static_cast<std::size_t>(j) * usable.size() / static_cast<std::size_t>(limit)]);
     return spread;
 }
 

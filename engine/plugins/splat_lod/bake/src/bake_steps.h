@@ -103,8 +103,7 @@ double mean_median_coverage(const CoverageTable& table, std::span<const std::uin
 double enlargement(double size_threshold, double mean_coverage, double max_enlargement);
 
 // Step 6: coverage_min/max of every Gaussian at its own level's scale from the table.
-void set_coverage_ranges(SplatCloud& cloud, const CoverageTable& table, double low_percentile,
-                         double high_percentile);
+void set_coverage_ranges(SplatCloud& cloud, const CoverageTable& table, double low_percentile, double high_percentile);
 
 // Output order: coarsest level first; within a level by size class (a factor of 2 in the extent
 // that bounds coverage; Gaussians no camera saw last), then along a Morton curve of the normalised

@@ -11,12 +11,12 @@
 #include <numeric>
 
 #include "bake_steps.h"
-#include "splat_raster.h"
 #include "engine/core/error.h"
 #include "engine/render/image.h"
 #include "splat_lod/core/instance_frame.h"
-#include "splat_lod/core/parallel_for.h"
 #include "splat_lod/core/lod_selection.h"
+#include "splat_lod/core/parallel_for.h"
+#include "splat_raster.h"
 
 namespace splat_lod::bake::detail {
 namespace {
@@ -51,7 +51,9 @@ std::vector<double> area_average(const std::vector<double>& rgb, int width, int 
                 for (int dy = 0; dy < k; ++dy)
                     for (int dx = 0; dx < k; ++dx)
                         sum += rgb[(static_cast<std::size_t>(y * k + dy) * static_cast<std::size_t>(width) +
-                                    static_cast<std::size_t>(x * k + dx)) * 3 + static_cast<std::size_t>(c)];
+                                    static_cast<std::size_t>(x * k + dx)) *
+                                       3 +
+                                   static_cast<std::size_t>(c)];
                 out[(static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)) * 3 +
                     static_cast<std::size_t>(c)] = sum * inverse;
             }
@@ -71,8 +73,8 @@ double psnr_from_mse(double value) {
 // One camera of one level: the fixed splats and what turns the parameters into their colour.
 struct CameraFrame {
     RasterFrame frame;
-    std::vector<double> target;       // area-averaged, k×k-downsampled
-    std::vector<glm::dvec3> base;     // per splat: the colour before the clamp without the DC term
+    std::vector<double> target;    // area-averaged, k×k-downsampled
+    std::vector<glm::dvec3> base;  // per splat: the colour before the clamp without the DC term
 };
 
 reference::ReferenceSettings raster_settings(const BakeOptions& options) {
@@ -97,13 +99,16 @@ std::vector<std::uint32_t> select_full(const SplatCloud& cloud, const reference:
     rule.coarsest_level = coarsest;
     std::vector<std::uint8_t> keep(cloud.size(), 0);
     const std::size_t tasks = (cloud.size() + kChunk - 1) / kChunk;
-    reference::detail::parallel_for(tasks, reference::detail::resolve_thread_count(options.threads), [&](std::size_t t) {
-        for (std::size_t i = t * kChunk; i < std::min(cloud.size(), (t + 1) * kChunk); ++i) {
-            const double coverage = projected_coverage(reference::detail::project_in_frame(cloud, i, frame, camera, settings));
-            if (coverage < 0.0) continue;
-            keep[i] = lod_selected(rule, cloud.lod_level[i], coverage, cloud.coverage_min[i], cloud.coverage_max[i]);
-        }
-    });
+    reference::detail::parallel_for(
+        tasks, reference::detail::resolve_thread_count(options.threads), [&](std::size_t t) {
+            for (std::size_t i = t * kChunk; i < std::min(cloud.size(), (t + 1) * kChunk); ++i) {
+                const double coverage =
+                    projected_coverage(reference::detail::project_in_frame(cloud, i, frame, camera, settings));
+                if (coverage < 0.0) continue;
+                keep[i] =
+                    lod_selected(rule, cloud.lod_level[i], coverage, cloud.coverage_min[i], cloud.coverage_max[i]);
+            }
+        });
     std::vector<std::uint32_t> selected;
     for (std::size_t i = 0; i < cloud.size(); ++i)
         if (keep[i]) selected.push_back(static_cast<std::uint32_t>(i));
@@ -134,10 +139,195 @@ std::vector<CameraFrame> build_frames(const SplatCloud& cloud, int level,
             base[j] = reference::sh_colour_unclamped(cloud, i, cloud.sh_degree, direction) -
                       static_cast<double>(kShC0) * glm::dvec3(cloud.sh_dc[i]);
         }
-        frames.push_back({std::move(frame), area_average(targets[c], cameras[c].width, cameras[c].height, k),
-                          std::move(base)});
+        frames.push_back(
+            {std::move(frame), area_average(targets[c], cameras[c].width, cameras[c].height, k), std::move(base)});
     }
     return frames;
+}
+
+// The level's Gaussians and the parameters Adam moves: `slot` maps a cloud index to its place in
+// `members`, `dc` and `logit`, or is −1 for the other levels' Gaussians, which stay as the cloud holds them.
+struct LevelParameters {
+    std::vector<std::int64_t> slot;
+    std::vector<std::size_t> members;
+    std::vector<glm::dvec3> dc;
+    std::vector<double> logit;
+};
+
+LevelParameters level_members(const SplatCloud& cloud, int level) {
+    LevelParameters p;
+    p.slot.assign(cloud.size(), -1);
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+        if (cloud.lod_level[i] == level) {
+            p.slot[i] = static_cast<std::int64_t>(p.members.size());
+            p.members.push_back(i);
+        }
+    return p;
+}
+
+// The starting parameters: the cloud's own.
+void load_parameters(const SplatCloud& cloud, LevelParameters& p) {
+    p.dc.resize(p.members.size());
+    p.logit.resize(p.members.size());
+    for (std::size_t m = 0; m < p.members.size(); ++m) {
+        p.dc[m] = glm::dvec3(cloud.sh_dc[p.members[m]]);
+        p.logit[m] = cloud.opacity_logits[p.members[m]];
+    }
+}
+
+// What the rasteriser reads for one frame, reused from frame to frame so that nothing is reallocated.
+struct FrameInputs {
+    std::vector<glm::dvec3> colour;
+    std::vector<double> opacity;
+    std::vector<glm::dvec3> before_clamp;
+};
+
+// Current parameters of every splat of a frame, from the cloud (the level's from `dc`/`logit`).
+void load_inputs(const CameraFrame& f, const SplatCloud& cloud, const LevelParameters& p, FrameInputs& in) {
+    const auto& splats = f.frame.splats();
+    in.colour.resize(splats.size());
+    in.opacity.resize(splats.size());
+    in.before_clamp.resize(splats.size());
+    for (std::size_t j = 0; j < splats.size(); ++j) {
+        const std::size_t i = splats[j].id;
+        const std::int64_t s = p.slot[i];
+        const glm::dvec3 d = s >= 0 ? p.dc[static_cast<std::size_t>(s)] : glm::dvec3(cloud.sh_dc[i]);
+        const double l = s >= 0 ? p.logit[static_cast<std::size_t>(s)] : static_cast<double>(cloud.opacity_logits[i]);
+        in.before_clamp[j] = f.base[j] + static_cast<double>(kShC0) * d;
+        in.colour[j] = glm::max(in.before_clamp[j], glm::dvec3(0.0));
+        in.opacity[j] = sigmoid(l);
+    }
+}
+
+double mean_psnr(const std::vector<CameraFrame>& frames, const SplatCloud& cloud, const LevelParameters& p,
+                 const BakeOptions& options, FrameInputs& in) {
+    double sum = 0.0;
+    for (const auto& f : frames) {
+        load_inputs(f, cloud, p, in);
+        sum += psnr_from_mse(
+            mse(render_forward(f.frame, in.colour, in.opacity, options.background, options.threads).rgb, f.target));
+    }
+    return sum / static_cast<double>(frames.size());
+}
+
+// `rgb` as an 8-bit PNG of the given size, each channel clamped to [0, 1].
+void save_debug_png(const std::vector<double>& rgb, int width, int height, const std::string& path) {
+    engine::Image out;
+    out.width = width;
+    out.height = height;
+    out.rgba.resize(static_cast<std::size_t>(out.width) * out.height * 4, 255);
+    for (std::size_t p = 0; p < rgb.size() / 3; ++p)
+        for (int ch = 0; ch < 3; ++ch)
+            out.rgba[p * 4 + ch] =
+                static_cast<std::uint8_t>(std::lround(std::clamp(rgb[p * 3 + ch], 0.0, 1.0) * 255.0));
+    engine::write_png(path, out);
+}
+
+// With a debug image folder: the first camera's render as `tag` and its target, to see what Adam did.
+void dump_images(const std::vector<CameraFrame>& frames, const SplatCloud& cloud, const LevelParameters& p,
+                 const BakeOptions& options, int level, const std::string& tag, FrameInputs& in) {
+    if (options.debug_image_dir.empty()) return;
+    const std::string dir = options.debug_image_dir;
+    const auto& f = frames.front();
+    load_inputs(f, cloud, p, in);
+    const auto image = render_forward(f.frame, in.colour, in.opacity, options.background, options.threads);
+    const std::string prefix = dir + "/level" + std::to_string(level) + "_";
+    save_debug_png(image.rgb, image.width, image.height, prefix + tag + ".png");
+    save_debug_png(f.target, image.width, image.height, prefix + "target" + ".png");
+}
+
+// For comparison: level 1 alone, unfiltered (the baseline renderer), on the same cameras.
+double baseline_psnr(const SplatCloud& cloud, const std::vector<reference::ReferenceCamera>& cameras,
+                     const std::vector<CameraFrame>& frames, int k, const BakeOptions& options) {
+    const int threads = options.threads;
+    std::vector<std::uint32_t> fine_indices;
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+        if (cloud.lod_level[i] == 1) fine_indices.push_back(static_cast<std::uint32_t>(i));
+    double sum = 0.0;
+    for (std::size_t c = 0; c < cameras.size(); ++c) {
+        const auto camera = scaled_camera(cameras[c], k);
+        RasterFrame frame(project_for_raster(cloud, fine_indices, camera, raster_settings(options), threads),
+                          camera.width, camera.height);
+        sum += psnr_from_mse(
+            mse(render_forward(frame, frame.colours(), frame.opacities(), options.background, threads).rgb,
+                frames[c].target));
+    }
+    return sum / static_cast<double>(cameras.size());
+}
+
+// Adam's moments, and the gradients of the current step, per member of the level.
+struct AdamState {
+    explicit AdamState(std::size_t n)
+        : m_dc(n, glm::dvec3(0.0)), v_dc(n, glm::dvec3(0.0)), m_logit(n, 0.0), v_logit(n, 0.0), g_dc(n), g_logit(n) {}
+
+    std::vector<glm::dvec3> m_dc, v_dc;
+    std::vector<double> m_logit, v_logit;
+    std::vector<glm::dvec3> g_dc;
+    std::vector<double> g_logit;
+    std::vector<glm::dvec3> d_colour;  // per splat of the frame
+    std::vector<double> d_opacity;
+};
+
+// The gradients of the frame's loss with respect to the level's parameters (`in` loaded for `f`).
+void level_gradients(const CameraFrame& f, const FrameInputs& in, const LevelParameters& p, const BakeOptions& options,
+                     AdamState& adam) {
+    const RasterImage image = render_forward(f.frame, in.colour, in.opacity, options.background, options.threads);
+    // L = mean over pixels and channels of (C − target)².
+    std::vector<double> dl(image.rgb.size());
+    const double scale = 2.0 / static_cast<double>(image.rgb.size());
+    for (std::size_t q = 0; q < dl.size(); ++q) dl[q] = scale * (image.rgb[q] - f.target[q]);
+    adam.d_colour.assign(in.colour.size(), glm::dvec3(0.0));
+    adam.d_opacity.assign(in.colour.size(), 0.0);
+    render_backward(f.frame, in.colour, in.opacity, options.background, dl, adam.d_colour, adam.d_opacity,
+                    options.threads);
+
+    std::fill(adam.g_dc.begin(), adam.g_dc.end(), glm::dvec3(0.0));
+    std::fill(adam.g_logit.begin(), adam.g_logit.end(), 0.0);
+    for (std::size_t j = 0; j < in.colour.size(); ++j) {
+        const std::int64_t s = p.slot[f.frame.splats()[j].id];
+        if (s < 0) continue;
+        const auto m = static_cast<std::size_t>(s);
+        adam.g_dc[m] += d_sh_dc_from_d_colour(adam.d_colour[j], in.before_clamp[j]);
+        adam.g_logit[m] += d_logit_from_d_opacity(adam.d_opacity[j], p.logit[m]);
+    }
+}
+
+// Adam (Kingma & Ba) with bias correction, every parameter of the level each step.
+void adam_step(int iteration, const BakeOptions& options, AdamState& adam, LevelParameters& p) {
+    const double t = iteration + 1.0;
+    const double c1 = 1.0 - std::pow(kAdamBeta1, t), c2 = 1.0 - std::pow(kAdamBeta2, t);
+    for (std::size_t m = 0; m < p.members.size(); ++m) {
+        adam.m_dc[m] = kAdamBeta1 * adam.m_dc[m] + (1.0 - kAdamBeta1) * adam.g_dc[m];
+        adam.v_dc[m] = kAdamBeta2 * adam.v_dc[m] + (1.0 - kAdamBeta2) * adam.g_dc[m] * adam.g_dc[m];
+        p.dc[m] -= options.learning_rate_dc * (adam.m_dc[m] / c1) / (glm::sqrt(adam.v_dc[m] / c2) + kAdamEpsilon);
+        adam.m_logit[m] = kAdamBeta1 * adam.m_logit[m] + (1.0 - kAdamBeta1) * adam.g_logit[m];
+        adam.v_logit[m] = kAdamBeta2 * adam.v_logit[m] + (1.0 - kAdamBeta2) * adam.g_logit[m] * adam.g_logit[m];
+        p.logit[m] -=
+            options.learning_rate_opacity * (adam.m_logit[m] / c1) / (std::sqrt(adam.v_logit[m] / c2) + kAdamEpsilon);
+        p.logit[m] = std::clamp(p.logit[m], -options.logit_clamp, options.logit_clamp);
+    }
+}
+
+// The refinement's iterations: one camera each, a fresh fixed-seed permutation per pass over the cameras.
+void optimise(const std::vector<CameraFrame>& frames, const SplatCloud& cloud, const BakeOptions& options, int level,
+              const std::string& stage, LevelParameters& p, FrameInputs& in) {
+    AdamState adam(p.members.size());
+    std::vector<std::size_t> order(frames.size());
+    std::uint64_t random_state = options.seed * 0x2545f4914f6cdd1dULL + static_cast<std::uint64_t>(level);
+
+    for (int iteration = 0; iteration < options.refine_iterations; ++iteration) {
+        const std::size_t position = static_cast<std::size_t>(iteration) % frames.size();
+        if (position == 0) {
+            std::iota(order.begin(), order.end(), std::size_t{0});
+            shuffle(order, random_state);
+        }
+        if (options.progress && iteration % 20 == 0)
+            options.progress(stage, 0.2 + 0.8 * iteration / static_cast<double>(options.refine_iterations));
+        const CameraFrame& f = frames[order[position]];
+        load_inputs(f, cloud, p, in);
+        level_gradients(f, in, p, options, adam);
+        adam_step(iteration, options, adam, p);
+    }
 }
 
 }  // namespace
@@ -146,12 +336,14 @@ double Refiner::evaluate(const SplatCloud& cloud, int level) const {
     const auto frames = build_frames(cloud, level, cameras_, targets_, options_, nullptr);
     double sum = 0.0;
     for (const auto& f : frames)
-        sum += psnr_from_mse(mse(render_forward(f.frame, f.frame.colours(), f.frame.opacities(), options_.background,
-                                                options_.threads).rgb, f.target));
+        sum += psnr_from_mse(mse(
+            render_forward(f.frame, f.frame.colours(), f.frame.opacities(), options_.background, options_.threads).rgb,
+            f.target));
     return frames.empty() ? 0.0 : sum / static_cast<double>(frames.size());
 }
 
-Refiner::Refiner(const SplatCloud& fine, const std::vector<reference::ReferenceCamera>& cameras, const BakeOptions& options)
+Refiner::Refiner(const SplatCloud& fine, const std::vector<reference::ReferenceCamera>& cameras,
+                 const BakeOptions& options)
     : options_(options) {
     for (const std::size_t i : refinement_cameras(cameras, options.refine_cameras)) cameras_.push_back(cameras[i]);
     const reference::ReferenceInstance instance{&fine, glm::dmat4(1.0), kMaxShDegree};
@@ -166,150 +358,27 @@ Refiner::Refiner(const SplatCloud& fine, const std::vector<reference::ReferenceC
 
 void Refiner::refine_level(SplatCloud& cloud, int level, LevelSummary& summary) const {
     const int k = level_scale(level);
-    const int threads = options_.threads;
     const std::string stage = "refine level " + std::to_string(level);
 
-    // Parameter slots of the level's Gaussians.
-    std::vector<std::int64_t> slot(cloud.size(), -1);
-    std::vector<std::size_t> members;
-    for (std::size_t i = 0; i < cloud.size(); ++i)
-        if (cloud.lod_level[i] == level) {
-            slot[i] = static_cast<std::int64_t>(members.size());
-            members.push_back(i);
-        }
-    if (members.empty()) return;
+    LevelParameters p = level_members(cloud, level);
+    if (p.members.empty()) return;
 
-    std::vector<CameraFrame> frames = build_frames(cloud, level, cameras_, targets_, options_, &summary);
+    const std::vector<CameraFrame> frames = build_frames(cloud, level, cameras_, targets_, options_, &summary);
+    load_parameters(cloud, p);
+    FrameInputs in;
+    summary.refine_psnr_before = mean_psnr(frames, cloud, p, options_, in);
+    dump_images(frames, cloud, p, options_, level, "before", in);
+    summary.refine_psnr_baseline = baseline_psnr(cloud, cameras_, frames, k, options_);
 
-    // Current parameters of every splat of a frame, from the cloud (the level's from `dc`/`logit`).
-    std::vector<glm::dvec3> dc(members.size());
-    std::vector<double> logit(members.size());
-    for (std::size_t m = 0; m < members.size(); ++m) {
-        dc[m] = glm::dvec3(cloud.sh_dc[members[m]]);
-        logit[m] = cloud.opacity_logits[members[m]];
-    }
-    std::vector<glm::dvec3> colour;
-    std::vector<double> opacity;
-    std::vector<glm::dvec3> before_clamp;
-    const auto load = [&](const CameraFrame& f) {
-        const auto& splats = f.frame.splats();
-        colour.resize(splats.size());
-        opacity.resize(splats.size());
-        before_clamp.resize(splats.size());
-        for (std::size_t j = 0; j < splats.size(); ++j) {
-            const std::size_t i = splats[j].id;
-            const std::int64_t s = slot[i];
-            const glm::dvec3 d = s >= 0 ? dc[static_cast<std::size_t>(s)] : glm::dvec3(cloud.sh_dc[i]);
-            const double l = s >= 0 ? logit[static_cast<std::size_t>(s)] : static_cast<double>(cloud.opacity_logits[i]);
-            before_clamp[j] = f.base[j] + static_cast<double>(kShC0) * d;
-            colour[j] = glm::max(before_clamp[j], glm::dvec3(0.0));
-            opacity[j] = sigmoid(l);
-        }
-    };
-    const auto mean_psnr = [&] {
-        double sum = 0.0;
-        for (const auto& f : frames) {
-            load(f);
-            sum += psnr_from_mse(mse(render_forward(f.frame, colour, opacity, options_.background, threads).rgb, f.target));
-        }
-        return sum / static_cast<double>(frames.size());
-    };
-    summary.refine_psnr_before = mean_psnr();
-    const auto dump = [&](const std::string& tag) {
-        if (options_.debug_image_dir.empty()) return;
-        const std::string dir = options_.debug_image_dir;
-        const auto& f = frames.front();
-        load(f);
-        const auto image = render_forward(f.frame, colour, opacity, options_.background, threads);
-        const auto save = [&](const std::vector<double>& rgb, const std::string& name) {
-            engine::Image out;
-            out.width = image.width;
-            out.height = image.height;
-            out.rgba.resize(static_cast<std::size_t>(out.width) * out.height * 4, 255);
-            for (std::size_t p = 0; p < rgb.size() / 3; ++p)
-                for (int ch = 0; ch < 3; ++ch)
-                    out.rgba[p * 4 + ch] = static_cast<std::uint8_t>(std::lround(std::clamp(rgb[p * 3 + ch], 0.0, 1.0) * 255.0));
-            engine::write_png(dir + "/level" + std::to_string(level) + "_" + name + ".png", out);
-        };
-        save(image.rgb, tag);
-        save(f.target, "target");
-    };
-    dump("before");
-    {
-        // For comparison: level 1 alone, unfiltered (the baseline renderer), on the same cameras.
-        std::vector<std::uint32_t> fine_indices;
-        for (std::size_t i = 0; i < cloud.size(); ++i)
-            if (cloud.lod_level[i] == 1) fine_indices.push_back(static_cast<std::uint32_t>(i));
-        double sum = 0.0;
-        for (std::size_t c = 0; c < cameras_.size(); ++c) {
-            const auto camera = scaled_camera(cameras_[c], k);
-            RasterFrame frame(project_for_raster(cloud, fine_indices, camera, raster_settings(options_), threads),
-                              camera.width, camera.height);
-            sum += psnr_from_mse(mse(
-                render_forward(frame, frame.colours(), frame.opacities(), options_.background, threads).rgb, frames[c].target));
-        }
-        summary.refine_psnr_baseline = sum / static_cast<double>(cameras_.size());
-    }
+    optimise(frames, cloud, options_, level, stage, p, in);
 
-    std::vector<glm::dvec3> m_dc(members.size(), glm::dvec3(0.0)), v_dc(members.size(), glm::dvec3(0.0));
-    std::vector<double> m_logit(members.size(), 0.0), v_logit(members.size(), 0.0);
-    std::vector<glm::dvec3> g_dc(members.size());
-    std::vector<double> g_logit(members.size());
-    std::vector<glm::dvec3> d_colour;
-    std::vector<double> d_opacity;
-    std::vector<std::size_t> order(frames.size());
-    std::uint64_t random_state = options_.seed * 0x2545f4914f6cdd1dULL + static_cast<std::uint64_t>(level);
-
-    for (int iteration = 0; iteration < options_.refine_iterations; ++iteration) {
-        // One camera per iteration, a fresh fixed-seed permutation per pass over the cameras.
-        const std::size_t position = static_cast<std::size_t>(iteration) % frames.size();
-        if (position == 0) {
-            std::iota(order.begin(), order.end(), std::size_t{0});
-            shuffle(order, random_state);
-        }
-        if (options_.progress && iteration % 20 == 0)
-            options_.progress(stage, 0.2 + 0.8 * iteration / static_cast<double>(options_.refine_iterations));
-        const CameraFrame& f = frames[order[position]];
-        load(f);
-        const RasterImage image = render_forward(f.frame, colour, opacity, options_.background, threads);
-        // L = mean over pixels and channels of (C − target)².
-        std::vector<double> dl(image.rgb.size());
-        const double scale = 2.0 / static_cast<double>(image.rgb.size());
-        for (std::size_t p = 0; p < dl.size(); ++p) dl[p] = scale * (image.rgb[p] - f.target[p]);
-        d_colour.assign(colour.size(), glm::dvec3(0.0));
-        d_opacity.assign(colour.size(), 0.0);
-        render_backward(f.frame, colour, opacity, options_.background, dl, d_colour, d_opacity, threads);
-
-        std::fill(g_dc.begin(), g_dc.end(), glm::dvec3(0.0));
-        std::fill(g_logit.begin(), g_logit.end(), 0.0);
-        for (std::size_t j = 0; j < colour.size(); ++j) {
-            const std::int64_t s = slot[f.frame.splats()[j].id];
-            if (s < 0) continue;
-            const auto m = static_cast<std::size_t>(s);
-            g_dc[m] += d_sh_dc_from_d_colour(d_colour[j], before_clamp[j]);
-            g_logit[m] += d_logit_from_d_opacity(d_opacity[j], logit[m]);
-        }
-        // Adam (Kingma & Ba) with bias correction, every parameter of the level each step.
-        const double t = iteration + 1.0;
-        const double c1 = 1.0 - std::pow(kAdamBeta1, t), c2 = 1.0 - std::pow(kAdamBeta2, t);
-        for (std::size_t m = 0; m < members.size(); ++m) {
-            m_dc[m] = kAdamBeta1 * m_dc[m] + (1.0 - kAdamBeta1) * g_dc[m];
-            v_dc[m] = kAdamBeta2 * v_dc[m] + (1.0 - kAdamBeta2) * g_dc[m] * g_dc[m];
-            dc[m] -= options_.learning_rate_dc * (m_dc[m] / c1) / (glm::sqrt(v_dc[m] / c2) + kAdamEpsilon);
-            m_logit[m] = kAdamBeta1 * m_logit[m] + (1.0 - kAdamBeta1) * g_logit[m];
-            v_logit[m] = kAdamBeta2 * v_logit[m] + (1.0 - kAdamBeta2) * g_logit[m] * g_logit[m];
-            logit[m] -= options_.learning_rate_opacity * (m_logit[m] / c1) / (std::sqrt(v_logit[m] / c2) + kAdamEpsilon);
-            logit[m] = std::clamp(logit[m], -options_.logit_clamp, options_.logit_clamp);
-        }
-    }
-
-    for (std::size_t m = 0; m < members.size(); ++m) {
-        cloud.sh_dc[members[m]] = glm::vec3(dc[m]);
-        cloud.opacity_logits[members[m]] = static_cast<float>(logit[m]);
+    for (std::size_t m = 0; m < p.members.size(); ++m) {
+        cloud.sh_dc[p.members[m]] = glm::vec3(p.dc[m]);
+        cloud.opacity_logits[p.members[m]] = static_cast<float>(p.logit[m]);
     }
     summary.refine_iterations = options_.refine_iterations;
-    summary.refine_psnr_after = mean_psnr();
-    dump("after");
+    summary.refine_psnr_after = mean_psnr(frames, cloud, p, options_, in);
+    dump_images(frames, cloud, p, options_, level, "after", in);
 }
 
 }  // namespace splat_lod::bake::detail

@@ -11,12 +11,12 @@
 
 #include <gtest/gtest.h>
 
-#include "splat_raster.h"
 #include "engine/core/error.h"
 #include "splat_lod/core/reference_renderer.h"
 #include "splat_lod/core/splat_io.h"
+#include "splat_raster.h"
 #include "splat_reference_test_helpers.h"
-#include "splat_test_scenes.h"
+#include "splat_test_data.h"
 #include "test_support.h"
 
 namespace bake = splat_lod::bake;
@@ -175,8 +175,8 @@ TEST(BakeRaster, ForwardEqualsTheReferenceOnRandomScenes) {
 }
 
 TEST(BakeRaster, ForwardEqualsTheReferenceOnARealCapture) {
-    ENGINE_REQUIRE_SHARED_DATA();
-    const auto scene = engine::test::real_splat_scenes().front();
+    ENGINE_REQUIRE_DATA("splats/playcanvas-engine/biker.compressed.ply");
+    const auto scene = engine::test::real_splat_scenes().front();  // the biker
     if (!std::filesystem::exists(scene.path)) GTEST_SKIP() << scene.path << " not found";
     const splat_lod::SplatCloud cloud = splat_lod::load_splat_file(scene.path);
     const auto view = engine::test::orbit_cameras(cloud, scene.up, 1, 80, 60).front();

@@ -8,11 +8,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bake_steps.h"
-#include "splat_raster.h"
 #include "engine/core/error.h"
 #include "splat_lod/bake/bake.h"
 #include "splat_lod/bake/bake_cameras.h"
 #include "splat_lod/core/splat_io.h"
+#include "splat_raster.h"
 #include "test_support.h"
 
 namespace {
@@ -30,8 +30,8 @@ reference::ReferenceCamera look_at(glm::dvec3 eye, glm::dvec3 target, int width 
     return reference::make_reference_camera(view);
 }
 
-void add_gaussian(SplatCloud& cloud, glm::vec3 position, glm::vec3 scale, float opacity = 0.9f,
-                  Rotation rotation = {}, glm::vec3 rgb = glm::vec3(0.5f)) {
+void add_gaussian(SplatCloud& cloud, glm::vec3 position, glm::vec3 scale, float opacity = 0.9f, Rotation rotation = {},
+                  glm::vec3 rgb = glm::vec3(0.5f)) {
     const std::size_t i = cloud.size();
     cloud.resize(i + 1);
     cloud.positions[i] = position;
@@ -48,8 +48,8 @@ SplatCloud patch(int n, float step, float size) {
         for (int x = 0; x < n; ++x) {
             const float u = (static_cast<float>(x) - 0.5f * static_cast<float>(n - 1)) * step;
             const float v = (static_cast<float>(y) - 0.5f * static_cast<float>(n - 1)) * step;
-            const glm::vec3 rgb(0.5f + 0.4f * std::sin(static_cast<float>(x)), 0.5f + 0.4f * std::cos(static_cast<float>(y)),
-                                (x + y) % 2 ? 0.9f : 0.1f);
+            const glm::vec3 rgb(0.5f + 0.4f * std::sin(static_cast<float>(x)),
+                                0.5f + 0.4f * std::cos(static_cast<float>(y)), (x + y) % 2 ? 0.9f : 0.1f);
             add_gaussian(cloud, {u, v, 0.0f}, glm::vec3(size, size, size * 0.3f), 0.8f, {}, rgb);
         }
     return cloud;
@@ -59,7 +59,8 @@ std::vector<reference::ReferenceCamera> ring(int count, double distance, int wid
     std::vector<reference::ReferenceCamera> cameras;
     for (int i = 0; i < count; ++i) {
         const double a = 0.5 * (static_cast<double>(i) / std::max(1, count - 1) - 0.5);  // ±0.25 rad around +z
-        cameras.push_back(look_at({distance * std::sin(a), 0.1 * distance, distance * std::cos(a)}, {0, 0, 0}, width, height));
+        cameras.push_back(
+            look_at({distance * std::sin(a), 0.1 * distance, distance * std::cos(a)}, {0, 0, 0}, width, height));
     }
     return cameras;
 }
@@ -123,10 +124,10 @@ TEST(BakeSteps, NormalisationIsContinuousAndBoundedFarAway) {
     n.centre = {1, 2, 3};
     n.radius = 2.0;
     EXPECT_EQ(n.apply({1, 2, 3}), glm::dvec3(0.0));
-    EXPECT_NEAR(n.apply({3, 2, 3}).x, 1.0, 1e-12);                    // on the cube's face
-    EXPECT_NEAR(n.apply({3.000002, 2, 3}).x, 1.0, 1e-5);              // continuous across it
-    EXPECT_NEAR(n.apply({1e6, 2, 3}).x, 2.0, 1e-5);                   // 1e6 units: near the outer face
-    const glm::dvec3 far = n.apply({1e300, -1e300, 3});               // beyond double range when divided
+    EXPECT_NEAR(n.apply({3, 2, 3}).x, 1.0, 1e-12);        // on the cube's face
+    EXPECT_NEAR(n.apply({3.000002, 2, 3}).x, 1.0, 1e-5);  // continuous across it
+    EXPECT_NEAR(n.apply({1e6, 2, 3}).x, 2.0, 1e-5);       // 1e6 units: near the outer face
+    const glm::dvec3 far = n.apply({1e300, -1e300, 3});   // beyond double range when divided
     EXPECT_TRUE(std::isfinite(far.x) && std::isfinite(far.y));
     EXPECT_LE(std::abs(far.x), 2.0);
     // Symmetric, not one-sided (the contraction applies on every side).
@@ -138,7 +139,8 @@ TEST(BakeSteps, SingleCameraTakesTheRadiusFromTheGaussians) {
     const auto n = bake::detail::make_normaliser({look_at({0, 0, 3}, {0, 0, 0})}, cloud);
     EXPECT_TRUE(n.from_gaussians);
     EXPECT_NEAR(n.radius, 0.5 * 0.9 * 0.98, 0.02);  // half the 1st–99th percentile span of the patch
-    const auto two = bake::detail::make_normaliser({look_at({0, 0, 3}, {0, 0, 0}), look_at({1, 0, 3}, {0, 0, 0})}, cloud);
+    const auto two =
+        bake::detail::make_normaliser({look_at({0, 0, 3}, {0, 0, 0}), look_at({1, 0, 3}, {0, 0, 0})}, cloud);
     EXPECT_FALSE(two.from_gaussians);
     EXPECT_NEAR(two.radius, 0.5, 1e-6);  // camera centres come from float matrices
 }
@@ -154,7 +156,7 @@ TEST(BakeSteps, PoolingFlipsAntipodalQuaternionsAndAveragesActivatedOpacity) {
     const Rotation q = cloud.rotations[2];
     EXPECT_NEAR(std::abs(q.w), h, 1e-6);  // not cancelled to zero
     EXPECT_NEAR(std::abs(q.z), h, 1e-6);
-    EXPECT_NEAR(q.w * q.z, 0.5, 1e-6);    // same sign: the first member's hemisphere
+    EXPECT_NEAR(q.w * q.z, 0.5, 1e-6);  // same sign: the first member's hemisphere
     EXPECT_NEAR(cloud.positions[2].x, 0.5f, 1e-6);
     EXPECT_NEAR(cloud.log_scales[2].x, 0.5 * (std::log(0.01) + std::log(0.04)), 1e-5);
     EXPECT_NEAR(1.0 / (1.0 + std::exp(-cloud.opacity_logits[2])), 0.7, 1e-5);
@@ -255,7 +257,8 @@ TEST(Bake, OneGaussianPerCellAndASingleCamera) {
     // Sparse Gaussians (one per cell) seen by one camera: B comes from the Gaussians, S_avg from one
     // member each, and every pooled Gaussian copies its member's colour.
     SplatCloud fine;
-    for (int i = 0; i < 5; ++i) add_gaussian(fine, {0.3f * static_cast<float>(i - 2), 0, 0}, glm::vec3(0.001f), 0.9f, {}, {0.2f, 0.6f, 0.9f});
+    for (int i = 0; i < 5; ++i)
+        add_gaussian(fine, {0.3f * static_cast<float>(i - 2), 0, 0}, glm::vec3(0.001f), 0.9f, {}, {0.2f, 0.6f, 0.9f});
     auto options = quick_options();
     options.refine_iterations = 0;
     options.cells = bake::CellRule::grid;
@@ -324,7 +327,8 @@ TEST(BakeRefine, ParameterGradientsMatchFiniteDifferences) {
     add_gaussian(cloud, {-0.02f, 0.02f, -0.1f}, glm::vec3(0.06f), 0.7f, {}, {0.3f, 0.2f, 0.9f});
     const auto camera = look_at({0, 0, 1}, {0, 0, 0}, 24, 24);
     const std::vector<std::uint32_t> all{0, 1, 2};
-    const bake::RasterFrame frame(bake::project_for_raster(cloud, all, camera, reference::ReferenceSettings{}, 1), 24, 24);
+    const bake::RasterFrame frame(bake::project_for_raster(cloud, all, camera, reference::ReferenceSettings{}, 1), 24,
+                                  24);
     const std::vector<double> target(24 * 24 * 3, 0.4);
     const glm::dvec3 background(0.1);
     const std::size_t n = frame.splats().size();
@@ -337,7 +341,9 @@ TEST(BakeRefine, ParameterGradientsMatchFiniteDifferences) {
         dc[j] = glm::dvec3(cloud.sh_dc[frame.splats()[j].id]);
         logit[j] = cloud.opacity_logits[frame.splats()[j].id];
     }
-    const auto before_clamp = [&](const std::vector<glm::dvec3>& d, std::size_t j) { return 0.5 + static_cast<double>(kShC0) * d[j]; };
+    const auto before_clamp = [&](const std::vector<glm::dvec3>& d, std::size_t j) {
+        return 0.5 + static_cast<double>(kShC0) * d[j];
+    };
     const auto loss = [&](const std::vector<glm::dvec3>& d, const std::vector<double>& l) {
         std::vector<glm::dvec3> colour(n);
         std::vector<double> opacity(n);
@@ -347,7 +353,8 @@ TEST(BakeRefine, ParameterGradientsMatchFiniteDifferences) {
         }
         const auto image = bake::render_forward(frame, colour, opacity, background, 1);
         double sum = 0.0;
-        for (std::size_t p = 0; p < target.size(); ++p) sum += 0.5 * (image.rgb[p] - target[p]) * (image.rgb[p] - target[p]);
+        for (std::size_t p = 0; p < target.size(); ++p)
+            sum += 0.5 * (image.rgb[p] - target[p]) * (image.rgb[p] - target[p]);
         return std::pair{sum, image};
     };
     std::vector<glm::dvec3> colour(n);

@@ -47,7 +47,8 @@ glm::vec3 vec3_field(const json& camera, const std::string& key, const std::file
             static_cast<float>(number(v[2], path, index, key))};
 }
 
-double positive_field(const json& camera, const std::string& key, const std::filesystem::path& path, std::size_t index) {
+double positive_field(const json& camera, const std::string& key, const std::filesystem::path& path,
+                      std::size_t index) {
     if (!camera.contains(key)) camera_error(path, index, "missing \"" + key + "\"");
     const double v = number(camera[key], path, index, key);
     if (v <= 0.0) camera_error(path, index, "\"" + key + "\" must be positive");
@@ -108,7 +109,7 @@ CameraPose path_camera(const json& camera, const std::filesystem::path& path, st
     if (!std::isfinite(distance)) camera_error(path, index, "\"eye\" and \"target\" are too far apart");
     CameraPose pose;
     pose.name = camera.contains("name") && camera["name"].is_string() ? camera["name"].get<std::string>()
-                                                                       : "camera " + std::to_string(index);
+                                                                      : "camera " + std::to_string(index);
     pose.eye = eye;
     pose.forward = (target - eye) / distance;
     // `up` scaled to its largest component first, so that large values cannot overflow the product.
@@ -184,7 +185,8 @@ SceneExtent robust_extent(const std::vector<glm::vec3>& points) {
 }
 
 std::vector<CameraPose> orbit_poses(const SceneExtent& extent, const glm::vec3& up, int count, float distance_factor) {
-    if (count < 1) engine::fail("splat_lod::eval::orbit_poses(): need at least one camera, got " + std::to_string(count));
+    if (count < 1)
+        engine::fail("splat_lod::eval::orbit_poses(): need at least one camera, got " + std::to_string(count));
     const glm::vec3 u = glm::normalize(up);
     const glm::vec3 a = glm::normalize(glm::cross(u, std::abs(u.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, 1)));
     const glm::vec3 b = glm::cross(u, a);
@@ -192,7 +194,8 @@ std::vector<CameraPose> orbit_poses(const SceneExtent& extent, const glm::vec3& 
     for (int i = 0; i < count; ++i) {
         const float azimuth = 0.6f + 2.0f * 3.14159265f * static_cast<float>(i) / static_cast<float>(count);
         const float elevation = (i % 2 == 0) ? 0.25f : -0.1f;
-        const glm::vec3 dir = std::cos(elevation) * (std::cos(azimuth) * a + std::sin(azimuth) * b) + std::sin(elevation) * u;
+        const glm::vec3 dir =
+            std::cos(elevation) * (std::cos(azimuth) * a + std::sin(azimuth) * b) + std::sin(elevation) * u;
         CameraPose pose;
         pose.name = "orbit " + std::to_string(i);
         pose.eye = extent.centre + dir * extent.radius * distance_factor;

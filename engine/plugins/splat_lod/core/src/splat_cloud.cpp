@@ -13,7 +13,9 @@ namespace {
 // The norm is taken in double so that finite components up to FLT_MAX cannot overflow it.
 constexpr double kMinQuaternionNormSquared = 1e-20;
 
-bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite3(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 bool finite_rotation(const Rotation& r) {
     return std::isfinite(r.w) && std::isfinite(r.x) && std::isfinite(r.y) && std::isfinite(r.z);
@@ -158,7 +160,8 @@ SplatCloud SplatCloud::permuted(const std::vector<std::uint32_t>& order) const {
     for (std::size_t j = 0; j < order.size(); ++j) {
         const std::size_t i = order[j];
         if (i >= size())
-            engine::fail("splat_lod::SplatCloud::permuted(): index " + std::to_string(i) + " of " + std::to_string(size()));
+            engine::fail("splat_lod::SplatCloud::permuted(): index " + std::to_string(i) + " of " +
+                         std::to_string(size()));
         out.positions[j] = positions[i];
         out.rotations[j] = rotations[i];
         out.log_scales[j] = log_scales[i];

@@ -31,9 +31,9 @@ void symmetric_eigen(glm::dmat3 a, glm::dvec3& values, glm::dmat3& vectors) {
 
 glm::dmat3 rotation_of(const Rotation& q) {
     const double w = q.w, x = q.x, y = q.y, z = q.z;
-    return glm::dmat3(1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y),
-                      2.0 * (x * y - w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z + w * x),
-                      2.0 * (x * z + w * y), 2.0 * (y * z - w * x), 1.0 - 2.0 * (x * x + y * y));
+    return glm::dmat3(1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y + w * z), 2.0 * (x * z - w * y), 2.0 * (x * y - w * z),
+                      1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z + w * x), 2.0 * (x * z + w * y), 2.0 * (y * z - w * x),
+                      1.0 - 2.0 * (x * x + y * y));
 }
 
 std::uint64_t spread_bits(std::uint64_t v) {

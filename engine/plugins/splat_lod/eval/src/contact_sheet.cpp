@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "engine/core/error.h"
-#include "splat_lod/eval/sheet_drawing.h"
 #include "splat_lod/eval/eval_report.h"
+#include "splat_lod/eval/sheet_drawing.h"
 
 namespace splat_lod::eval {
 namespace {
@@ -71,7 +71,7 @@ void write_level_picture(const EvalResults& results, const std::filesystem::path
     for (const auto& tile : results.level_tiles)
         if (std::find(scales.begin(), scales.end(), tile.factor) == scales.end()) scales.push_back(tile.factor);
     engine::Image picture = compose(results.options, results.level_tiles, {"full"}, scales, kLabelHeight + 4);
-    // The tints of the splat pass's level view (shaders/splat_lod/common_splat_lod.glsl, level_colour()).
+    // The tints of the splat pass's level view (runtime/shaders/splat_lod/common_splat_lod.glsl, level_colour()).
     const std::array<std::array<std::uint8_t, 3>, 4> tints{
         {{204, 204, 204}, {51, 230, 51}, {64, 115, 255}, {255, 64, 51}}};
     const int y0 = picture.height - kLabelHeight;

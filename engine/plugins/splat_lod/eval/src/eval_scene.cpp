@@ -1,8 +1,8 @@
 #include "splat_lod/eval/eval_scene.h"
 
 #include "engine/core/error.h"
-#include "splat_lod/splat_component.h"
 #include "splat_lod/core/splat_io.h"
+#include "splat_lod/splat_component.h"
 
 namespace splat_lod::eval {
 
@@ -36,7 +36,8 @@ EvalScene load_splat_file_scene(const std::filesystem::path& path) {
 EvalScene load_json_scene(engine::Engine& engine, const std::filesystem::path& path) {
     EvalScene out;
     out.scene = engine.load_scene(path);
-    if (out.scene->components<SplatComponent>().empty()) engine::fail(path.string() + ": the scene has no splat component");
+    if (out.scene->components<SplatComponent>().empty())
+        engine::fail(path.string() + ": the scene has no splat component");
     out.extent = splat_extent(*out.scene);
     return out;
 }

@@ -6,8 +6,8 @@
 #include "engine/core/error.h"
 #include "engine/gl/gl.h"
 #include "engine/render/render_target.h"
-#include "splat_lod/splat_renderer.h"
 #include "splat_lod/splat_lod_plugin.h"
+#include "splat_lod/splat_renderer.h"
 
 namespace splat_lod::eval {
 namespace {
@@ -53,7 +53,8 @@ engine::Image FrameMeasurer::render(const Method& method, const engine::CameraVi
     return target.read_color();
 }
 
-FrameMeasurement FrameMeasurer::measure(const Method& method, const engine::CameraView& camera, int frames, int warmup) {
+FrameMeasurement FrameMeasurer::measure(const Method& method, const engine::CameraView& camera, int frames,
+                                        int warmup) {
     configure(method);
     engine::RenderTarget target(camera.width, camera.height);
     for (int i = 0; i < warmup; ++i) draw(camera, target);

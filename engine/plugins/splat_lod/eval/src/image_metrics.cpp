@@ -15,8 +15,9 @@ constexpr double kSigma = 1.5;
 
 void check_same_size(const FloatImage& a, const FloatImage& b, const char* function) {
     if (a.width != b.width || a.height != b.height)
-        engine::fail(std::string("splat_lod::eval::") + function + "(): image sizes differ: " + std::to_string(a.width) +
-                     "x" + std::to_string(a.height) + " vs " + std::to_string(b.width) + "x" + std::to_string(b.height));
+        engine::fail(std::string("splat_lod::eval::") + function +
+                     "(): image sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " vs " +
+                     std::to_string(b.width) + "x" + std::to_string(b.height));
 }
 
 std::array<double, kWindow> gaussian_weights() {
@@ -97,7 +98,8 @@ engine::Image to_rgba8(const FloatImage& image) {
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x)
             for (int c = 0; c < 3; ++c)
-                out.pixel(x, y)[c] = static_cast<std::uint8_t>(std::lround(std::clamp(image.at(x, y, c), 0.0f, 1.0f) * 255.0f));
+                out.pixel(x, y)[c] =
+                    static_cast<std::uint8_t>(std::lround(std::clamp(image.at(x, y, c), 0.0f, 1.0f) * 255.0f));
     return out;
 }
 
@@ -128,7 +130,8 @@ double ssim(const FloatImage& a, const FloatImage& b) {
 void check_scale(int k, int width, int height, const std::string& what) {
     const std::string size = std::to_string(width) + "x" + std::to_string(height);
     if (k < 1) engine::fail(what + ": scale " + std::to_string(k) + " is not a positive integer");
-    if (k > width || k > height) engine::fail(what + ": scale " + std::to_string(k) + " is larger than the image " + size);
+    if (k > width || k > height)
+        engine::fail(what + ": scale " + std::to_string(k) + " is larger than the image " + size);
     if (width % k != 0 || height % k != 0)
         engine::fail(what + ": scale " + std::to_string(k) + " does not divide the image size " + size);
 }

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "engine/core/error.h"
-#include "splat_lod/eval/sheet_drawing.h"
 #include "splat_lod/eval/eval_report.h"
+#include "splat_lod/eval/sheet_drawing.h"
 #include "splat_lod/eval/upscale_report.h"
 
 namespace splat_lod::eval {

@@ -19,7 +19,9 @@ std::shared_ptr<const splat_lod::SplatCloud> slab(int count, float x, int seed) 
     for (int i = 0; i < count; ++i) {
         const float t = static_cast<float>(i + 1000 * seed);
         specs.push_back({{x + 0.35f * std::sin(t * 1.3f), 0.8f * std::cos(t * 0.7f), 0.4f * std::sin(t * 0.31f)},
-                         glm::vec3(-3.4f + 0.5f * std::sin(t)), {1, 0, 0, 0}, 1.0f + std::sin(t * 0.9f),
+                         glm::vec3(-3.4f + 0.5f * std::sin(t)),
+                         {1, 0, 0, 0},
+                         1.0f + std::sin(t * 0.9f),
                          {0.5f + 0.4f * std::sin(t), 0.5f + 0.4f * std::cos(t * 1.1f), 0.5f}});
     }
     return std::make_shared<const splat_lod::SplatCloud>(engine::test::make_cloud(specs));
@@ -34,9 +36,12 @@ int max_difference(const engine::Image& a, const engine::Image& b) {
 class SplatGpuSceneTest : public engine::test::GpuTest {
 protected:
     engine::test::SplatRenderHarness incremental;
-    engine::CameraView camera = engine::make_look_at_camera({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 128, 96, 0.1f, 100.0f);
+    engine::CameraView camera =
+        engine::make_look_at_camera({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 128, 96, 0.1f, 100.0f);
 
-    const splat_lod::gpu::GpuScene& scene() { return splat_lod::find_splat_pass(incremental.engine().renderer())->scene(); }
+    const splat_lod::gpu::GpuScene& scene() {
+        return splat_lod::find_splat_pass(incremental.engine().renderer())->scene();
+    }
     // The same clouds rendered by a pass that never saw another set: the reference frame.
     engine::Image from_scratch(const std::vector<std::shared_ptr<const splat_lod::SplatCloud>>& clouds) {
         engine::test::SplatRenderHarness fresh;
@@ -91,7 +96,8 @@ TEST_F(SplatGpuSceneTest, LeavingCloudsFreeTheirRangesForReuse) {
 
 TEST_F(SplatGpuSceneTest, AHigherShDegreeRebuildsAndStaysCorrect) {
     const auto a = slab(400, -0.6f, 1);
-    auto with_sh = engine::test::make_cloud({{{0.6f, 0.0f, 0.0f}, glm::vec3(-2.5f), {1, 0, 0, 0}, 2.0f, {0.8f, 0.3f, 0.2f}}});
+    auto with_sh =
+        engine::test::make_cloud({{{0.6f, 0.0f, 0.0f}, glm::vec3(-2.5f), {1, 0, 0, 0}, 2.0f, {0.8f, 0.3f, 0.2f}}});
     with_sh.set_sh_degree(1);
     with_sh.sh_rest_at(0, 1, 0) = 0.4f;
     const auto b = std::make_shared<const splat_lod::SplatCloud>(with_sh);

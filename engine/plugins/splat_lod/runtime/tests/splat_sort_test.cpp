@@ -15,6 +15,7 @@
 #include "gpu/prefix_scan.h"
 #include "gpu/radix_sort.h"
 #include "gpu_fixture.h"
+#include "splat_lod/splat_lod_plugin.h"
 #include "splat_lod/splat_lod_shared.h"
 
 namespace {
@@ -28,7 +29,11 @@ using splat_lod::gpu::RadixSort;
 // reverse order, and the programs must go while the context still exists.
 engine::gl::ShaderLibrary& shader_library() {
     engine::test::gl_context();
-    static engine::gl::ShaderLibrary library;
+    static engine::gl::ShaderLibrary library = [] {
+        engine::gl::ShaderLibrary l;
+        l.add_root(splat_lod::shader_dir());
+        return l;
+    }();
     return library;
 }
 
@@ -52,7 +57,9 @@ struct Element {
     bool operator==(const Element&) const = default;
 };
 
-std::uint64_t sort_key(const Element& e) { return (std::uint64_t{e.key.y} << 32) | e.key.x; }
+std::uint64_t sort_key(const Element& e) {
+    return (std::uint64_t{e.key.y} << 32) | e.key.x;
+}
 
 // Values are the input index, so a stability failure shows up as a value mismatch.
 std::vector<Element> random_elements(std::size_t count, std::uint32_t hi_bits, std::uint32_t distinct_depths,
@@ -109,10 +116,10 @@ std::vector<Element> cpu_sort(std::vector<Element> elements, std::uint32_t count
     if (actual.size() != expected.size()) return ::testing::AssertionFailure() << "sizes differ";
     for (std::size_t i = 0; i < actual.size(); ++i) {
         if (actual[i] == expected[i]) continue;
-        return ::testing::AssertionFailure() << "first difference at " << i << ": got key (" << actual[i].key.y << ", "
-                                             << actual[i].key.x << ") value " << actual[i].value << ", expected key ("
-                                             << expected[i].key.y << ", " << expected[i].key.x << ") value "
-                                             << expected[i].value;
+        return ::testing::AssertionFailure()
+               << "first difference at " << i << ": got key (" << actual[i].key.y << ", " << actual[i].key.x
+               << ") value " << actual[i].value << ", expected key (" << expected[i].key.y << ", " << expected[i].key.x
+               << ") value " << expected[i].value;
     }
     return ::testing::AssertionSuccess();
 }
@@ -156,7 +163,9 @@ TEST_F(SplatSortTest, SortHandlesAllDepthBitsSet) {
     expect_sorted(elements, {10000, 10000, 16});
 }
 
-TEST_F(SplatSortTest, SortOfAMillionRandomKeysMatches) { expect_sorted(1000003, 16, 0, 4); }
+TEST_F(SplatSortTest, SortOfAMillionRandomKeysMatches) {
+    expect_sorted(1000003, 16, 0, 4);
+}
 
 TEST_F(SplatSortTest, SortUsesTheGpuCountAndLeavesTheRestUntouched) {
     const auto elements = random_elements(100000, 12, 50, 5);
@@ -180,8 +189,9 @@ TEST_F(SplatSortTest, SortRecordsNamedGpuTimerSpans) {
     Buffer value_buffer = make_buffer(std::vector<std::uint32_t>(elements.size()), "test values");
     const Buffer count_buffer = make_buffer(std::vector<std::uint32_t>{4096u}, "test count");
     timers.begin_frame();
-    sort.record({.keys = key_buffer, .values = value_buffer, .count_buffer = count_buffer, .max_count = 4096, .hi_bits = 4},
-                &timers);
+    sort.record(
+        {.keys = key_buffer, .values = value_buffer, .count_buffer = count_buffer, .max_count = 4096, .hi_bits = 4},
+        &timers);
     timers.end_frame();
     timers.wait_all();
     ASSERT_TRUE(timers.latest().has_value());
@@ -199,13 +209,17 @@ TEST_F(SplatSortTest, SortRejectsInconsistentJobs) {
     Buffer values = make_buffer(std::vector<std::uint32_t>(100), "test values");
     const Buffer count = make_buffer(std::vector<std::uint32_t>{100u, 0u}, "test count");
     const auto job = [&](std::size_t count_offset, std::uint32_t max_count, std::uint32_t hi_bits) {
-        sort.record({.keys = keys, .values = values, .count_buffer = count, .count_offset = count_offset,
-                     .max_count = max_count, .hi_bits = hi_bits});
+        sort.record({.keys = keys,
+                     .values = values,
+                     .count_buffer = count,
+                     .count_offset = count_offset,
+                     .max_count = max_count,
+                     .hi_bits = hi_bits});
     };
-    EXPECT_THROW(job(2, 100, 8), engine::Error);    // misaligned count
-    EXPECT_THROW(job(8, 100, 8), engine::Error);    // count outside its buffer
-    EXPECT_THROW(job(0, 101, 8), engine::Error);    // buffers smaller than max_count
-    EXPECT_THROW(job(0, 100, 33), engine::Error);   // more high bits than a word has
+    EXPECT_THROW(job(2, 100, 8), engine::Error);   // misaligned count
+    EXPECT_THROW(job(8, 100, 8), engine::Error);   // count outside its buffer
+    EXPECT_THROW(job(0, 101, 8), engine::Error);   // buffers smaller than max_count
+    EXPECT_THROW(job(0, 100, 33), engine::Error);  // more high bits than a word has
     EXPECT_NO_THROW(job(4, 100, 32));
 }
 
@@ -217,7 +231,8 @@ struct ScanResult {
 };
 
 // Scans `values` with the count in a GPU buffer; the total goes to word 2 of a 4-word buffer.
-ScanResult gpu_scan(PrefixScan& scan, const std::vector<std::uint32_t>& values, std::uint32_t count, std::uint32_t max_count) {
+ScanResult gpu_scan(PrefixScan& scan, const std::vector<std::uint32_t>& values, std::uint32_t count,
+                    std::uint32_t max_count) {
     Buffer value_buffer = make_buffer(values, "test scan values");
     const Buffer count_buffer = make_buffer(std::vector<std::uint32_t>{count}, "test scan count");
     Buffer total_buffer = make_buffer(std::vector<std::uint32_t>(4, 0xdeadbeefu), "test scan total");
@@ -247,7 +262,8 @@ protected:
         const ScanResult result = gpu_scan(scan, values, count, size);
         const auto mismatch = std::mismatch(result.values.begin(), result.values.end(), expected.begin());
         EXPECT_TRUE(mismatch.first == result.values.end())
-            << "size " << size << ", count " << count << ": first difference at " << (mismatch.first - result.values.begin());
+            << "size " << size << ", count " << count << ": first difference at "
+            << (mismatch.first - result.values.begin());
         EXPECT_EQ(result.totals, (std::vector<std::uint32_t>{0xdeadbeefu, 0xdeadbeefu, total, 0xdeadbeefu}))
             << "size " << size << ", count " << count;
     }
@@ -271,14 +287,19 @@ TEST_F(SplatScanTest, ScanUsesTheGpuCountAndLeavesTheRestUntouched) {
     expect_scanned(3000, 1u << 30);  // clamped to the capacity
 }
 
-TEST_F(SplatScanTest, ScanWrapsLikeUint) { expect_scanned(4096, 4096, 0xffffffffu); }
+TEST_F(SplatScanTest, ScanWrapsLikeUint) {
+    expect_scanned(4096, 4096, 0xffffffffu);
+}
 
 TEST_F(SplatScanTest, ScanRejectsInconsistentJobs) {
     Buffer values = make_buffer(std::vector<std::uint32_t>(64), "test scan values");
     const Buffer count = make_buffer(std::vector<std::uint32_t>{64u}, "test scan count");
     Buffer total = make_buffer(std::vector<std::uint32_t>(1), "test scan total");
     const auto job = [&](std::uint32_t max_count, std::size_t total_offset) {
-        scan.record({.values = values, .count_buffer = count, .max_count = max_count, .total_buffer = total,
+        scan.record({.values = values,
+                     .count_buffer = count,
+                     .max_count = max_count,
+                     .total_buffer = total,
                      .total_offset = total_offset});
     };
     EXPECT_THROW(job(65, 0), engine::Error);

@@ -27,7 +27,8 @@ std::vector<eval::CameraPose> chunk_camera_poses(const WorldTerrain& terrain, co
     float ground = 0.0f;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
-            const glm::vec2 p = square.lo + span * glm::vec2(0.25f + 0.25f * static_cast<float>(i), 0.25f + 0.25f * static_cast<float>(j));
+            const glm::vec2 p = square.lo + span * glm::vec2(0.25f + 0.25f * static_cast<float>(i),
+                                                             0.25f + 0.25f * static_cast<float>(j));
             ground += terrain.height(p.x, p.y) / 9.0f;
         }
     const glm::vec3 target(middle.x, ground + 1.5f, middle.y);
@@ -35,7 +36,8 @@ std::vector<eval::CameraPose> chunk_camera_poses(const WorldTerrain& terrain, co
     for (int r = 0; r < kChunkCameraRings; ++r)
         for (int k = 0; k < kChunkCamerasPerRing; ++k) {
             // Rings are turned against each other so that no two views share an azimuth.
-            const double azimuth = synth::kTwoPiF * (static_cast<double>(k) + static_cast<double>(r) / kChunkCameraRings) /
+            const double azimuth = synth::kTwoPiF *
+                                   (static_cast<double>(k) + static_cast<double>(r) / kChunkCameraRings) /
                                    kChunkCamerasPerRing;
             const synth::SinCos sc = synth::sin_cos(azimuth);
             const glm::vec2 at = middle + glm::vec2(sc.cos, sc.sin) * (kRings[r].distance * half_diagonal);

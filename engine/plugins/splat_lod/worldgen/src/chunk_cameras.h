@@ -6,9 +6,9 @@
 // chunk's middle, at eye height just outside it, low flight a few chunks away, and high above far away.
 #include <vector>
 
+#include "chunk_content.h"
 #include "splat_lod/core/camera_set.h"
 #include "splat_lod/worldgen/world_terrain.h"
-#include "chunk_content.h"
 
 namespace splat_lod::world {
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "engine/core/error.h"
-#include "splat_lod/core/ply_vertex_layout.h"
 #include "splat_lod/core/gaussian_extent.h"
+#include "splat_lod/core/ply_vertex_layout.h"
 #include "splat_lod/core/world_manifest.h"
 
 namespace splat_lod::world {
@@ -44,8 +44,8 @@ std::array<ChunkLevel, kLevels> level_bounds(const SplatCloud& baked, const std:
         if (!(coverage_min > 0.0f) || bound.extent_per_min_coverage_max < 0.0f)
             bound.extent_per_min_coverage_max = -1.0f;
         else
-            bound.extent_per_min_coverage_max = std::max(
-                bound.extent_per_min_coverage_max, static_cast<float>(extent / coverage_min * (1.0 + 1e-6)));
+            bound.extent_per_min_coverage_max =
+                std::max(bound.extent_per_min_coverage_max, static_cast<float>(extent / coverage_min * (1.0 + 1e-6)));
     }
     return levels;
 }

@@ -44,7 +44,8 @@ glm::vec3 ground_colour(const ContentContext& c, const glm::vec2& p, const glm::
                                               t.path_distance(p.x, p.y));
     rgb = synth::mix_rgb(rgb, glm::vec3(0.52f, 0.43f, 0.30f) * (0.9f + 0.2f * moss), path);
     const float river = t.river_distance(p.x, p.y);
-    const float bank = 1.0f - glm::smoothstep(WorldTerrain::kRiverHalfWidth + 1.5f, WorldTerrain::kRiverHalfWidth + 4.0f, river);
+    const float bank =
+        1.0f - glm::smoothstep(WorldTerrain::kRiverHalfWidth + 1.5f, WorldTerrain::kRiverHalfWidth + 4.0f, river);
     rgb = synth::mix_rgb(rgb, {0.55f, 0.50f, 0.38f}, bank);
     if (river < WorldTerrain::kRiverHalfWidth) rgb = glm::vec3(0.30f, 0.27f, 0.20f);
     const float grain = rng.uniform(0.85f, 1.1f);

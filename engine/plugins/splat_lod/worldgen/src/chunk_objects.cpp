@@ -41,7 +41,9 @@ void for_each_spot(const ChunkSquare& square, float cell, std::uint64_t seed, St
         }
 }
 
-glm::vec3 stored_rgb(const SplatCloud& cloud, std::size_t i) { return cloud.sh_dc[i] * kShC0 + glm::vec3(0.5f); }
+glm::vec3 stored_rgb(const SplatCloud& cloud, std::size_t i) {
+    return cloud.sh_dc[i] * kShC0 + glm::vec3(0.5f);
+}
 
 // A few larger, darker Gaussians inside the crown among the leaves, so that a sparse crown reads
 // as foliage with depth (shaded interior) rather than a cloud of specks.
@@ -52,7 +54,8 @@ void append_crown_filler(SplatCloud& cloud, const synth::IndexRange& leaves, syn
     centre /= static_cast<float>(leaves.size());
     const std::size_t count = 6 + leaves.size() / 6;
     for (std::size_t k = 0; k < count; ++k) {
-        const std::size_t leaf = leaves.begin + static_cast<std::size_t>(rng.uniform_int(0, static_cast<int>(leaves.size()) - 1));
+        const std::size_t leaf =
+            leaves.begin + static_cast<std::size_t>(rng.uniform_int(0, static_cast<int>(leaves.size()) - 1));
         synth::GaussianDraft d;
         d.position = centre + (cloud.positions[leaf] - centre) * rng.uniform(0.45f, 0.85f);
         d.axis_x = synth::random_unit_vector(rng);
@@ -88,12 +91,13 @@ void append_chunk_trees(SplatCloud& cloud, const ContentContext& c, const ChunkS
         style.detail = thin.detail;
         // Conifers take over on the higher ground.
         style.kind = rng.chance(std::clamp(0.3f + ground / 20.0f, 0.1f, 0.8f)) ? synth::TreeKind::conifer
-                                                                                : synth::TreeKind::broadleaf;
+                                                                               : synth::TreeKind::broadleaf;
         style.leaf_tint.x = rng.uniform(0.95f, 1.12f);
         style.leaf_tint.z = rng.uniform(0.85f, 1.0f);
         const float height = rng.uniform(4.5f, 9.0f);
         const std::size_t before = cloud.size();
-        const synth::TreeSplats tree = synth::append_tree(cloud, glm::vec3(p.x, ground - 0.05f, p.y), height, rng, style);
+        const synth::TreeSplats tree =
+            synth::append_tree(cloud, glm::vec3(p.x, ground - 0.05f, p.y), height, rng, style);
         append_crown_filler(cloud, tree.leaves, rng);
         ++counts.trees;
         counts.tree_gaussians += cloud.size() - before;

@@ -10,12 +10,12 @@
 #include <system_error>
 #include <utility>
 
+#include "chunk_cameras.h"
 #include "engine/core/error.h"
-#include "splat_lod/core/parallel_for.h"
 #include "splat_lod/bake/bake_cameras.h"
+#include "splat_lod/core/parallel_for.h"
 #include "splat_lod/core/splat_io.h"
 #include "splat_lod/synth/fine_detail_scene.h"
-#include "chunk_cameras.h"
 #include "world_streams.h"
 
 namespace splat_lod::world {
@@ -35,7 +35,11 @@ public:
         gaussians_ += gaussians;
         if (!options_.progress) return;
         const double chunk_seconds = seconds_since(chunks_start_);
-        WorldProgress p{"chunks", done_, total_, gaussians_, seconds_since(start_),
+        WorldProgress p{"chunks",
+                        done_,
+                        total_,
+                        gaussians_,
+                        seconds_since(start_),
                         chunk_seconds / static_cast<double>(done_) * static_cast<double>(total_ - done_)};
         options_.progress(p);
     }
@@ -78,9 +82,12 @@ ChunkResult build_chunk(const WorldOptions& o, const ContentContext& context, co
 
 void add_stages(std::vector<StageSeconds>& total, const std::vector<StageSeconds>& more) {
     for (const auto& stage : more) {
-        const auto it = std::find_if(total.begin(), total.end(), [&](const StageSeconds& s) { return s.stage == stage.stage; });
-        if (it == total.end()) total.push_back(stage);
-        else it->seconds += stage.seconds;
+        const auto it =
+            std::find_if(total.begin(), total.end(), [&](const StageSeconds& s) { return s.stage == stage.stage; });
+        if (it == total.end())
+            total.push_back(stage);
+        else
+            it->seconds += stage.seconds;
     }
 }
 
@@ -89,7 +96,8 @@ void average_psnr(const std::vector<ChunkResult>& chunks, WorldSummary& s) {
     std::array<double, kLevels> count{};
     for (const auto& chunk : chunks)
         for (const auto& level : chunk.levels) {
-            if (level.refine_iterations == 0 || !std::isfinite(level.final_psnr) || !std::isfinite(level.refine_psnr_baseline))
+            if (level.refine_iterations == 0 || !std::isfinite(level.final_psnr) ||
+                !std::isfinite(level.refine_psnr_baseline))
                 continue;
             const auto l = static_cast<std::size_t>(level.level - 1);
             s.mean_level_psnr[l] += level.final_psnr;
@@ -105,7 +113,9 @@ void average_psnr(const std::vector<ChunkResult>& chunks, WorldSummary& s) {
 
 }  // namespace
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 std::vector<ChunkSlot> chunk_slots(const WorldOptions& o) {
     const int count = static_cast<int>(std::round(o.size_m / o.chunk_size_m));
@@ -114,7 +124,8 @@ std::vector<ChunkSlot> chunk_slots(const WorldOptions& o) {
         for (int i = 0; i < count; ++i) {
             ChunkSlot slot;
             slot.cell = {i - count / 2, j - count / 2};
-            slot.square.lo = glm::vec2(-0.5f * o.size_m) + o.chunk_size_m * glm::vec2(static_cast<float>(i), static_cast<float>(j));
+            slot.square.lo =
+                glm::vec2(-0.5f * o.size_m) + o.chunk_size_m * glm::vec2(static_cast<float>(i), static_cast<float>(j));
             slot.square.hi = slot.square.lo + glm::vec2(o.chunk_size_m);
             slots.push_back(slot);
         }
@@ -140,14 +151,15 @@ std::vector<ChunkResult> build_chunks(const WorldOptions& o, const ContentContex
     std::vector<ChunkResult> results(slots.size());
     ProgressReporter progress(o, start, slots.size());
     if (o.progress) o.progress({"chunks", 0, slots.size(), 0, seconds_since(start), -1.0});
-    reference::detail::parallel_for(slots.size(), reference::detail::resolve_thread_count(o.threads), [&](std::size_t k) {
-        try {
-            results[k] = build_chunk(o, context, generation, slots[k]);
-        } catch (const std::exception& e) {
-            engine::fail(chunk_id(slots[k].cell) + ": " + e.what());
-        }
-        progress.chunk_done(results[k].entry.prefix_count[0]);
-    });
+    reference::detail::parallel_for(slots.size(), reference::detail::resolve_thread_count(o.threads),
+                                    [&](std::size_t k) {
+                                        try {
+                                            results[k] = build_chunk(o, context, generation, slots[k]);
+                                        } catch (const std::exception& e) {
+                                            engine::fail(chunk_id(slots[k].cell) + ": " + e.what());
+                                        }
+                                        progress.chunk_done(results[k].entry.prefix_count[0]);
+                                    });
     return results;
 }
 
@@ -209,7 +221,8 @@ void summarise_manifest(const WorldManifest& m, const fs::path& folder, WorldSum
     for (const auto& c : m.chunks) {
         for (int l = 1; l <= kLevels; ++l) {
             const std::uint64_t next = l == kLevels ? 0 : c.prefix_count[static_cast<std::size_t>(l)];
-            s.gaussians_per_stream_level[static_cast<std::size_t>(l - 1)] += c.prefix_count[static_cast<std::size_t>(l - 1)] - next;
+            s.gaussians_per_stream_level[static_cast<std::size_t>(l - 1)] +=
+                c.prefix_count[static_cast<std::size_t>(l - 1)] - next;
         }
         s.chunk_bytes += c.file_bytes;
     }

@@ -10,10 +10,10 @@
 
 #include <glm/glm.hpp>
 
-#include "splat_lod/bake/bake.h"
-#include "splat_lod/worldgen/world_generator.h"
-#include "splat_lod/core/world_manifest.h"
 #include "chunk_content.h"
+#include "splat_lod/bake/bake.h"
+#include "splat_lod/core/world_manifest.h"
+#include "splat_lod/worldgen/world_generator.h"
 #include "world_layout.h"
 
 namespace splat_lod::world {
@@ -64,8 +64,8 @@ void add_chunk_results(std::vector<ChunkResult>& chunks, WorldManifest& m, World
 
 // Builds the chunk groups of m.chunks (files relative to options.output) into `generation` (relative
 // to options.output) and sets m.groups and m.group_generator; none when groups are off.
-void add_groups(const WorldOptions& options, const std::filesystem::path& generation, WorldManifest& m,
-                WorldSummary& s, Clock::time_point start);
+void add_groups(const WorldOptions& options, const std::filesystem::path& generation, WorldManifest& m, WorldSummary& s,
+                Clock::time_point start);
 
 void fill_counts(const ContentCounts& counts, WorldSummary& s);
 

@@ -55,7 +55,9 @@ bool flat_layout_file(const std::string& folder, const std::string& name) {
     return false;
 }
 
-std::uint32_t float_bits(float v) { return std::bit_cast<std::uint32_t>(v); }
+std::uint32_t float_bits(float v) {
+    return std::bit_cast<std::uint32_t>(v);
+}
 
 }  // namespace
 

@@ -9,14 +9,14 @@
 #include <utility>
 #include <vector>
 
+#include "chunk_content.h"
 #include "engine/core/error.h"
 #include "splat_lod/core/parallel_for.h"
 #include "splat_lod/worldgen/world_lock.h"
-#include "chunk_content.h"
+#include "splat_lod/worldgen/world_meshes.h"
 #include "world_build.h"
 #include "world_folder.h"
 #include "world_layout.h"
-#include "splat_lod/worldgen/world_meshes.h"
 
 namespace splat_lod::world {
 namespace {
@@ -80,9 +80,9 @@ WorldSummary count_world_content(const WorldOptions& o) {
     const std::vector<ChunkSlot> slots = chunk_slots(o);
     std::vector<ContentCounts> counts(slots.size());
     std::vector<std::uint64_t> sizes(slots.size());
-    reference::detail::parallel_for(slots.size(), reference::detail::resolve_thread_count(o.threads), [&](std::size_t k) {
-        sizes[k] = make_chunk_content(context, slots[k].square, &counts[k]).size();
-    });
+    reference::detail::parallel_for(
+        slots.size(), reference::detail::resolve_thread_count(o.threads),
+        [&](std::size_t k) { sizes[k] = make_chunk_content(context, slots[k].square, &counts[k]).size(); });
     WorldSummary s;
     s.chunks = slots.size();
     s.props = layout.props.size();
@@ -110,7 +110,8 @@ WorldManifest build_world(const WorldOptions& o, const fs::path& generation, Clo
     s.stages.push_back({"layout and meshes", seconds_since(stage_start)});
 
     stage_start = Clock::now();
-    std::vector<ChunkResult> chunks = build_chunks(o, content_context(o, terrain, layout), generation, chunk_slots(o), start);
+    std::vector<ChunkResult> chunks =
+        build_chunks(o, content_context(o, terrain, layout), generation, chunk_slots(o), start);
     s.stages.push_back({"chunks (content, bake, write)", seconds_since(stage_start)});
 
     WorldManifest m = manifest_without_chunks(o, layout, generation);

@@ -11,12 +11,12 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "splat_lod/core/splat_math.h"
 #include "engine/core/error.h"
+#include "splat_lod/core/chunk_reader.h"
 #include "splat_lod/core/instance_frame.h"
 #include "splat_lod/core/parallel_for.h"
 #include "splat_lod/core/splat_io.h"
-#include "splat_lod/core/chunk_reader.h"
+#include "splat_lod/core/splat_math.h"
 #include "splat_lod/core/stream_levels.h"
 
 namespace splat_lod::world {
@@ -153,8 +153,7 @@ std::vector<Entry> cell_entries(std::span<const SplatCloud> members, const glm::
     for (const Entry& e : entries) low = glm::min(low, e.cell);
     for (Entry& e : entries) {
         const glm::u64vec3 d(e.cell - low);
-        e.morton =
-            math::spread_bits(d.x) | math::spread_bits(d.y) << 1 | math::spread_bits(d.z) << 2;
+        e.morton = math::spread_bits(d.x) | math::spread_bits(d.y) << 1 | math::spread_bits(d.z) << 2;
     }
     // Cells in Morton order, a cell's kept Gaussians after its pooled one, members in file order.
     std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {

@@ -14,12 +14,12 @@ namespace {
 // The house mesh's footprint (world_meshes.cpp): 6 m wide (x), 5 m deep (z), eaves included.
 constexpr float kHouseHalfWidth = 3.3f;
 constexpr float kHouseHalfDepth = 2.8f;
-constexpr float kHouseKeepOut = 7.0f;     // radius around a house kept free of trees and rocks
-constexpr float kHouseSpacing = 110.0f;   // mean distance along x between house candidates
-constexpr float kGardenDepth = 4.5f;      // from the house front to its picket fence
+constexpr float kHouseKeepOut = 7.0f;    // radius around a house kept free of trees and rocks
+constexpr float kHouseSpacing = 110.0f;  // mean distance along x between house candidates
+constexpr float kGardenDepth = 4.5f;     // from the house front to its picket fence
 constexpr float kGardenHalfWidth = 4.0f;
 constexpr float kPostSpacing = 40.0f;
-constexpr float kFenceSegment = 2.5f;     // the fence mesh's length along its local x
+constexpr float kFenceSegment = 2.5f;  // the fence mesh's length along its local x
 
 // A yaw's front (+z turned) and right (+x turned) directions on the ground plane.
 struct Frame2 {
@@ -126,7 +126,8 @@ void LayoutBuilder::fence_runs(synth::Rng& rng) {
             const glm::vec2 a = beside_path(x, side, offset), b = beside_path(next, side, offset);
             x = next;
             const glm::vec2 middle = 0.5f * (a + b), chord = b - a;
-            if (!inside(middle, 3.0f) || terrain.river_distance(middle.x, middle.y) < WorldTerrain::kRiverHalfWidth + 2.0f ||
+            if (!inside(middle, 3.0f) ||
+                terrain.river_distance(middle.x, middle.y) < WorldTerrain::kRiverHalfWidth + 2.0f ||
                 layout.blocked(middle, 1.5f))
                 continue;
             // The mesh's +x runs along the chord: its +z is the chord turned a quarter to the left.

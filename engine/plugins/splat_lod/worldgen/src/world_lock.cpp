@@ -24,15 +24,18 @@ WorldFolderLock::WorldFolderLock(const std::filesystem::path& folder, Mode mode)
     if (error != EWOULDBLOCK) {
         problem_ = "cannot lock the world's folder: " + std::string(std::strerror(error));
     } else if (mode == Mode::stream) {
-        problem_ = "the world generator is writing into this folder (it holds the folder's lock); wait for it "
-                   "to finish";
+        problem_ =
+            "the world generator is writing into this folder (it holds the folder's lock); wait for it "
+            "to finish";
     } else if (::flock(fd_, LOCK_SH | LOCK_NB) == 0) {
         // Only readers hold it: a program is streaming the world.
-        problem_ = "a program is streaming this world (it holds the folder's shared lock); close it, or generate "
-                   "into another folder";
+        problem_ =
+            "a program is streaming this world (it holds the folder's shared lock); close it, or generate "
+            "into another folder";
     } else {
-        problem_ = "another run of the world generator is writing into this folder (it holds the folder's lock); "
-                   "wait for it or choose another folder";
+        problem_ =
+            "another run of the world generator is writing into this folder (it holds the folder's lock); "
+            "wait for it or choose another folder";
     }
     ::close(std::exchange(fd_, -1));  // also drops the probing shared lock
 }

@@ -34,7 +34,8 @@ struct Part {
         return static_cast<std::uint32_t>(positions.size() - 1);
     }
     // A planar quad a b c d (in order around it) facing `outward`; the winding follows it.
-    void quad(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& d, const glm::vec3& outward) {
+    void quad(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& d,
+              const glm::vec3& outward) {
         glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
         const bool flip = glm::dot(n, outward) < 0.0f;
         if (flip) n = -n;
@@ -115,10 +116,12 @@ void add_part(tinygltf::Model& model, tinygltf::Mesh& mesh, const Part& part) {
     model.accessors[static_cast<std::size_t>(positions)].minValues = {lo.x, lo.y, lo.z};
     model.accessors[static_cast<std::size_t>(positions)].maxValues = {hi.x, hi.y, hi.z};
     primitive.attributes["POSITION"] = positions;
-    primitive.attributes["NORMAL"] = append_accessor(model, append_view(model, part.normals, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, part.normals.size());
-    primitive.indices = append_accessor(model, append_view(model, part.indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, part.indices.size());
+    primitive.attributes["NORMAL"] =
+        append_accessor(model, append_view(model, part.normals, TINYGLTF_TARGET_ARRAY_BUFFER),
+                        TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, part.normals.size());
+    primitive.indices =
+        append_accessor(model, append_view(model, part.indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
+                        TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, part.indices.size());
     mesh.primitives.push_back(primitive);
 }
 
@@ -201,8 +204,8 @@ float lowest_near(const WorldTerrain& terrain, float x, float z, float reach) {
 }  // namespace
 
 std::uint64_t write_prop_meshes(const std::filesystem::path& folder) {
-    return write_glb(folder / kHouseMesh, "house", house_parts()) + write_glb(folder / kFenceMesh, "fence", fence_parts()) +
-           write_glb(folder / kPostMesh, "post", post_parts());
+    return write_glb(folder / kHouseMesh, "house", house_parts()) +
+           write_glb(folder / kFenceMesh, "fence", fence_parts()) + write_glb(folder / kPostMesh, "post", post_parts());
 }
 
 std::uint64_t write_terrain_mesh(const std::filesystem::path& folder, const WorldTerrain& terrain) {
@@ -212,7 +215,8 @@ std::uint64_t write_terrain_mesh(const std::filesystem::path& folder, const Worl
     Part ground{"ground", {0.16f, 0.20f, 0.08f, 1.0f}};
     for (int j = 0; j <= cells; ++j)
         for (int i = 0; i <= cells; ++i) {
-            const float x = -0.5f * size + static_cast<float>(i) * step, z = -0.5f * size + static_cast<float>(j) * step;
+            const float x = -0.5f * size + static_cast<float>(i) * step,
+                        z = -0.5f * size + static_cast<float>(j) * step;
             ground.vertex({x, lowest_near(terrain, x, z, 0.5f * step) - 0.1f, z}, terrain.normal(x, z));
         }
     const auto at = [cells](int i, int j) { return static_cast<std::uint32_t>(j * (cells + 1) + i); };

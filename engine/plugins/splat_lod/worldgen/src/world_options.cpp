@@ -71,8 +71,8 @@ std::string generator_settings(const WorldOptions& o) {
       << " rings 3x8; levels " << b.coarsest_level << ", S_T " << number(b.size_threshold_px) << ", rel "
       << number(b.rel_min) << "/" << number(b.rel_max) << ", znear " << number(b.znear) << ", "
       << (b.choose_recipe ? "chosen recipe"
-                          : std::string(b.cells == bake::CellRule::grid ? "grid" : "adaptive") + " cells, enlargement <= " +
-                                number(b.max_enlargement))
+                          : std::string(b.cells == bake::CellRule::grid ? "grid" : "adaptive") +
+                                " cells, enlargement <= " + number(b.max_enlargement))
       << ", " << (b.pooling == bake::PoolingRule::moments ? "moments" : "mean") << " pooling, grid " << b.grid_cells
       << ", ranges " << number(b.range_low_percentile) << "-" << number(b.range_high_percentile) << "; refine "
       << b.refine_iterations << " x " << b.refine_cameras << " cameras, lr " << number(b.learning_rate_dc) << "/"
@@ -90,9 +90,10 @@ std::string format_summary(const WorldSummary& s) {
         std::snprintf(line, sizeof line, "cached world: %zu chunks, %llu Gaussians on disk, %zu props\n", s.chunks,
                       static_cast<unsigned long long>(s.gaussians), s.props);
     else
-        std::snprintf(line, sizeof line, "generated world: %zu chunks, %llu Gaussians on disk (%llu generated), %zu props\n",
-                      s.chunks, static_cast<unsigned long long>(s.gaussians),
-                      static_cast<unsigned long long>(s.fine_gaussians), s.props);
+        std::snprintf(line, sizeof line,
+                      "generated world: %zu chunks, %llu Gaussians on disk (%llu generated), %zu props\n", s.chunks,
+                      static_cast<unsigned long long>(s.gaussians), static_cast<unsigned long long>(s.fine_gaussians),
+                      s.props);
     out << line;
     for (int l = kLevels; l >= 1; --l) {
         const auto i = static_cast<std::size_t>(l - 1);
@@ -117,16 +118,19 @@ std::string format_summary(const WorldSummary& s) {
     for (int l = 2; l <= kLevels; ++l) {
         const auto i = static_cast<std::size_t>(l - 1);
         if (s.mean_level_psnr[i] == 0.0) continue;
-        std::snprintf(line, sizeof line, "  level %d at 1/%d: mean PSNR %.2f dB (level 1 alone %.2f dB) over the chunks' bake views\n",
-                      l, bake::level_scale(l), s.mean_level_psnr[i], s.mean_baseline_psnr[i]);
+        std::snprintf(line, sizeof line,
+                      "  level %d at 1/%d: mean PSNR %.2f dB (level 1 alone %.2f dB) over the chunks' bake views\n", l,
+                      bake::level_scale(l), s.mean_level_psnr[i], s.mean_baseline_psnr[i]);
         out << line;
     }
     std::snprintf(line, sizeof line, "  bytes: chunks %.1f MiB, meshes %.2f MiB\n",
-                  static_cast<double>(s.chunk_bytes) / (1024.0 * 1024.0), static_cast<double>(s.mesh_bytes) / (1024.0 * 1024.0));
+                  static_cast<double>(s.chunk_bytes) / (1024.0 * 1024.0),
+                  static_cast<double>(s.mesh_bytes) / (1024.0 * 1024.0));
     out << line;
     std::snprintf(line, sizeof line, "  chunk groups: %zu%s, %llu Gaussians, %.1f MiB\n", s.groups,
                   s.groups_rebuilt ? " (built for the cached chunks)" : "",
-                  static_cast<unsigned long long>(s.group_gaussians), static_cast<double>(s.group_bytes) / (1024.0 * 1024.0));
+                  static_cast<unsigned long long>(s.group_gaussians),
+                  static_cast<double>(s.group_bytes) / (1024.0 * 1024.0));
     out << line;
     for (const auto& stage : s.stages) {
         std::snprintf(line, sizeof line, "  %-28s %9.1f s\n", stage.stage.c_str(), stage.seconds);

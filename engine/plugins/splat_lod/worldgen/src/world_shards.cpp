@@ -14,10 +14,10 @@
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
 #include "splat_lod/worldgen/world_lock.h"
+#include "splat_lod/worldgen/world_meshes.h"
 #include "world_build.h"
 #include "world_folder.h"
 #include "world_layout.h"
-#include "splat_lod/worldgen/world_meshes.h"
 
 namespace splat_lod::world {
 namespace {
@@ -213,6 +213,64 @@ WorldResult cached_result(WorldManifest manifest, const fs::path& folder, Clock:
     return result;
 }
 
+// Takes the staging folder's lock for the merge, which no shard may hold (a shard still baking).
+void lock_staging(const WorldOptions& o, const fs::path& staging, std::optional<FolderFlock>& staging_lock) {
+    std::error_code ec;
+    if (!fs::is_directory(staging, ec))
+        engine::fail(o.output.string() + ": cannot merge: no shard of these options has run here (no " +
+                     staging.string() + ")");
+    staging_lock.emplace(staging, true);
+    if (!staging_lock->held())
+        engine::fail(staging_lock->busy() ? staging.string() +
+                                                ": a shard is still baking into it (it holds the staging "
+                                                "folder's lock); wait for every shard to finish, then merge"
+                                          : staging_lock->problem());
+}
+
+// The meshes go into the staged generation, which then keeps nothing but them and `staged`'s chunks.
+void stage_meshes(const WorldOptions& o, const fs::path& staging, const WorldTerrain& terrain,
+                  const WorldManifest& staged) {
+    write_prop_meshes(staging / kStagedGeneration);
+    if (o.terrain_mesh) write_terrain_mesh(staging / kStagedGeneration, terrain);
+    prune_staged_generation(staging, staged);
+}
+
+// The chunk groups need every chunk: they are pooled here, from the checked chunk files.
+std::vector<ChunkEntry> pool_groups(const WorldOptions& o, const fs::path& staging,
+                                    const std::vector<ChunkEntry>& chunks, Clock::time_point start) {
+    const auto group_progress = [&](const GroupProgress& p) {
+        if (o.progress) o.progress({"groups", p.done, p.total, 0, seconds_since(start), -1.0});
+    };
+    return build_groups(staging, kStagedGeneration, chunks, o.size_m, o.chunk_size_m, o.groups, stream_level_rule(o),
+                        o.threads, group_progress);
+}
+
+// The world's manifest in `result`, its entries moved from `staged` into a new generation, committed;
+// then the staging folder and every file that no manifest names go.
+void commit_merge(const WorldOptions& o, const fs::path& staging, const WorldLayout& layout, WorldManifest& staged,
+                  std::optional<FolderFlock>& staging_lock, Clock::time_point start, WorldResult& result) {
+    const auto stage_start = Clock::now();
+    if (o.progress) o.progress({"manifest", staged.chunks.size(), staged.chunks.size(), 0, seconds_since(start), 0.0});
+    const fs::path generation = new_generation(o.output);
+    WorldManifest& m = result.manifest;
+    m = manifest_without_chunks(o, layout, generation);
+    for (ChunkEntry& c : staged.chunks) {
+        c.file = generation / c.file.lexically_relative(kStagedGeneration);
+        m.gaussians += c.prefix_count[0];
+        m.chunks.push_back(std::move(c));
+    }
+    for (ChunkEntry& g : staged.groups) {
+        g.file = generation / g.file.lexically_relative(kStagedGeneration);
+        m.groups.push_back(std::move(g));
+    }
+    m.group_generator = group_generator_settings(o.groups);
+    commit_staged(o, staging, generation, m);
+    staging_lock.reset();  // the clean-up takes it again to remove the staging folder
+    if (o.progress) o.progress({"clean-up", m.chunks.size(), m.chunks.size(), 0, seconds_since(start), 0.0});
+    remove_unnamed_files(o.output, m);
+    result.summary.stages.push_back({"manifest and clean-up", seconds_since(stage_start)});
+}
+
 }  // namespace
 
 WorldShard parse_world_shard(const std::string& text) {
@@ -313,15 +371,8 @@ WorldResult merge_world_shards(const WorldOptions& o) {
         }
     lock.require();
     const fs::path staging = o.output / staging_folder(o);
-    if (!fs::is_directory(staging, ec))
-        engine::fail(o.output.string() + ": cannot merge: no shard of these options has run here (no " +
-                     staging.string() + ")");
-    std::optional<FolderFlock> staging_lock(std::in_place, staging, true);
-    if (!staging_lock->held())
-        engine::fail(staging_lock->busy() ? staging.string() +
-                                                ": a shard is still baking into it (it holds the staging "
-                                                "folder's lock); wait for every shard to finish, then merge"
-                                          : staging_lock->problem());
+    std::optional<FolderFlock> staging_lock;
+    lock_staging(o, staging, staging_lock);
 
     WorldResult result;
     WorldSummary& s = result.summary;
@@ -337,41 +388,15 @@ WorldResult merge_world_shards(const WorldOptions& o) {
     if (o.progress) o.progress({"meshes", 0, 0, 0, seconds_since(start), -1.0});
     const WorldTerrain terrain(o.seed, o.size_m);
     const WorldLayout layout = make_world_layout(terrain, o.seed);
-    write_prop_meshes(staging / kStagedGeneration);
-    if (o.terrain_mesh) write_terrain_mesh(staging / kStagedGeneration, terrain);
-    prune_staged_generation(staging, staged);
+    stage_meshes(o, staging, terrain, staged);
     s.stages.push_back({"layout and meshes", seconds_since(stage_start)});
 
-    // The chunk groups need every chunk: they are pooled here, from the checked chunk files.
     stage_start = Clock::now();
-    const auto group_progress = [&](const GroupProgress& p) {
-        if (o.progress) o.progress({"groups", p.done, p.total, 0, seconds_since(start), -1.0});
-    };
-    staged.groups = build_groups(staging, kStagedGeneration, staged.chunks, o.size_m, o.chunk_size_m, o.groups,
-                                 stream_level_rule(o), o.threads, group_progress);
+    staged.groups = pool_groups(o, staging, staged.chunks, start);
     s.stages.push_back({"chunk groups", seconds_since(stage_start)});
 
-    stage_start = Clock::now();
-    if (o.progress) o.progress({"manifest", staged.chunks.size(), staged.chunks.size(), 0, seconds_since(start), 0.0});
-    const fs::path generation = new_generation(o.output);
-    WorldManifest& m = result.manifest;
-    m = manifest_without_chunks(o, layout, generation);
-    for (ChunkEntry& c : staged.chunks) {
-        c.file = generation / c.file.lexically_relative(kStagedGeneration);
-        m.gaussians += c.prefix_count[0];
-        m.chunks.push_back(std::move(c));
-    }
-    for (ChunkEntry& g : staged.groups) {
-        g.file = generation / g.file.lexically_relative(kStagedGeneration);
-        m.groups.push_back(std::move(g));
-    }
-    m.group_generator = group_generator_settings(o.groups);
-    commit_staged(o, staging, generation, m);
-    staging_lock.reset();  // the clean-up takes it again to remove the staging folder
-    if (o.progress) o.progress({"clean-up", m.chunks.size(), m.chunks.size(), 0, seconds_since(start), 0.0});
-    remove_unnamed_files(o.output, m);
-    s.stages.push_back({"manifest and clean-up", seconds_since(stage_start)});
-    summarise_manifest(m, o.output, s);
+    commit_merge(o, staging, layout, staged, staging_lock, start, result);
+    summarise_manifest(result.manifest, o.output, s);
     s.seconds = seconds_since(start);
     return result;
 }

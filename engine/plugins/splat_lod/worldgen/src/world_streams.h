@@ -8,14 +8,14 @@
 namespace splat_lod::world {
 
 enum class StreamKind : std::uint8_t {
-    terrain = 1,  // the terrain's noise seeds, phases and offsets
-    layout,       // houses, fences and posts along the path
-    ground,       // a chunk's ground Gaussians (cell = chunk)
-    water,        // a chunk's water Gaussians (cell = chunk)
-    tree,         // a tree placement cell
-    grass,        // a grass patch placement cell
-    rock,         // a rock placement cell
-    picket_fence, // the picket fence in front of a house (cell = house index)
+    terrain = 1,   // the terrain's noise seeds, phases and offsets
+    layout,        // houses, fences and posts along the path
+    ground,        // a chunk's ground Gaussians (cell = chunk)
+    water,         // a chunk's water Gaussians (cell = chunk)
+    tree,          // a tree placement cell
+    grass,         // a grass patch placement cell
+    rock,          // a rock placement cell
+    picket_fence,  // the picket fence in front of a house (cell = house index)
 };
 
 // kind in the top 8 bits, then 28 bits per coordinate (two's complement): unique for |i|, |j| < 2^27.

@@ -35,8 +35,12 @@ constexpr float kBankSlope = 0.22f;
 constexpr float kWaterLevel = -2.5f;
 constexpr float kWaterFall = 0.004f;  // metres per metre along +z
 
-float sine(double angle) { return synth::sin_cos(angle).sin; }
-float cosine(double angle) { return synth::sin_cos(angle).cos; }
+float sine(double angle) {
+    return synth::sin_cos(angle).sin;
+}
+float cosine(double angle) {
+    return synth::sin_cos(angle).cos;
+}
 
 }  // namespace
 
@@ -66,8 +70,7 @@ float WorldTerrain::hills(float x, float z) const {
 
 float WorldTerrain::CentreLine::across(float along, float size) const {
     float value = offset;
-    for (int k = 0; k < 2; ++k)
-        value += amplitude[k] * size * sine(kTwoPi * along / (wavelength[k] * size) + phase[k]);
+    for (int k = 0; k < 2; ++k) value += amplitude[k] * size * sine(kTwoPi * along / (wavelength[k] * size) + phase[k]);
     return value;
 }
 
@@ -84,13 +87,23 @@ float WorldTerrain::CentreLine::distance(float across_value, float along, float 
     return std::abs(across_value - across(along, size)) / std::sqrt(1.0f + s * s);
 }
 
-float WorldTerrain::river_x(float z) const { return river_.across(z, size_); }
-float WorldTerrain::river_distance(float x, float z) const { return river_.distance(x, z, size_); }
+float WorldTerrain::river_x(float z) const {
+    return river_.across(z, size_);
+}
+float WorldTerrain::river_distance(float x, float z) const {
+    return river_.distance(x, z, size_);
+}
 
-float WorldTerrain::water_level(float z) const { return kWaterLevel - kWaterFall * z; }
+float WorldTerrain::water_level(float z) const {
+    return kWaterLevel - kWaterFall * z;
+}
 
-float WorldTerrain::path_z(float x) const { return path_.across(x, size_); }
-float WorldTerrain::path_distance(float x, float z) const { return path_.distance(z, x, size_); }
+float WorldTerrain::path_z(float x) const {
+    return path_.across(x, size_);
+}
+float WorldTerrain::path_distance(float x, float z) const {
+    return path_.distance(z, x, size_);
+}
 
 glm::vec2 WorldTerrain::path_direction(float x) const {
     const float slope = path_.slope(x, size_);
@@ -109,8 +122,7 @@ float WorldTerrain::height(float x, float z) const {
     } else {
         valley = water - 0.25f + kBankSlope * (d - kRiverHalfWidth);
     }
-    const float carve =
-        1.0f - glm::smoothstep(kRiverHalfWidth + kValleyInner, kRiverHalfWidth + kValleyOuter, d);
+    const float carve = 1.0f - glm::smoothstep(kRiverHalfWidth + kValleyInner, kRiverHalfWidth + kValleyOuter, d);
     return base + (valley - base) * carve;
 }
 

@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/quaternion.hpp>
 
-#include "splat_lod/core/splat_io.h"
 #include "splat_lod/core/chunk_reader.h"
+#include "splat_lod/core/splat_io.h"
 #include "splat_lod/worldgen/world_generator.h"
 #include "splat_lod/worldgen/world_groups.h"
 #include "test_support.h"

@@ -14,8 +14,8 @@
 
 #include "engine/core/error.h"
 #include "splat_io_test_helpers.h"
-#include "splat_lod/worldgen/world_generator.h"
 #include "splat_lod/core/world_manifest.h"
+#include "splat_lod/worldgen/world_generator.h"
 #include "splat_lod/worldgen/world_shards.h"
 #include "test_support.h"
 #include "tiny_world.h"

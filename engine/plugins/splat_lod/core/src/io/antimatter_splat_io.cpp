@@ -18,7 +18,9 @@ namespace {
 
 constexpr std::size_t kRecordSize = 32;
 
-std::uint8_t to_byte(float v) { return static_cast<std::uint8_t>(std::clamp(std::round(v), 0.0f, 255.0f)); }
+std::uint8_t to_byte(float v) {
+    return static_cast<std::uint8_t>(std::clamp(std::round(v), 0.0f, 255.0f));
+}
 
 void decode_record(const std::uint8_t* p, SplatCloud& cloud, std::size_t i) {
     cloud.positions[i] = {io::load_f32le(p), io::load_f32le(p + 4), io::load_f32le(p + 8)};

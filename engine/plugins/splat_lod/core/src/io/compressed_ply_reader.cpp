@@ -39,9 +39,13 @@ float unorm(std::uint32_t value, int bits) {
     return static_cast<float>(value & max) / static_cast<float>(max);
 }
 
-float lerp(float a, float b, float t) { return a * (1.0f - t) + b * t; }
+float lerp(float a, float b, float t) {
+    return a * (1.0f - t) + b * t;
+}
 
-glm::vec3 unpack_11_10_11(std::uint32_t v) { return {unorm(v >> 21, 11), unorm(v >> 11, 10), unorm(v, 11)}; }
+glm::vec3 unpack_11_10_11(std::uint32_t v) {
+    return {unorm(v >> 21, 11), unorm(v >> 11, 10), unorm(v, 11)};
+}
 
 Rotation unpack_rotation(std::uint32_t v) {
     constexpr float kScale = 1.41421356237f;  // the three stored components span ±1/sqrt(2)
@@ -50,10 +54,14 @@ Rotation unpack_rotation(std::uint32_t v) {
     const float c = (unorm(v, 10) - 0.5f) * kScale;
     const float m = std::sqrt(std::max(0.0f, 1.0f - (a * a + b * b + c * c)));
     switch (v >> 30) {
-        case 0: return {m, a, b, c};
-        case 1: return {a, m, b, c};
-        case 2: return {a, b, m, c};
-        default: return {a, b, c, m};
+        case 0:
+            return {m, a, b, c};
+        case 1:
+            return {a, m, b, c};
+        case 2:
+            return {a, b, m, c};
+        default:
+            return {a, b, c, m};
     }
 }
 

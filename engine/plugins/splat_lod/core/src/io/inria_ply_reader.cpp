@@ -23,7 +23,9 @@ const std::set<std::string>& standard_names() {
     return names;
 }
 
-bool is_f_rest(const std::string& name) { return name.rfind("f_rest_", 0) == 0; }
+bool is_f_rest(const std::string& name) {
+    return name.rfind("f_rest_", 0) == 0;
+}
 
 // The SH degree implied by the f_rest_* properties, which must be f_rest_0..f_rest_{M-1}.
 int sh_degree_from_f_rest(const PlyFile& ply, const PlyElement& vertex) {
@@ -128,9 +130,12 @@ private:
 
 const char* format_name(PlyFormat format) {
     switch (format) {
-        case PlyFormat::ascii: return "ascii";
-        case PlyFormat::binary_little_endian: return "binary_little_endian";
-        case PlyFormat::binary_big_endian: return "binary_big_endian";
+        case PlyFormat::ascii:
+            return "ascii";
+        case PlyFormat::binary_little_endian:
+            return "binary_little_endian";
+        case PlyFormat::binary_big_endian:
+            return "binary_big_endian";
     }
     return "?";
 }

@@ -7,7 +7,9 @@
 
 namespace splat_lod::io {
 
-void fail_file(const std::string& name, std::string_view message) { engine::fail(name + ": " + std::string(message)); }
+void fail_file(const std::string& name, std::string_view message) {
+    engine::fail(name + ": " + std::string(message));
+}
 
 void fail_at(const std::string& name, std::uint64_t offset, std::string_view message) {
     engine::fail(name + ": offset " + std::to_string(offset) + ": " + std::string(message));
@@ -41,12 +43,16 @@ float unit_to_logit(float opacity) {
     return std::log(a / (1.0f - a));
 }
 
-float sigmoid(float x) { return 1.0f / (1.0f + std::exp(-x)); }
+float sigmoid(float x) {
+    return 1.0f / (1.0f + std::exp(-x));
+}
 
 }  // namespace splat_lod::io
 
 namespace splat_lod {
 
-float opacity_to_logit(float opacity) { return io::unit_to_logit(opacity); }
+float opacity_to_logit(float opacity) {
+    return io::unit_to_logit(opacity);
+}
 
 }  // namespace splat_lod

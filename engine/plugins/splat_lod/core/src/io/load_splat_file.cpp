@@ -54,10 +54,14 @@ SplatFileFormat detect_splat_format(const fs::path& path) {
 
 SplatCloud load_splat_file(const fs::path& path, LoadReport* report) {
     switch (detect_splat_format(path)) {
-        case SplatFileFormat::ply: return read_ply(path, report);
-        case SplatFileFormat::antimatter_splat: return read_antimatter_splat(path, report);
-        case SplatFileFormat::spz: return read_spz(path, report);
-        case SplatFileFormat::sog: return read_sog(path, report);
+        case SplatFileFormat::ply:
+            return read_ply(path, report);
+        case SplatFileFormat::antimatter_splat:
+            return read_antimatter_splat(path, report);
+        case SplatFileFormat::spz:
+            return read_spz(path, report);
+        case SplatFileFormat::sog:
+            return read_sog(path, report);
     }
     io::fail_file(path.string(), "unrecognised splat file");
 }

@@ -38,7 +38,9 @@ constexpr std::array<TypeName, 16> kTypeNames{{
     {"float64", PlyType::float64},
 }};
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
+bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
+}
 
 std::vector<std::string_view> split_words(std::string_view line) {
     std::vector<std::string_view> words;
@@ -232,14 +234,22 @@ void read_binary_column(const PlyFile& ply, const PlyElement& element, const Ply
 template <typename Out>
 void read_column(const PlyFile& ply, const PlyElement& element, const PlyProperty& property, std::vector<Out>& out) {
     switch (property.type) {
-        case PlyType::int8: return read_binary_column<std::int8_t>(ply, element, property, out);
-        case PlyType::uint8: return read_binary_column<std::uint8_t>(ply, element, property, out);
-        case PlyType::int16: return read_binary_column<std::int16_t>(ply, element, property, out);
-        case PlyType::uint16: return read_binary_column<std::uint16_t>(ply, element, property, out);
-        case PlyType::int32: return read_binary_column<std::int32_t>(ply, element, property, out);
-        case PlyType::uint32: return read_binary_column<std::uint32_t>(ply, element, property, out);
-        case PlyType::float32: return read_binary_column<float>(ply, element, property, out);
-        case PlyType::float64: return read_binary_column<double>(ply, element, property, out);
+        case PlyType::int8:
+            return read_binary_column<std::int8_t>(ply, element, property, out);
+        case PlyType::uint8:
+            return read_binary_column<std::uint8_t>(ply, element, property, out);
+        case PlyType::int16:
+            return read_binary_column<std::int16_t>(ply, element, property, out);
+        case PlyType::uint16:
+            return read_binary_column<std::uint16_t>(ply, element, property, out);
+        case PlyType::int32:
+            return read_binary_column<std::int32_t>(ply, element, property, out);
+        case PlyType::uint32:
+            return read_binary_column<std::uint32_t>(ply, element, property, out);
+        case PlyType::float32:
+            return read_binary_column<float>(ply, element, property, out);
+        case PlyType::float64:
+            return read_binary_column<double>(ply, element, property, out);
     }
 }
 
@@ -296,14 +306,22 @@ std::vector<std::uint32_t> PlyFile::column_u32(const PlyElement& element, const 
 
 const char* ply_type_name(PlyType type) {
     switch (type) {
-        case PlyType::int8: return "char";
-        case PlyType::uint8: return "uchar";
-        case PlyType::int16: return "short";
-        case PlyType::uint16: return "ushort";
-        case PlyType::int32: return "int";
-        case PlyType::uint32: return "uint";
-        case PlyType::float32: return "float";
-        case PlyType::float64: return "double";
+        case PlyType::int8:
+            return "char";
+        case PlyType::uint8:
+            return "uchar";
+        case PlyType::int16:
+            return "short";
+        case PlyType::uint16:
+            return "ushort";
+        case PlyType::int32:
+            return "int";
+        case PlyType::uint32:
+            return "uint";
+        case PlyType::float32:
+            return "float";
+        case PlyType::float64:
+            return "double";
     }
     return "?";
 }
@@ -311,13 +329,17 @@ const char* ply_type_name(PlyType type) {
 std::uint32_t ply_type_size(PlyType type) {
     switch (type) {
         case PlyType::int8:
-        case PlyType::uint8: return 1;
+        case PlyType::uint8:
+            return 1;
         case PlyType::int16:
-        case PlyType::uint16: return 2;
+        case PlyType::uint16:
+            return 2;
         case PlyType::int32:
         case PlyType::uint32:
-        case PlyType::float32: return 4;
-        case PlyType::float64: return 8;
+        case PlyType::float32:
+            return 4;
+        case PlyType::float64:
+            return 8;
     }
     return 0;
 }

@@ -26,7 +26,9 @@ namespace fs = std::filesystem;
 constexpr int kPaletteEntriesPerRow = 64;
 
 // Inverse of sign(x)·ln(|x| + 1), the transform SOG applies to positions before quantising.
-float inverse_log_transform(float v) { return std::copysign(std::expm1(std::fabs(v)), v); }
+float inverse_log_transform(float v) {
+    return std::copysign(std::expm1(std::fabs(v)), v);
+}
 
 fs::path meta_path_of(const fs::path& path) {
     std::error_code ec;

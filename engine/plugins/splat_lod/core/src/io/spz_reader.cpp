@@ -216,7 +216,9 @@ SplatCloud read_v4(std::span<const std::uint8_t> bytes, const std::string& name,
     return decode_arrays(h, arrays);
 }
 
-bool is_gzip(std::span<const std::uint8_t> bytes) { return bytes.size() >= 2 && bytes[0] == 0x1f && bytes[1] == 0x8b; }
+bool is_gzip(std::span<const std::uint8_t> bytes) {
+    return bytes.size() >= 2 && bytes[0] == 0x1f && bytes[1] == 0x8b;
+}
 
 }  // namespace
 

@@ -17,9 +17,15 @@ namespace {
 // Same threshold as sanitise(): below it a quaternion carries no usable direction.
 constexpr double kMinQuaternionNormSquared = 1e-20;
 
-bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-bool finite(const glm::dvec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const glm::dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+bool finite(const glm::dvec2& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y);
+}
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 template <typename Matrix>
 bool finite_matrix(const Matrix& m) {
@@ -52,7 +58,6 @@ std::optional<glm::dmat3> rotation_matrix(const Rotation& r) {
                       2.0 * (x * y - w * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z + w * x),   // column 1
                       2.0 * (x * z + w * y), 2.0 * (y * z - w * x), 1.0 - 2.0 * (x * x + y * y));  // column 2
 }
-
 
 // Undilated Σ2D = A Aᵀ with A = J · (local_to_camera · R) · S (2×3), which equals J W₃ Σ W₃ᵀ Jᵀ for
 // Σ = M R S Sᵀ Rᵀ Mᵀ. Its determinant is taken as the sum of the squared 2×2 minors of A
@@ -137,7 +142,8 @@ void check_camera(const ReferenceCamera& camera, const char* caller) {
         bad("image size must be positive, got " + std::to_string(camera.width) + "x" + std::to_string(camera.height));
     if (!(camera.fx > 0.0 && camera.fy > 0.0 && std::isfinite(camera.fx) && std::isfinite(camera.fy)))
         bad("focal lengths must be positive and finite");
-    if (!std::isfinite(camera.cx) || !std::isfinite(camera.cy) || !finite(camera.position) || !finite_matrix(camera.view))
+    if (!std::isfinite(camera.cx) || !std::isfinite(camera.cy) || !finite(camera.position) ||
+        !finite_matrix(camera.view))
         bad("camera has a non-finite principal point, centre or view matrix");
     if (!(camera.clamp_tan_x >= 0.0 && camera.clamp_tan_y >= 0.0 && std::isfinite(camera.clamp_tan_x) &&
           std::isfinite(camera.clamp_tan_y)))
@@ -154,8 +160,10 @@ InstanceFrame make_instance_frame(const SplatCloud& cloud, const glm::dmat4& mod
     InstanceFrame frame;
     frame.sh_degree = std::clamp(std::min({cloud.sh_degree, sh_degree_cap, settings.sh_degree_cap}), 0, kMaxShDegree);
     const glm::dmat3 linear(model);
-    if (!finite_matrix(model)) frame.cull = CullReason::non_finite;
-    else if (!(std::abs(glm::determinant(linear)) > 0.0)) frame.cull = CullReason::degenerate;
+    if (!finite_matrix(model))
+        frame.cull = CullReason::non_finite;
+    else if (!(std::abs(glm::determinant(linear)) > 0.0))
+        frame.cull = CullReason::degenerate;
     if (frame.cull != CullReason::none) return frame;
     frame.model_view = camera.view * model;
     // View (x right, y up, looking down −z) → image-aligned (x right, y down, z forward): a
@@ -202,13 +210,20 @@ ProjectedGaussian project_in_frame(const SplatCloud& cloud, std::size_t index, c
 
 const char* to_string(CullReason reason) {
     switch (reason) {
-        case CullReason::none: return "drawn";
-        case CullReason::non_finite: return "non-finite";
-        case CullReason::zero_rotation: return "zero rotation";
-        case CullReason::near_plane: return "near plane";
-        case CullReason::invisible: return "invisible";
-        case CullReason::degenerate: return "degenerate";
-        case CullReason::outside: return "outside";
+        case CullReason::none:
+            return "drawn";
+        case CullReason::non_finite:
+            return "non-finite";
+        case CullReason::zero_rotation:
+            return "zero rotation";
+        case CullReason::near_plane:
+            return "near plane";
+        case CullReason::invisible:
+            return "invisible";
+        case CullReason::degenerate:
+            return "degenerate";
+        case CullReason::outside:
+            return "outside";
     }
     return "unknown";
 }
@@ -246,7 +261,8 @@ ReferenceCamera scaled_camera(const ReferenceCamera& full, double render_scale) 
 }
 
 ProjectedGaussian project_gaussian(const SplatCloud& cloud, std::size_t index, const glm::dmat4& model,
-                                   const ReferenceCamera& camera, const ReferenceSettings& settings, int sh_degree_cap) {
+                                   const ReferenceCamera& camera, const ReferenceSettings& settings,
+                                   int sh_degree_cap) {
     detail::check_camera(camera, "splat_lod::reference::project_gaussian()");
     detail::check_settings(settings, "splat_lod::reference::project_gaussian()");
     const detail::InstanceFrame frame = detail::make_instance_frame(cloud, model, camera, settings, sh_degree_cap);

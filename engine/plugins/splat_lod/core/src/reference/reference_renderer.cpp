@@ -18,8 +18,8 @@
 namespace splat_lod::reference {
 namespace {
 
-constexpr int kTileSize = 16;                      // band height and tile width, in pixels
-constexpr std::size_t kProjectionChunk = 8192;     // Gaussians per projection task
+constexpr int kTileSize = 16;                   // band height and tile width, in pixels
+constexpr std::size_t kProjectionChunk = 8192;  // Gaussians per projection task
 
 struct DrawnSplat {
     glm::dvec2 mean{0.0};
@@ -40,13 +40,27 @@ struct Projection {
 void count(ReferenceStats& stats, CullReason reason) {
     ++stats.considered;
     switch (reason) {
-        case CullReason::none: ++stats.drawn; break;
-        case CullReason::non_finite: ++stats.non_finite_dropped; break;
-        case CullReason::zero_rotation: ++stats.zero_rotation_dropped; break;
-        case CullReason::near_plane: ++stats.culled_near; break;
-        case CullReason::invisible: ++stats.culled_invisible; break;
-        case CullReason::degenerate: ++stats.culled_degenerate; break;
-        case CullReason::outside: ++stats.culled_outside; break;
+        case CullReason::none:
+            ++stats.drawn;
+            break;
+        case CullReason::non_finite:
+            ++stats.non_finite_dropped;
+            break;
+        case CullReason::zero_rotation:
+            ++stats.zero_rotation_dropped;
+            break;
+        case CullReason::near_plane:
+            ++stats.culled_near;
+            break;
+        case CullReason::invisible:
+            ++stats.culled_invisible;
+            break;
+        case CullReason::degenerate:
+            ++stats.culled_degenerate;
+            break;
+        case CullReason::outside:
+            ++stats.culled_outside;
+            break;
     }
 }
 
@@ -77,7 +91,8 @@ Projection project_all(std::span<const ReferenceInstance> instances, const Refer
         const SplatCloud* cloud = instances[i].cloud;
         if (cloud == nullptr || cloud->empty()) continue;
         cloud->check_consistent();
-        frames[i] = detail::make_instance_frame(*cloud, instances[i].model, camera, settings, instances[i].sh_degree_cap);
+        frames[i] =
+            detail::make_instance_frame(*cloud, instances[i].model, camera, settings, instances[i].sh_degree_cap);
         for (std::size_t begin = 0; begin < cloud->size(); begin += kProjectionChunk)
             tasks.push_back({i, begin, std::min(cloud->size(), begin + kProjectionChunk)});
     }
@@ -89,7 +104,8 @@ Projection project_all(std::span<const ReferenceInstance> instances, const Refer
             const ProjectedGaussian g = detail::project_in_frame(cloud, index, frames[task.instance], camera, settings);
             count(parts[t].stats, g.cull);
             if (g.drawn())
-                parts[t].splats.push_back({g.mean, g.conic, g.colour, g.opacity, g.depth, g.pixels, task.instance, index});
+                parts[t].splats.push_back(
+                    {g.mean, g.conic, g.colour, g.opacity, g.depth, g.pixels, task.instance, index});
         }
     });
     Projection all;
@@ -120,7 +136,8 @@ BandLists bin_to_bands(const std::vector<DrawnSplat>& splats, int height) {
     BandLists lists;
     lists.offsets.assign(static_cast<std::size_t>(bands) + 1, 0);
     for (const DrawnSplat& s : splats)
-        for (int b = s.pixels.y0 / kTileSize; b <= s.pixels.y1 / kTileSize; ++b) ++lists.offsets[static_cast<std::size_t>(b) + 1];
+        for (int b = s.pixels.y0 / kTileSize; b <= s.pixels.y1 / kTileSize; ++b)
+            ++lists.offsets[static_cast<std::size_t>(b) + 1];
     for (std::size_t b = 1; b < lists.offsets.size(); ++b) lists.offsets[b] += lists.offsets[b - 1];
     lists.ids.resize(lists.offsets.back());
     std::vector<std::size_t> cursor(lists.offsets.begin(), lists.offsets.end() - 1);
@@ -214,16 +231,17 @@ void store_gradients(const PixelResult& r, const PixelDerivatives& d, std::size_
 }
 
 void rasterise_band(const RasterInputs& in, int band, ReferenceImage& image) {
-    const auto first = in.bands.ids.begin() + static_cast<std::ptrdiff_t>(in.bands.offsets[static_cast<std::size_t>(band)]);
-    const auto last = in.bands.ids.begin() + static_cast<std::ptrdiff_t>(in.bands.offsets[static_cast<std::size_t>(band) + 1]);
+    const auto first =
+        in.bands.ids.begin() + static_cast<std::ptrdiff_t>(in.bands.offsets[static_cast<std::size_t>(band)]);
+    const auto last =
+        in.bands.ids.begin() + static_cast<std::ptrdiff_t>(in.bands.offsets[static_cast<std::size_t>(band) + 1]);
     const int y0 = band * kTileSize, y1 = std::min(image.height, y0 + kTileSize);
     std::vector<std::uint32_t> tile;
     for (int x0 = 0; x0 < image.width; x0 += kTileSize) {
         const int x1 = std::min(image.width, x0 + kTileSize);
         tile.clear();
-        std::copy_if(first, last, std::back_inserter(tile), [&](std::uint32_t id) {
-            return in.splats[id].pixels.x0 < x1 && in.splats[id].pixels.x1 >= x0;
-        });
+        std::copy_if(first, last, std::back_inserter(tile),
+                     [&](std::uint32_t id) { return in.splats[id].pixels.x0 < x1 && in.splats[id].pixels.x1 >= x0; });
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
                 const std::size_t p = image.pixel_index(x, y);
@@ -298,7 +316,9 @@ engine::Image to_image8(const ReferenceImage& image) {
     out.height = image.height;
     out.rgba.resize(4 * image.alpha.size());
     // v > 0 ? … : 0 also maps a NaN (which the renderer never produces) to black, not to UB.
-    const auto to8 = [](double v) { return static_cast<std::uint8_t>(std::lround((v > 0.0 ? std::min(v, 1.0) : 0.0) * 255.0)); };
+    const auto to8 = [](double v) {
+        return static_cast<std::uint8_t>(std::lround((v > 0.0 ? std::min(v, 1.0) : 0.0) * 255.0));
+    };
     for (std::size_t p = 0; p < image.alpha.size(); ++p) {
         for (std::size_t c = 0; c < 3; ++c) out.rgba[4 * p + c] = to8(image.rgb[3 * p + c]);
         out.rgba[4 * p + 3] = 255;

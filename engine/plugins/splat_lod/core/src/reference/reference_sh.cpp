@@ -13,9 +13,8 @@ constexpr double kC0 = 0.28209479177387814;
 constexpr double kC1 = 0.4886025119029199;
 constexpr std::array<double, 5> kC2 = {1.0925484305920792, -1.0925484305920792, 0.31539156525252005,
                                        -1.0925484305920792, 0.5462742152960396};
-constexpr std::array<double, 7> kC3 = {-0.5900435899266435, 2.890611442640554, -0.4570457994644658,
-                                       0.3731763325901154,  -0.4570457994644658, 1.445305721320277,
-                                       -0.5900435899266435};
+constexpr std::array<double, 7> kC3 = {-0.5900435899266435, 2.890611442640554, -0.4570457994644658, 0.3731763325901154,
+                                       -0.4570457994644658, 1.445305721320277, -0.5900435899266435};
 
 // The basis values Y_k(d) for k = 1..15 in 3DGS order (entry 0 unused), d a unit vector.
 std::array<double, 16> sh_basis(const glm::dvec3& d, int degree) {
@@ -62,8 +61,7 @@ glm::dvec3 sh_colour_unclamped(const SplatCloud& cloud, std::size_t index, int d
         const float* rest = cloud.sh_rest.data() + index * cloud.sh_rest_stride();
         for (int k = 1; k <= sh_rest_coeffs(degree); ++k) {
             const float* coefficient = rest + 3 * (k - 1);  // coefficient-major, channel-minor
-            result += basis[static_cast<std::size_t>(k)] *
-                      glm::dvec3(coefficient[0], coefficient[1], coefficient[2]);
+            result += basis[static_cast<std::size_t>(k)] * glm::dvec3(coefficient[0], coefficient[1], coefficient[2]);
         }
     }
     return result + 0.5;

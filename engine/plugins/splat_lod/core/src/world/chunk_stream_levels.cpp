@@ -38,16 +38,20 @@ std::vector<std::uint32_t> stream_order(const SplatCloud& cloud, const StreamLev
     const std::vector<std::uint8_t> levels = stream_levels(cloud, rule);
     std::vector<std::uint32_t> order(cloud.size());
     std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return levels[a] > levels[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return levels[a] > levels[b]; });
     return order;
 }
 
 std::string check_stream_level_rule(const StreamLevelRule& rule) {
-    if (!(std::isfinite(rule.size_threshold_px) && rule.size_threshold_px > 0.0f)) return "S_T must be positive and finite";
+    if (!(std::isfinite(rule.size_threshold_px) && rule.size_threshold_px > 0.0f))
+        return "S_T must be positive and finite";
     if (!(std::isfinite(rule.rel_min) && rule.rel_min > 0.0f)) return "S_rel_min must be positive and finite";
     for (std::size_t k = 0; k < rule.reach_min.size(); ++k) {
-        if (!(std::isfinite(rule.reach_min[k]) && rule.reach_min[k] > 0.0f)) return "reaches must be positive and finite";
-        if (k > 0 && !(rule.reach_min[k] < rule.reach_min[k - 1])) return "reaches must decrease from stream level 4 to 2";
+        if (!(std::isfinite(rule.reach_min[k]) && rule.reach_min[k] > 0.0f))
+            return "reaches must be positive and finite";
+        if (k > 0 && !(rule.reach_min[k] < rule.reach_min[k - 1]))
+            return "reaches must decrease from stream level 4 to 2";
     }
     return {};
 }

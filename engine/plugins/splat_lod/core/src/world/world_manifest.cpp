@@ -25,8 +25,8 @@
 #include <tuple>
 #include <utility>
 
-#include <nlohmann/json.hpp>
 #include <zlib.h>
+#include <nlohmann/json.hpp>
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
@@ -127,7 +127,9 @@ public:
         return path;
     }
 
-    static std::string join(const std::string& key, const std::string& name) { return key.empty() ? name : key + "." + name; }
+    static std::string join(const std::string& key, const std::string& name) {
+        return key.empty() ? name : key + "." + name;
+    }
     static std::string index(const std::string& key, std::size_t i) { return key + "[" + std::to_string(i) + "]"; }
 
     WorldManifest manifest(const json& document) const;
@@ -157,25 +159,28 @@ ChunkLevel ManifestReader::level(const json& object, const std::string& key) con
 void ManifestReader::check_chunk_counts(const ChunkEntry& c, const std::string& key) const {
     for (int l = 1; l < kLevels; ++l)
         if (c.prefix_count[static_cast<std::size_t>(l)] > c.prefix_count[static_cast<std::size_t>(l - 1)])
-            error(join(key, "prefix_count"), "counts must not increase with the stream level (Gaussians with stream level >= " +
-                                                 std::to_string(l + 1) + " are a prefix of those with stream level >= " +
-                                                 std::to_string(l) + ")");
+            error(join(key, "prefix_count"),
+                  "counts must not increase with the stream level (Gaussians with stream level >= " +
+                      std::to_string(l + 1) + " are a prefix of those with stream level >= " + std::to_string(l) + ")");
     if (c.vertex_bytes == 0) error(join(key, "vertex_bytes"), "must be positive");
     // file_bytes = header_bytes + prefix_count[0] · vertex_bytes, checked without overflow.
     std::uint64_t records = 0, total = 0;
     if (__builtin_mul_overflow(c.prefix_count[0], c.vertex_bytes, &records) ||
         __builtin_add_overflow(records, c.header_bytes, &total) || total != c.file_bytes)
-        error(join(key, "file_bytes"), std::to_string(c.file_bytes) + " differs from header_bytes + prefix_count[0] x "
-                                       "vertex_bytes");
+        error(join(key, "file_bytes"), std::to_string(c.file_bytes) +
+                                           " differs from header_bytes + prefix_count[0] x "
+                                           "vertex_bytes");
 }
 
 ChunkEntry ManifestReader::chunk(const json& object, const std::string& key, bool group) const {
     if (group)
-        only_keys(object, key, {"id", "file", "cell", "bounds_min", "bounds_max", "prefix_count", "levels", "header_bytes",
-                                "vertex_bytes", "file_bytes", "header_crc32", "record_crc32", "depth", "cell_m"});
+        only_keys(object, key,
+                  {"id", "file", "cell", "bounds_min", "bounds_max", "prefix_count", "levels", "header_bytes",
+                   "vertex_bytes", "file_bytes", "header_crc32", "record_crc32", "depth", "cell_m"});
     else
-        only_keys(object, key, {"id", "file", "cell", "bounds_min", "bounds_max", "prefix_count", "levels",
-                                "header_bytes", "vertex_bytes", "file_bytes", "header_crc32", "record_crc32"});
+        only_keys(object, key,
+                  {"id", "file", "cell", "bounds_min", "bounds_max", "prefix_count", "levels", "header_bytes",
+                   "vertex_bytes", "file_bytes", "header_crc32", "record_crc32"});
     ChunkEntry c;
     if (group) {
         const std::uint64_t depth = whole(member(object, key, "depth"), join(key, "depth"));
@@ -252,16 +257,19 @@ WorldManifest ManifestReader::manifest(const json& document) const {
     WorldManifest m;
     // The version first: another version may well have other keys, and saying so is more useful.
     const std::uint64_t version = whole(member(document, "", "version"), "version");
-    if (version < static_cast<std::uint64_t>(kOldestManifestVersion) || version > static_cast<std::uint64_t>(kManifestVersion))
-        error("version", "expected " + std::to_string(kOldestManifestVersion) + " to " + std::to_string(kManifestVersion) +
-                             ", got " + std::to_string(version) +
+    if (version < static_cast<std::uint64_t>(kOldestManifestVersion) ||
+        version > static_cast<std::uint64_t>(kManifestVersion))
+        error("version", "expected " + std::to_string(kOldestManifestVersion) + " to " +
+                             std::to_string(kManifestVersion) + ", got " + std::to_string(version) +
                              " (written by another version of the generator: generate the world again)");
     if (version >= 4)
-        only_keys(document, "", {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density", "generator",
-                                 "stream_levels", "chunks", "props", "terrain_mesh", "groups", "group_generator"});
+        only_keys(document, "",
+                  {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density", "generator",
+                   "stream_levels", "chunks", "props", "terrain_mesh", "groups", "group_generator"});
     else
-        only_keys(document, "", {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density",
-                                 "generator", "stream_levels", "chunks", "props", "terrain_mesh"});
+        only_keys(document, "",
+                  {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density", "generator",
+                   "stream_levels", "chunks", "props", "terrain_mesh"});
     m.version = static_cast<int>(version);
     m.seed = whole(member(document, "", "seed"), "seed");
     m.size_m = positive(member(document, "", "size_m"), "size_m");
@@ -273,7 +281,8 @@ WorldManifest ManifestReader::manifest(const json& document) const {
     if (document.contains("density")) m.density = positive(document["density"], "density");
     if (document.contains("generator")) m.generator = text(document["generator"], "generator");
     m.stream_levels = stream_level_rule(member(document, "", "stream_levels"), "stream_levels");
-    if (document.contains("terrain_mesh")) m.terrain_mesh = relative_path(document["terrain_mesh"], "terrain_mesh", true);
+    if (document.contains("terrain_mesh"))
+        m.terrain_mesh = relative_path(document["terrain_mesh"], "terrain_mesh", true);
 
     const json& chunks = member(document, "", "chunks");
     if (!chunks.is_array()) error("chunks", "expected an array");
@@ -314,16 +323,20 @@ void ManifestReader::groups(const json& list, WorldManifest& m) const {
             error(join(key, "cell"), "is used by an earlier group of the same depth");
         for (int l = 1; l < kLevels; ++l)
             if (g.prefix_count[static_cast<std::size_t>(l)] != g.prefix_count[0])
-                error(join(key, "prefix_count"), "a group's Gaussians are all of stream level 4: the counts must be equal");
+                error(join(key, "prefix_count"),
+                      "a group's Gaussians are all of stream level 4: the counts must be equal");
     }
 }
 
-json vec3_json(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
+json vec3_json(const glm::vec3& v) {
+    return json::array({v.x, v.y, v.z});
+}
 
 json chunk_json(const ChunkEntry& c) {
     json levels = json::array();
     for (const ChunkLevel& l : c.levels)
-        levels.push_back({{"extent_max", l.extent_max}, {"extent_per_min_coverage_max", l.extent_per_min_coverage_max}});
+        levels.push_back(
+            {{"extent_max", l.extent_max}, {"extent_per_min_coverage_max", l.extent_per_min_coverage_max}});
     return {{"id", c.id},
             {"file", c.file.generic_string()},
             {"cell", json::array({c.cell.x, c.cell.y})},
@@ -352,16 +365,23 @@ json manifest_json(const WorldManifest& m) {
                          {"translation", vec3_json(p.translation)},
                          {"rotation_euler_deg", vec3_json(p.rotation_euler_deg)},
                          {"scale", vec3_json(p.scale)}});
-    return {{"version", m.version},       {"seed", m.seed},
-            {"size_m", m.size_m},         {"chunk_size_m", m.chunk_size_m},
-            {"up", vec3_json(m.up)},      {"gaussians", m.gaussians},
-            {"density", m.density},       {"generator", m.generator},
-            {"stream_levels", {{"size_threshold_px", m.stream_levels.size_threshold_px},
-                               {"rel_min", m.stream_levels.rel_min},
-                               {"reach_min", m.stream_levels.reach_min}}},
-            {"chunks", chunks},           {"props", props},
+    return {{"version", m.version},
+            {"seed", m.seed},
+            {"size_m", m.size_m},
+            {"chunk_size_m", m.chunk_size_m},
+            {"up", vec3_json(m.up)},
+            {"gaussians", m.gaussians},
+            {"density", m.density},
+            {"generator", m.generator},
+            {"stream_levels",
+             {{"size_threshold_px", m.stream_levels.size_threshold_px},
+              {"rel_min", m.stream_levels.rel_min},
+              {"reach_min", m.stream_levels.reach_min}}},
+            {"chunks", chunks},
+            {"props", props},
             {"terrain_mesh", m.terrain_mesh.generic_string()},
-            {"groups", groups},           {"group_generator", m.group_generator}};
+            {"groups", groups},
+            {"group_generator", m.group_generator}};
 }
 
 // The stream levels' record ranges in file order (stream level 4 first): [starts[k], starts[k + 1]).

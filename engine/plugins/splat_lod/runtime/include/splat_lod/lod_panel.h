@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
-#include <plugin_msgs/lod_settings.h>
-#include <plugin_msgs/splat_statistics.h>
+#include "splat_lod/msgs/lod_settings.h"
+#include "splat_lod/msgs/splat_statistics.h"
 
 #include "engine/core/message_bus.h"
 

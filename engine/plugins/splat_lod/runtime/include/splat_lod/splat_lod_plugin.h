@@ -2,9 +2,10 @@
 // The splat_lod plugin: registers the "splat" component type and the splat render pass (its public
 // handle: splat_lod/splat_renderer.h).
 //   engine.plugins().add_static(splat_lod::make_plugin());
+#include <filesystem>
 #include <memory>
 
-#include <plugin_msgs/splat_statistics.h>
+#include "splat_lod/msgs/splat_statistics.h"
 
 #include "engine/plugin/plugin.h"
 
@@ -18,6 +19,11 @@ struct CameraView;
 namespace splat_lod {
 
 std::unique_ptr<engine::Plugin> make_plugin();
+
+// The folder of the plugin's shaders (the shader library's root for "splat_lod/..." files): the
+// environment's SPLAT_LOD_SHADER_DIR, else runtime/shaders in the source tree. The plugin adds it to the
+// renderer's shader roots at startup.
+std::filesystem::path shader_dir();
 
 // For tools and tests (it waits for the GPU): renders the frame again while it needed more
 // tile-splat pairs than the key buffer held (the buffer grows after each such frame), and

@@ -8,8 +8,8 @@
 #include <optional>
 #include <vector>
 
-#include <plugin_msgs/lod_settings.h>
-#include <plugin_msgs/splat_statistics.h>
+#include "splat_lod/msgs/lod_settings.h"
+#include "splat_lod/msgs/splat_statistics.h"
 
 #include "splat_lod/core/lod_selection.h"
 #include "splat_lod/core/upscale.h"
@@ -25,10 +25,10 @@ namespace splat_lod {
 class SplatPass;
 
 struct SplatPassSettings {
-    float znear = 0.2f;       // docs/algorithms.md §1
-    float dilation = 0.3f;    // the EWA low-pass, in px²
-    bool mip_filter = false;  // the optional 2D mip filter
-    LodRule lod;              // selection by pixel coverage (coarsest_level is set from the scene)
+    float znear = 0.2f;            // docs/algorithms.md §1
+    float dilation = 0.3f;         // the EWA low-pass, in px²
+    bool mip_filter = false;       // the optional 2D mip filter
+    LodRule lod;                   // selection by pixel coverage (coarsest_level is set from the scene)
     bool level_colouring = false;  // debug view: tint each Gaussian by its LOD level
     // Skip whole project workgroups whose Gaussians are all too small to be selected (exact: the
     // image and counts are the same either way; off only to measure what it saves).
@@ -59,8 +59,8 @@ struct SplatPassSettings {
 
 // The GPU memory of the pass's scene: Gaussians live in fixed-size pages (docs/world_lod.md).
 struct SplatMemory {
-    std::uint64_t live_gaussians = 0;     // Gaussians of the components now resident
-    std::uint32_t gaussian_count = 0;     // slots in use by the resident instances
+    std::uint64_t live_gaussians = 0;  // Gaussians of the components now resident
+    std::uint32_t gaussian_count = 0;  // slots in use by the resident instances
     std::uint32_t pages_in_use = 0;
     std::uint32_t free_pages = 0;
     std::uint64_t page_bytes = 0;         // bytes of one page (Gaussians, SH, cluster records)

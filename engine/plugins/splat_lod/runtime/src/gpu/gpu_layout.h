@@ -3,8 +3,8 @@
 // in agreement (std430/std140 offsets of vec4/uvec4/mat4 members are 16-byte multiples).
 #include <cstddef>
 
-#include <plugin_msgs/lod_settings.h>
 #include <splat_lod/splat_lod_shared.h>
+#include "splat_lod/msgs/lod_settings.h"
 
 namespace splat_lod::gpu {
 
@@ -16,10 +16,22 @@ static_assert(sizeof(GpuCluster) == 48);
 static_assert(sizeof(ProjectedSplat) == 64);
 static_assert(offsetof(ProjectedSplat, tile_rect) == 48);
 static_assert(sizeof(FrameUniforms) == 224);
-static_assert(offsetof(FrameUniforms, options) == 208);
-static_assert(offsetof(FrameUniforms, upscale) == 192);
-static_assert(offsetof(FrameUniforms, lod_levels) == 176);
+// std140 offsets of every FrameUniforms member.
+static_assert(offsetof(FrameUniforms, camera_position) == 64);
+static_assert(offsetof(FrameUniforms, znear) == 76);
+static_assert(offsetof(FrameUniforms, focal) == 80);
+static_assert(offsetof(FrameUniforms, principal) == 88);
+static_assert(offsetof(FrameUniforms, raster_size) == 96);
+static_assert(offsetof(FrameUniforms, jacobian_clamp) == 104);
+static_assert(offsetof(FrameUniforms, dilation) == 112);
+static_assert(offsetof(FrameUniforms, gaussian_count) == 128);
 static_assert(offsetof(FrameUniforms, tiles) == 144);
+static_assert(offsetof(FrameUniforms, tile_count) == 152);
+static_assert(offsetof(FrameUniforms, size_threshold) == 160);
+static_assert(offsetof(FrameUniforms, lod_mode) == 176);
+static_assert(offsetof(FrameUniforms, output_size) == 192);
+static_assert(offsetof(FrameUniforms, render_scale) == 200);
+static_assert(offsetof(FrameUniforms, splat_budget) == 208);
 static_assert(sizeof(FrameCounters) == 64);
 static_assert(offsetof(FrameCounters, budget) == 48);
 static_assert(sizeof(SplatBudgetState) == 16 + 4 * (SPLAT_BUDGET_BINS + SPLAT_COVERAGE_BINS));
@@ -29,5 +41,9 @@ static_assert(static_cast<int>(plugin_msgs::LodMode::baseline) == SPLAT_LOD_MODE
 static_assert(static_cast<int>(plugin_msgs::LodMode::filter_small) == SPLAT_LOD_MODE_FILTER_SMALL);
 static_assert(static_cast<int>(plugin_msgs::LodMode::insert_large) == SPLAT_LOD_MODE_INSERT_LARGE);
 static_assert(static_cast<int>(plugin_msgs::LodMode::full) == SPLAT_LOD_MODE_FULL);
+static_assert(static_cast<int>(plugin_msgs::Upscaler::spline) == SPLAT_UPSCALER_SPLINE);
+static_assert(static_cast<int>(plugin_msgs::Upscaler::bicubic) == SPLAT_UPSCALER_BICUBIC);
+static_assert(static_cast<int>(plugin_msgs::Upscaler::bilinear) == SPLAT_UPSCALER_BILINEAR);
+static_assert(static_cast<int>(plugin_msgs::Upscaler::lanczos3) == SPLAT_UPSCALER_LANCZOS3);
 
 }  // namespace splat_lod::gpu

@@ -1,8 +1,8 @@
 #include "gpu/gpu_scene.h"
 
 #include <algorithm>
-#include <cmath>
 #include <bit>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <unordered_map>
@@ -12,14 +12,16 @@
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "engine/scene/node.h"
-#include "splat_lod/splat_component.h"
 #include "splat_lod/core/gaussian_extent.h"
+#include "splat_lod/splat_component.h"
 #include "splat_lod/stream/stream_policy.h"
 
 namespace splat_lod::gpu {
 namespace {
 
-int drawn_degree(const SplatComponent& c) { return std::min(c.sh_degree_cap, c.cloud->sh_degree); }
+int drawn_degree(const SplatComponent& c) {
+    return std::min(c.sh_degree_cap, c.cloud->sh_degree);
+}
 
 // World → local directions for SH: the rotation part of the model matrix (columns normalised,
 // so uniform and axis-aligned non-uniform scales are removed), transposed.
@@ -40,7 +42,8 @@ bool drawable(const SplatCloud& cloud, std::size_t i, std::size_t sh_stride_floa
     for (int c = 0; c < 3; ++c)
         finite = finite && std::isfinite(cloud.positions[i][c]) && std::isfinite(cloud.log_scales[i][c]) &&
                  std::isfinite(cloud.sh_dc[i][c]);
-    for (std::size_t k = 0; k < sh_stride_floats && finite; ++k) finite = std::isfinite(cloud.sh_rest[i * sh_stride_floats + k]);
+    for (std::size_t k = 0; k < sh_stride_floats && finite; ++k)
+        finite = std::isfinite(cloud.sh_rest[i * sh_stride_floats + k]);
     return finite;
 }
 
@@ -66,9 +69,11 @@ std::size_t pack_gaussians(const SplatCloud& cloud, std::uint32_t instance, std:
         for (int c = 0; c < 3; ++c) m[c] *= s[c];
         const glm::dmat3 sigma = m * glm::transpose(m);
         GpuGaussian g;
-        g.position_opacity = glm::vec4(cloud.positions[i], static_cast<float>(world::opacity_from_logit(cloud.opacity_logits[i])));
+        g.position_opacity =
+            glm::vec4(cloud.positions[i], static_cast<float>(world::opacity_from_logit(cloud.opacity_logits[i])));
         g.covariance_a = glm::vec4(sigma[0][0], sigma[0][1], sigma[0][2], sigma[1][1]);
-        g.covariance_b = glm::vec4(static_cast<float>(sigma[1][2]), static_cast<float>(sigma[2][2]), 0.0f, instance_bits);
+        g.covariance_b =
+            glm::vec4(static_cast<float>(sigma[1][2]), static_cast<float>(sigma[2][2]), 0.0f, instance_bits);
         const float level = cloud.lod_level.empty() ? 1.0f : static_cast<float>(cloud.lod_level[i]);
         const float cmin = cloud.coverage_min.empty() ? -1.0f : cloud.coverage_min[i];
         const float cmax = cloud.coverage_max.empty() ? -1.0f : cloud.coverage_max[i];
@@ -116,7 +121,8 @@ void fit_spheres(const std::vector<const SplatCloud*>& clouds, std::vector<GpuCl
         for (std::size_t i = 0; i < cloud->size(); ++i, ++global)
             if (drawable(*cloud, i, cloud->sh_rest_stride())) {
                 const std::size_t c = global / size;
-                radius[c] = std::max(radius[c], glm::length(glm::dvec3(cloud->positions[i]) - glm::dvec3(clusters[c].sphere)));
+                radius[c] =
+                    std::max(radius[c], glm::length(glm::dvec3(cloud->positions[i]) - glm::dvec3(clusters[c].sphere)));
             }
     for (std::size_t c = 0; c < clusters.size(); ++c) {
         clusters[c].sphere.w = static_cast<float>(radius[c] * (1.0 + 1e-5) + 1e-7);
@@ -159,8 +165,10 @@ std::vector<GpuCluster> build_clusters(const std::vector<const SplatCloud*>& clo
             // whole cluster, while e / S_min is about the same for neighbours seen from the same
             // distances.
             const float cmin = cloud.coverage_min.empty() ? -1.0f : cloud.coverage_min[i];
-            if (!(cmin > 0.0f) || c.bounds.y < 0.0f) c.bounds.y = -1.0f;
-            else c.bounds.y = std::max(c.bounds.y, static_cast<float>(extent / cmin) * (1.0f + 1e-6f));
+            if (!(cmin > 0.0f) || c.bounds.y < 0.0f)
+                c.bounds.y = -1.0f;
+            else
+                c.bounds.y = std::max(c.bounds.y, static_cast<float>(extent / cmin) * (1.0f + 1e-6f));
         }
     }
     fit_spheres(clouds, clusters);
@@ -222,7 +230,8 @@ std::uint64_t GpuScene::page_bytes() const {
 }
 
 void GpuScene::reserve(std::uint64_t gaussians, int sh_degree) {
-    if (sh_degree < 0 || sh_degree > kMaxShDegree) engine::fail("splat_lod: SH degree " + std::to_string(sh_degree) + " is not 0..3");
+    if (sh_degree < 0 || sh_degree > kMaxShDegree)
+        engine::fail("splat_lod: SH degree " + std::to_string(sh_degree) + " is not 0..3");
     const std::uint64_t pages = (gaussians + kCluster - 1) / kCluster;
     if (pages * kCluster > std::numeric_limits<std::uint32_t>::max() / 2)
         engine::fail("splat_lod: cannot reserve " + std::to_string(gaussians) + " Gaussians");
@@ -248,7 +257,8 @@ void GpuScene::grow(std::uint32_t capacity) {
     auto regrow = [&](engine::gl::Buffer& buffer, std::size_t bytes, const char* label) {
         engine::gl::Buffer bigger(label);
         bigger.storage(bytes);
-        if (buffer && buffer.size() > 0) glCopyNamedBufferSubData(buffer.id(), bigger.id(), 0, 0, static_cast<GLsizeiptr>(buffer.size()));
+        if (buffer && buffer.size() > 0)
+            glCopyNamedBufferSubData(buffer.id(), bigger.id(), 0, 0, static_cast<GLsizeiptr>(buffer.size()));
         buffer = std::move(bigger);
     };
     regrow(gaussians_, std::size_t(capacity) * sizeof(GpuGaussian), "splat gaussians");
@@ -257,7 +267,8 @@ void GpuScene::grow(std::uint32_t capacity) {
     const std::size_t old_clusters = capacity_ / kCluster;
     regrow(clusters_, std::max<std::size_t>(capacity / kCluster, 1) * sizeof(GpuCluster), "splat clusters");
     const std::vector<GpuCluster> empty(capacity / kCluster - old_clusters, empty_cluster());
-    if (!empty.empty()) clusters_.upload(old_clusters * sizeof(GpuCluster), empty.size() * sizeof(GpuCluster), empty.data());
+    if (!empty.empty())
+        clusters_.upload(old_clusters * sizeof(GpuCluster), empty.size() * sizeof(GpuCluster), empty.data());
     capacity_ = capacity;
 }
 
@@ -272,7 +283,8 @@ std::uint32_t GpuScene::allocate_page() {
     if (end > std::numeric_limits<std::uint32_t>::max() / 2)
         engine::fail("splat_lod: " + std::to_string(end) + " Gaussians exceed what one scene can draw");
     if (end > capacity_) {
-        const std::uint64_t wanted = std::max<std::uint64_t>(end, (std::uint64_t(capacity_) + capacity_ / 2) / kCluster * kCluster);
+        const std::uint64_t wanted =
+            std::max<std::uint64_t>(end, (std::uint64_t(capacity_) + capacity_ / 2) / kCluster * kCluster);
         grow(static_cast<std::uint32_t>(wanted));
     }
     gaussian_count_ = static_cast<std::uint32_t>(end);
@@ -320,8 +332,10 @@ void GpuScene::place(Slot& slot) {
         std::size_t run = 1;
         while (j + run < pages && slot.pages[j + run] == slot.pages[j] + run) ++run;
         const std::size_t page = slot.pages[j];
-        gaussians_.upload(page * kCluster * sizeof(GpuGaussian), run * kCluster * sizeof(GpuGaussian), &gaussians[j * kCluster]);
-        sh_.upload(page * kCluster * sh_stride_ * sizeof(float), run * kCluster * sh_stride_ * sizeof(float), &sh[j * kCluster * sh_stride_]);
+        gaussians_.upload(page * kCluster * sizeof(GpuGaussian), run * kCluster * sizeof(GpuGaussian),
+                          &gaussians[j * kCluster]);
+        sh_.upload(page * kCluster * sh_stride_ * sizeof(float), run * kCluster * sh_stride_ * sizeof(float),
+                   &sh[j * kCluster * sh_stride_]);
         clusters_.upload(page * sizeof(GpuCluster), run * sizeof(GpuCluster), &clusters[j]);
         j += run;
     }
@@ -337,13 +351,25 @@ bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
     // More SH coefficients than the buffers hold: start over at the new stride.
     if (max_degree > sh_degree_) reset(max_degree);
 
-    // Which resident slot each component keeps (same cloud, same degree); the rest are freed.
-    // Linear in the number of clouds: a streamed world has thousands of parts every frame.
+    std::vector<std::int64_t> slot_of(components.size(), -1);
+    std::vector<bool> kept(slots_.size(), false);
+    match_resident(components, slot_of, kept);
+    bool changed = release_unkept(kept);
+    if (place_unmatched(components, slot_of, kept)) changed = true;
+    while (!slots_.empty() && !slots_.back().cloud) slots_.pop_back();  // trailing free instances
+
+    tally_slots(changed);
+    upload_instances(components, slot_of);
+    return changed;
+}
+
+// Which resident slot each component keeps (same cloud, same degree); the rest are freed.
+// Linear in the number of clouds: a streamed world has thousands of parts every frame.
+void GpuScene::match_resident(const std::vector<const SplatComponent*>& components, std::vector<std::int64_t>& slot_of,
+                              std::vector<bool>& kept) const {
     std::unordered_multimap<const SplatCloud*, std::size_t> resident;
     for (std::size_t k = 0; k < slots_.size(); ++k)
         if (slots_[k].cloud) resident.emplace(slots_[k].cloud.get(), k);
-    std::vector<std::int64_t> slot_of(components.size(), -1);
-    std::vector<bool> kept(slots_.size(), false);
     for (std::size_t i = 0; i < components.size(); ++i) {
         auto [first, last] = resident.equal_range(components[i]->cloud.get());
         for (auto it = first; it != last; ++it)
@@ -354,12 +380,24 @@ bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
                 break;
             }
     }
+}
+
+// Frees the resident slots no component kept; returns whether there were any.
+bool GpuScene::release_unkept(const std::vector<bool>& kept) {
     bool changed = false;
     for (std::size_t k = 0; k < slots_.size(); ++k)
         if (!kept[k] && slots_[k].cloud) {
             release(slots_[k]);
             changed = true;
         }
+    return changed;
+}
+
+// Places each component that kept no slot in a free instance index, else a new one; returns whether
+// there were any.
+bool GpuScene::place_unmatched(const std::vector<const SplatComponent*>& components, std::vector<std::int64_t>& slot_of,
+                               std::vector<bool>& kept) {
+    bool changed = false;
     for (std::size_t i = 0; i < components.size(); ++i) {
         if (slot_of[i] >= 0) continue;
         std::size_t k = 0;  // a free instance index, else a new one
@@ -375,8 +413,11 @@ bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
         slot_of[i] = static_cast<std::int64_t>(k);
         changed = true;
     }
-    while (!slots_.empty() && !slots_.back().cloud) slots_.pop_back();  // trailing free instances
+    return changed;
+}
 
+// The scene's totals over the slots; the warning only when the set of clouds changed, not every frame.
+void GpuScene::tally_slots(bool changed) {
     dropped_ = 0;
     coarsest_level_ = 1;
     for (const Slot& s : slots_) {
@@ -384,8 +425,13 @@ bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
         if (s.cloud) coarsest_level_ = std::max(coarsest_level_, s.coarsest);
     }
     if (changed && dropped_ > 0)
-        engine::log_warning("splat_lod: " + std::to_string(dropped_) + " Gaussians with NaN/Inf values or a zero rotation are not drawn");
+        engine::log_warning("splat_lod: " + std::to_string(dropped_) +
+                            " Gaussians with NaN/Inf values or a zero rotation are not drawn");
+}
 
+// Every instance's transform and record, uploaded every frame (the nodes may have moved).
+void GpuScene::upload_instances(const std::vector<const SplatComponent*>& components,
+                                const std::vector<std::int64_t>& slot_of) {
     std::vector<GpuInstance> instances(slots_.size());  // free instance indices keep count 0
     for (std::size_t i = 0; i < components.size(); ++i) {
         const Slot& slot = slots_[static_cast<std::size_t>(slot_of[i])];
@@ -402,7 +448,6 @@ bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
     const std::size_t bytes = std::max<std::size_t>(instances.size(), 1) * sizeof(GpuInstance);
     instances_.ensure_size(bytes, "splat instances");
     if (!instances.empty()) instances_.upload(0, instances.size() * sizeof(GpuInstance), instances.data());
-    return changed;
 }
 
 }  // namespace splat_lod::gpu

@@ -1,8 +1,8 @@
 #pragma once
-// The GPU copy of every splat component of a scene: one Gaussian buffer and one SH buffer,
-// the clouds concatenated in component order, rebuilt only when the set of clouds (or an SH cap)
-// changes; instance transforms are refreshed every frame. Only what the scene needs is resident:
-// the SH stride is that of the highest degree actually drawn.
+// The GPU copy of every splat component of a scene: one Gaussian buffer and one SH buffer made of
+// pages (GpuScene below), a cloud uploaded when its component arrives and its pages freed when it
+// leaves; instance transforms and visibility are refreshed every frame. Only what the scene needs is
+// resident: the SH stride is that of the highest degree actually drawn.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -51,7 +51,7 @@ public:
     std::uint32_t instance_count() const { return static_cast<std::uint32_t>(slots_.size()); }
     std::uint32_t sh_stride() const { return sh_stride_; }
     std::uint32_t coarsest_level() const { return coarsest_level_; }  // highest LOD level present
-    std::size_t dropped() const { return dropped_; }  // not drawable (NaN/Inf, zero rotation)
+    std::size_t dropped() const { return dropped_; }                  // not drawable (NaN/Inf, zero rotation)
     std::size_t resident_bytes() const { return gaussians_.size() + sh_.size() + instances_.size() + clusters_.size(); }
     // Bytes sent to the GPU by the last update() for Gaussians, SH and clusters (GPU-side copies
     // when the buffers grow are not uploads and are not counted).
@@ -85,6 +85,16 @@ private:
     void release(Slot& slot);
     void place(Slot& slot);
     void grow(std::uint32_t capacity);
+    // The steps of update(): `slot_of` is each component's slot (−1 until it has one), `kept` whether
+    // a slot is taken this update.
+    void match_resident(const std::vector<const SplatComponent*>& components, std::vector<std::int64_t>& slot_of,
+                        std::vector<bool>& kept) const;
+    bool release_unkept(const std::vector<bool>& kept);
+    bool place_unmatched(const std::vector<const SplatComponent*>& components, std::vector<std::int64_t>& slot_of,
+                         std::vector<bool>& kept);
+    void tally_slots(bool changed);
+    void upload_instances(const std::vector<const SplatComponent*>& components,
+                          const std::vector<std::int64_t>& slot_of);
 
     std::vector<Slot> slots_;
     std::vector<std::uint32_t> free_;  // free pages below the end, sorted descending (lowest at the back)
@@ -92,7 +102,7 @@ private:
     std::uint32_t gaussian_count_ = 0;
     std::uint64_t last_upload_bytes_ = 0;
     std::size_t dropped_ = 0;
-    int sh_degree_ = -1;           // the degree the SH stride holds; −1 before the first upload
+    int sh_degree_ = -1;  // the degree the SH stride holds; −1 before the first upload
     std::uint32_t sh_stride_ = 3;
     std::uint32_t coarsest_level_ = 1;
     engine::gl::Buffer gaussians_{engine::gl::NoCreate};

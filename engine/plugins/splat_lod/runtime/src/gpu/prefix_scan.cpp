@@ -15,7 +15,8 @@ static_assert(SCAN_BLOCK_SIZE == SCAN_WORKGROUP_SIZE * SCAN_ELEMENTS_PER_THREAD)
 
 constexpr std::uint32_t block_size = SCAN_BLOCK_SIZE;
 constexpr std::uint32_t max_groups = 65535;  // GL_MAX_COMPUTE_WORK_GROUP_COUNT guarantees this
-constexpr GLbitfield results_visible = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
+constexpr GLbitfield results_visible =
+    GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
 
 const char* const error_prefix = "splat_lod::gpu::PrefixScan::record(): ";
 
@@ -44,7 +45,9 @@ void check_job(const ScanJob& job) {
 
 PrefixScan::PrefixScan(engine::gl::ShaderLibrary& shaders) : shaders_(shaders) {}
 
-std::uint32_t PrefixScan::max_scan_count() { return max_groups * block_size; }
+std::uint32_t PrefixScan::max_scan_count() {
+    return max_groups * block_size;
+}
 
 // Level 0 is the caller's buffer; each further level holds the block sums of the one below, down
 // to a level that fits one workgroup. Sizes follow the capacity; the GPU fills in real counts.

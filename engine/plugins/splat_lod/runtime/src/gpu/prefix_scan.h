@@ -13,12 +13,12 @@
 namespace splat_lod::gpu {
 
 struct ScanJob {
-    engine::gl::Buffer& values;               // scanned in place: values[i] = sum of values[0, i)
-    const engine::gl::Buffer& count_buffer;   // holds the element count as a uint ...
-    std::size_t count_offset = 0;             // ... at this byte offset (a multiple of 4)
-    std::uint32_t max_count = 0;              // capacity; a larger count on the GPU is clamped
-    engine::gl::Buffer& total_buffer;         // receives the sum of all counted elements ...
-    std::size_t total_offset = 0;             // ... at this byte offset (a multiple of 4)
+    engine::gl::Buffer& values;              // scanned in place: values[i] = sum of values[0, i)
+    const engine::gl::Buffer& count_buffer;  // holds the element count as a uint ...
+    std::size_t count_offset = 0;            // ... at this byte offset (a multiple of 4)
+    std::uint32_t max_count = 0;             // capacity; a larger count on the GPU is clamped
+    engine::gl::Buffer& total_buffer;        // receives the sum of all counted elements ...
+    std::size_t total_offset = 0;            // ... at this byte offset (a multiple of 4)
 };
 
 class PrefixScan {

@@ -20,7 +20,8 @@ static_assert((2 * SORT_RADIX_SIZE * SORT_MASK_WORDS + SORT_RADIX_SIZE) * 4 <= 3
               "the scatter's shared memory must fit the GL minimum of 32 KiB");
 
 constexpr std::uint32_t max_groups = 65535;  // GL_MAX_COMPUTE_WORK_GROUP_COUNT guarantees this
-constexpr GLbitfield results_visible = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
+constexpr GLbitfield results_visible =
+    GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
 
 const char* const error_prefix = "splat_lod::gpu::RadixSort::record(): ";
 
@@ -28,16 +29,20 @@ void set_uint(const engine::gl::Program& program, const char* name, std::uint32_
     glProgramUniform1ui(program.id(), glGetUniformLocation(program.id(), name), value);
 }
 
-std::uint32_t tiles_for(std::uint32_t count) { return (count + SORT_TILE_SIZE - 1) / SORT_TILE_SIZE; }
+std::uint32_t tiles_for(std::uint32_t count) {
+    return (count + SORT_TILE_SIZE - 1) / SORT_TILE_SIZE;
+}
 
 void check_job(const SortJob& job) {
     const auto fail = [](const std::string& message) { engine::fail(error_prefix + message); };
     if (!job.count_buffer || job.count_offset % 4 != 0 || job.count_offset + 4 > job.count_buffer.size())
-        fail("count offset " + std::to_string(job.count_offset) + " is not a 4-byte-aligned word inside its buffer of " +
-             std::to_string(job.count_buffer.size()) + " bytes");
+        fail("count offset " + std::to_string(job.count_offset) +
+             " is not a 4-byte-aligned word inside its buffer of " + std::to_string(job.count_buffer.size()) +
+             " bytes");
     if (job.hi_bits > 32) fail("hi_bits " + std::to_string(job.hi_bits) + " exceeds the 32 bits of the high word");
     if (job.max_count > RadixSort::max_sort_count())
-        fail("max_count " + std::to_string(job.max_count) + " exceeds the limit " + std::to_string(RadixSort::max_sort_count()));
+        fail("max_count " + std::to_string(job.max_count) + " exceeds the limit " +
+             std::to_string(RadixSort::max_sort_count()));
     if (!job.keys || job.keys.size() < std::size_t{job.max_count} * 8)
         fail("keys buffer of " + std::to_string(job.keys.size()) + " bytes is smaller than max_count " +
              std::to_string(job.max_count) + " uvec2 keys");
@@ -62,10 +67,13 @@ private:
 RadixSort::RadixSort(engine::gl::ShaderLibrary& shaders) : shaders_(shaders), scan_(shaders) {}
 
 std::uint32_t RadixSort::max_sort_count() {
-    return std::min<std::uint32_t>(max_groups * SORT_TILE_SIZE, PrefixScan::max_scan_count() / SORT_RADIX_SIZE * SORT_TILE_SIZE);
+    return std::min<std::uint32_t>(max_groups * SORT_TILE_SIZE,
+                                   PrefixScan::max_scan_count() / SORT_RADIX_SIZE * SORT_TILE_SIZE);
 }
 
-std::uint32_t RadixSort::pass_count(std::uint32_t hi_bits) { return (32 + hi_bits + SORT_RADIX_BITS - 1) / SORT_RADIX_BITS; }
+std::uint32_t RadixSort::pass_count(std::uint32_t hi_bits) {
+    return (32 + hi_bits + SORT_RADIX_BITS - 1) / SORT_RADIX_BITS;
+}
 
 void RadixSort::record(const SortJob& job, engine::gl::GpuTimers* timers) {
     check_job(job);

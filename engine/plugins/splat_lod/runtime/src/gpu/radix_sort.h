@@ -17,10 +17,10 @@ struct SortJob {
     // uvec2 per element: x = low word (bits of a positive float depth, which order like the
     // value), y = high word (tile index, below 2^hi_bits). Sorted ascending by (y, x) in place.
     engine::gl::Buffer& keys;
-    engine::gl::Buffer& values;               // uint per element, moved along with its key
-    const engine::gl::Buffer& count_buffer;   // holds the element count as a uint ...
-    std::size_t count_offset = 0;             // ... at this byte offset (a multiple of 4)
-    std::uint32_t max_count = 0;              // capacity; a larger count on the GPU is clamped
+    engine::gl::Buffer& values;              // uint per element, moved along with its key
+    const engine::gl::Buffer& count_buffer;  // holds the element count as a uint ...
+    std::size_t count_offset = 0;            // ... at this byte offset (a multiple of 4)
+    std::uint32_t max_count = 0;             // capacity; a larger count on the GPU is clamped
     // Significant bits of the high word, 0..32: ceil(log2(tile_count)). Higher bits are ignored.
     std::uint32_t hi_bits = 0;
 };
@@ -64,10 +64,10 @@ private:
     engine::gl::ShaderLibrary& shaders_;
     PrefixScan scan_;
     std::uint32_t max_count_ = 0;
-    engine::gl::Buffer params_{engine::gl::NoCreate};        // SortParams, GPU-written
-    engine::gl::Buffer histogram_{engine::gl::NoCreate};     // per-tile digit counts, then offsets
-    engine::gl::Buffer keys_swap_{engine::gl::NoCreate};     // ping-pong partner of job.keys
-    engine::gl::Buffer values_swap_{engine::gl::NoCreate};   // ping-pong partner of job.values
+    engine::gl::Buffer params_{engine::gl::NoCreate};       // SortParams, GPU-written
+    engine::gl::Buffer histogram_{engine::gl::NoCreate};    // per-tile digit counts, then offsets
+    engine::gl::Buffer keys_swap_{engine::gl::NoCreate};    // ping-pong partner of job.keys
+    engine::gl::Buffer values_swap_{engine::gl::NoCreate};  // ping-pong partner of job.values
 };
 
 }  // namespace splat_lod::gpu

@@ -1,5 +1,7 @@
 #include "splat_lod/splat_lod_plugin.h"
 
+#include <cstdlib>
+
 #include "engine/core/error.h"
 #include "engine/core/message_bus.h"
 #include "engine/engine.h"
@@ -14,11 +16,13 @@ namespace {
 
 class SplatLodPlugin : public engine::Plugin {
 public:
-    std::string name() const override { return "splat_lod"; }
-    std::string version() const override { return "0.1.0"; }
+    // From the plugin's descriptor, engine/plugins/splat_lod/plugin.json.
+    std::string name() const override { return SPLAT_LOD_PLUGIN_NAME; }
+    std::string version() const override { return SPLAT_LOD_PLUGIN_VERSION; }
 
     void startup(engine::PluginContext& context) override {
         register_splat_component(context.components, name());
+        context.renderer.add_shader_root(shader_dir());
         auto pass = std::make_shared<SplatPass>();
         // Settings arrive as plugin_msgs::LodSettings from the UI, tools or the game.
         settings_ = context.bus.subscribe<plugin_msgs::LodSettings>(
@@ -40,9 +44,18 @@ private:
 
 }  // namespace
 
-std::unique_ptr<engine::Plugin> make_plugin() { return std::make_unique<SplatLodPlugin>(); }
+std::unique_ptr<engine::Plugin> make_plugin() {
+    return std::make_unique<SplatLodPlugin>();
+}
 
-SplatPass* find_splat_pass(engine::Renderer& renderer) { return dynamic_cast<SplatPass*>(renderer.find_pass("splat")); }
+std::filesystem::path shader_dir() {
+    if (const char* env = std::getenv("SPLAT_LOD_SHADER_DIR"); env != nullptr && env[0] != '\0') return env;
+    return SPLAT_LOD_DEFAULT_SHADER_DIR;
+}
+
+SplatPass* find_splat_pass(engine::Renderer& renderer) {
+    return dynamic_cast<SplatPass*>(renderer.find_pass("splat"));
+}
 
 plugin_msgs::SplatStatistics render_complete(engine::Engine& engine, const engine::Scene& scene,
                                              const engine::CameraView& camera, engine::RenderTarget& target,

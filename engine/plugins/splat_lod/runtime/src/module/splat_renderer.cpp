@@ -11,16 +11,24 @@ SplatRenderer::SplatRenderer(engine::Renderer& renderer) : pass_(find_splat_pass
     if (pass_ == nullptr) engine::fail("splat_lod: the plugin is not started in this renderer (no splat pass)");
 }
 
-SplatPassSettings& SplatRenderer::settings() { return pass_->settings; }
-const SplatPassSettings& SplatRenderer::settings() const { return pass_->settings; }
+SplatPassSettings& SplatRenderer::settings() {
+    return pass_->settings;
+}
+const SplatPassSettings& SplatRenderer::settings() const {
+    return pass_->settings;
+}
 
 const std::optional<plugin_msgs::SplatStatistics>& SplatRenderer::latest_statistics() const {
     return pass_->latest_statistics();
 }
 
-void SplatRenderer::wait_for_statistics(engine::MessageBus& bus) { pass_->wait_for_statistics(bus); }
+void SplatRenderer::wait_for_statistics(engine::MessageBus& bus) {
+    pass_->wait_for_statistics(bus);
+}
 
-std::uint32_t SplatRenderer::key_capacity() const { return pass_->key_capacity(); }
+std::uint32_t SplatRenderer::key_capacity() const {
+    return pass_->key_capacity();
+}
 
 SplatMemory SplatRenderer::memory() const {
     const gpu::GpuScene& scene = pass_->scene();
@@ -35,10 +43,16 @@ SplatMemory SplatRenderer::memory() const {
     return m;
 }
 
-void SplatRenderer::reserve(std::uint64_t gaussians, int sh_degree) { pass_->scene().reserve(gaussians, sh_degree); }
+void SplatRenderer::reserve(std::uint64_t gaussians, int sh_degree) {
+    pass_->scene().reserve(gaussians, sh_degree);
+}
 
-upscale::GradientImage SplatRenderer::read_low_res_image() const { return pass_->read_low_res_image(); }
+upscale::GradientImage SplatRenderer::read_low_res_image() const {
+    return pass_->read_low_res_image();
+}
 
-std::vector<float> SplatRenderer::read_low_res_front_depth() const { return pass_->read_low_res_front_depth(); }
+std::vector<float> SplatRenderer::read_low_res_front_depth() const {
+    return pass_->read_low_res_front_depth();
+}
 
 }  // namespace splat_lod

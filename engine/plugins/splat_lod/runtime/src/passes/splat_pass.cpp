@@ -13,8 +13,8 @@
 #include "engine/scene/scene.h"
 #include "gpu/prefix_scan.h"
 #include "gpu/radix_sort.h"
-#include "splat_lod/splat_component.h"
 #include "splat_lod/core/upscale.h"
+#include "splat_lod/splat_component.h"
 
 namespace splat_lod {
 namespace {
@@ -23,13 +23,17 @@ using engine::gl::GpuTimerScope;
 constexpr std::uint32_t initial_keys_per_gaussian = 4;
 constexpr std::uint32_t minimum_key_capacity = 1u << 16;
 
-std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + size - 1) / size; }
+std::uint32_t groups(std::uint32_t count, std::uint32_t size) {
+    return (count + size - 1) / size;
+}
 
 const engine::gl::Program& program(engine::FrameContext& frame, const char* file) {
     return frame.shaders.program({std::string("splat_lod/") + file});
 }
 
-void barrier() { glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT); }
+void barrier() {
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+}
 
 }  // namespace
 
@@ -67,8 +71,9 @@ void SplatPass::ensure_frame_buffers(std::uint32_t gaussians, std::uint32_t tile
         }
     }
     projected_.ensure_size(std::size_t(gaussians) * sizeof(ProjectedSplat), "splat projected");
-    cluster_list_.ensure_size(sizeof(glm::uvec4) + std::size_t(groups(gaussians, SPLAT_PROJECT_WORKGROUP_SIZE)) * sizeof(std::uint32_t),
-                              "splat cluster list");
+    cluster_list_.ensure_size(
+        sizeof(glm::uvec4) + std::size_t(groups(gaussians, SPLAT_PROJECT_WORKGROUP_SIZE)) * sizeof(std::uint32_t),
+        "splat cluster list");
     tile_counts_.ensure_size((std::size_t(gaussians) + 1) * sizeof(std::uint32_t), "splat tile counts");
     tile_ranges_.ensure_size(std::size_t(tile_count) * sizeof(glm::uvec2), "splat tile ranges");
     const std::uint32_t wanted = std::max({key_capacity_, minimum_key_capacity, gaussians * initial_keys_per_gaussian,
@@ -91,22 +96,39 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, const R
     const glm::vec2 c = camera.principal_point() * s;
     const float tan_y = std::tan(0.5f * camera.fov_y);
     const float tan_x = tan_y * camera.aspect();  // the whole image's, also for a tile of it (camera.h)
-    gpu::FrameUniforms u;
+    gpu::FrameUniforms u{};
     u.view = camera.view;
-    u.camera_position = glm::vec4(camera.position, 1.0f);
-    u.focal_principal = glm::vec4(f, f, c.x, c.y);
-    u.image = glm::vec4(raster.width, raster.height, 1.3f * tan_x, 1.3f * tan_y);
+    u.camera_position = camera.position;
+    u.znear = settings.znear;
+    u.focal = glm::vec2(f, f);
+    u.principal = c;
+    u.raster_size = glm::vec2(raster.width, raster.height);
+    u.jacobian_clamp = glm::vec2(1.3f * tan_x, 1.3f * tan_y);
     // Resolution-consistent dilation (docs/algorithms.md §5): 0.3 output px² is 0.3·s² raster px².
-    const float dilation = settings.dilation * (settings.scaled_dilation ? s * s : 1.0f);
-    u.params = glm::vec4(settings.znear, dilation, settings.mip_filter ? 1.0f : 0.0f, settings.cluster_skipping ? 1.0f : 0.0f);
-    u.counts = glm::uvec4(scene_.gaussian_count(), scene_.sh_stride(), key_capacity_, scene_.instance_count());
-    u.tiles = glm::uvec4(raster.tiles_x, raster.tiles_y, raster.tiles_x * raster.tiles_y, raster.tile_size);
+    u.dilation = settings.dilation * (settings.scaled_dilation ? s * s : 1.0f);
+    u.mip_filter = settings.mip_filter ? 1u : 0u;
+    u.cluster_skipping = settings.cluster_skipping ? 1u : 0u;
+    u.frustum_culling = settings.frustum_culling ? 1u : 0u;
+    u.gaussian_count = scene_.gaussian_count();
+    u.sh_stride = scene_.sh_stride();
+    u.key_capacity = key_capacity_;
+    u.instance_count = scene_.instance_count();
+    u.tiles = glm::uvec2(raster.tiles_x, raster.tiles_y);
+    u.tile_count = raster.tiles_x * raster.tiles_y;
+    u.tile_size = raster.tile_size;
     const LodRule& lod = settings.lod;
-    u.lod_rule = glm::vec4(lod.size_threshold_px, lod.rel_min, lod.rel_max, 1.0f / s);
-    u.lod_levels = glm::uvec4(static_cast<std::uint32_t>(lod.mode), static_cast<std::uint32_t>(lod.finest_level),
-                              scene_.coarsest_level(), settings.level_colouring ? 1u : 0u);
-    u.upscale = glm::vec4(frame.target.width(), frame.target.height(), s, 1.0f / s);
-    u.options = glm::uvec4(settings.frustum_culling ? 1u : 0u, settings.splat_budget, 0u, 0u);
+    u.size_threshold = lod.size_threshold_px;
+    u.rel_min = lod.rel_min;
+    u.rel_max = lod.rel_max;
+    u.coverage_scale = 1.0f / s;
+    u.lod_mode = static_cast<std::uint32_t>(lod.mode);
+    u.finest_level = static_cast<std::uint32_t>(lod.finest_level);
+    u.coarsest_level = scene_.coarsest_level();
+    u.level_colouring = settings.level_colouring ? 1u : 0u;
+    u.output_size = glm::vec2(frame.target.width(), frame.target.height());
+    u.render_scale = s;
+    u.inverse_render_scale = 1.0f / s;
+    u.splat_budget = settings.splat_budget;
     uniforms_.upload(0, sizeof(u), &u);
     const std::uint32_t count = scene_.gaussian_count();
     count_.upload(0, sizeof(count), &count);
@@ -114,8 +136,7 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, const R
 
 SplatPass::RasterSize SplatPass::raster_size(const engine::FrameContext& frame) const {
     const float s = settings.render_scale;
-    if (!(s > 0.0f && s <= 1.0f))
-        engine::fail("splat_lod: render_scale must be in (0, 1], got " + std::to_string(s));
+    if (!(s > 0.0f && s <= 1.0f)) engine::fail("splat_lod: render_scale must be in (0, 1], got " + std::to_string(s));
     RasterSize r;
     r.scale = s;
     r.upscaled = s < 1.0f;
@@ -146,20 +167,26 @@ void SplatPass::ensure_low_res_images(int width, int height) {
 // The sort and the scan bind their own buffers; every pass of ours binds the whole set again.
 void SplatPass::bind_all(const engine::FrameContext& frame) {
     glBindBufferBase(GL_UNIFORM_BUFFER, SPLAT_UNIFORM_FRAME, uniforms_.id());
-    const std::pair<GLuint, GLuint> storage[] = {
-        {SPLAT_BINDING_GAUSSIANS, scene_.gaussians().id()}, {SPLAT_BINDING_SH, scene_.sh().id()},
-        {SPLAT_BINDING_INSTANCES, scene_.instances().id()}, {SPLAT_BINDING_PROJECTED, projected_.id()},
-        {SPLAT_BINDING_CLUSTERS, scene_.clusters().id()},   {SPLAT_BINDING_CLUSTER_LIST, cluster_list_.id()},
-        {SPLAT_BINDING_TILE_COUNTS, tile_counts_.id()},     {SPLAT_BINDING_KEYS, keys_.id()},
-        {SPLAT_BINDING_VALUES, values_.id()},               {SPLAT_BINDING_TILE_RANGES, tile_ranges_.id()},
-        {SPLAT_BINDING_STATS, counters_.id()},              {SPLAT_BINDING_ARGS, args_.id()},
-        {SPLAT_BINDING_BUDGET, budget_.id()}};
+    const std::pair<GLuint, GLuint> storage[] = {{SPLAT_BINDING_GAUSSIANS, scene_.gaussians().id()},
+                                                 {SPLAT_BINDING_SH, scene_.sh().id()},
+                                                 {SPLAT_BINDING_INSTANCES, scene_.instances().id()},
+                                                 {SPLAT_BINDING_PROJECTED, projected_.id()},
+                                                 {SPLAT_BINDING_CLUSTERS, scene_.clusters().id()},
+                                                 {SPLAT_BINDING_CLUSTER_LIST, cluster_list_.id()},
+                                                 {SPLAT_BINDING_TILE_COUNTS, tile_counts_.id()},
+                                                 {SPLAT_BINDING_KEYS, keys_.id()},
+                                                 {SPLAT_BINDING_VALUES, values_.id()},
+                                                 {SPLAT_BINDING_TILE_RANGES, tile_ranges_.id()},
+                                                 {SPLAT_BINDING_STATS, counters_.id()},
+                                                 {SPLAT_BINDING_ARGS, args_.id()},
+                                                 {SPLAT_BINDING_BUDGET, budget_.id()}};
     for (const auto& [binding, buffer] : storage) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer);
     glBindImageTexture(SPLAT_IMAGE_COLOR, frame.target.color().id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
     glBindTextureUnit(SPLAT_TEXTURE_VIEW_DEPTH, frame.target.view_depth().id());
     if (low_.width > 0) {
         for (int k = 0; k < 4; ++k)
-            glBindImageTexture(SPLAT_IMAGE_LOW_VALUE + k, low_.images[k].id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+            glBindImageTexture(SPLAT_IMAGE_LOW_VALUE + k, low_.images[k].id(), 0, GL_FALSE, 0, GL_READ_WRITE,
+                               GL_RGBA32F);
         glBindImageTexture(SPLAT_IMAGE_LOW_FRONT, low_.front.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
     }
 }
@@ -234,7 +261,8 @@ void SplatPass::execute(engine::FrameContext& frame) {
     ensure_frame_buffers(n, tiles_x * tiles_y);
     upload_frame_uniforms(frame, raster);
     glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-    if (settings.splat_budget > 0) glClearNamedBufferData(budget_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    if (settings.splat_budget > 0)
+        glClearNamedBufferData(budget_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     glClearNamedBufferData(tile_ranges_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     // Gaussians of skipped clusters are never visited: their tile counts stay 0.
     glClearNamedBufferData(tile_counts_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
@@ -243,7 +271,7 @@ void SplatPass::execute(engine::FrameContext& frame) {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 
     record_selection(frame, n);  // 1. a–d: cull, skip, project, the splat budget
-    {  // 2. exclusive scan of tile counts: each splat's key range; the total lands at [n]
+    {                            // 2. exclusive scan of tile counts: each splat's key range; the total lands at [n]
         GpuTimerScope t(frame.timers, "splat.scan");
         scan_->record({tile_counts_, count_, 0, n, tile_counts_, std::size_t(n) * sizeof(std::uint32_t)});
     }
@@ -307,12 +335,13 @@ void SplatPass::collect_statistics(engine::MessageBus& bus, bool wait) {
         s.hidden = c.skipping.z;
         s.splat_budget = r.splat_budget;
         s.unbudgeted = r.splat_budget > 0 ? c.budget.z : c.visible;
-        s.budget_scale = r.splat_budget > 0 ? std::exp2(static_cast<double>(c.budget.x) / SPLAT_BUDGET_BINS_PER_OCTAVE) : 1.0;
+        s.budget_scale =
+            r.splat_budget > 0 ? std::exp2(static_cast<double>(c.budget.x) / SPLAT_BUDGET_BINS_PER_OCTAVE) : 1.0;
         s.budget_threshold_px = s.budget_scale * r.size_threshold_px;
-        s.budget_coverage_cut_px =
-            r.splat_budget > 0 && c.budget.y > 0
-                ? std::exp2((static_cast<double>(c.budget.y) - SPLAT_COVERAGE_BIN_OFFSET) / SPLAT_BUDGET_BINS_PER_OCTAVE)
-                : 0.0;
+        s.budget_coverage_cut_px = r.splat_budget > 0 && c.budget.y > 0
+                                       ? std::exp2((static_cast<double>(c.budget.y) - SPLAT_COVERAGE_BIN_OFFSET) /
+                                                   SPLAT_BUDGET_BINS_PER_OCTAVE)
+                                       : 0.0;
         s.tile_splat_pairs = c.keys_needed;
         s.key_capacity = key_capacity_;
         s.overflowed = c.overflowed != 0;
@@ -320,8 +349,9 @@ void SplatPass::collect_statistics(engine::MessageBus& bus, bool wait) {
         if (s.overflowed) {
             // That frame dropped tile-splat pairs; the next frames get room for them.
             if (c.keys_needed > pending_growth_)
-                engine::log_warning("splat_lod: frame " + std::to_string(r.frame) + " needed " + std::to_string(c.keys_needed) +
-                                    " tile-splat pairs but the buffer holds " + std::to_string(key_capacity_) + "; growing it");
+                engine::log_warning("splat_lod: frame " + std::to_string(r.frame) + " needed " +
+                                    std::to_string(c.keys_needed) + " tile-splat pairs but the buffer holds " +
+                                    std::to_string(key_capacity_) + "; growing it");
             pending_growth_ = std::max(pending_growth_, c.keys_needed);
         }
         if (!latest_ || latest_->frame_index <= s.frame_index) latest_ = s;
@@ -349,7 +379,8 @@ std::vector<float> SplatPass::read_low_res_front_depth() const {
     std::vector<float> depth(std::size_t(low_.width) * std::size_t(low_.height));
     if (depth.empty()) return depth;
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-    glGetTextureImage(low_.front.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(depth.size() * sizeof(float)), depth.data());
+    glGetTextureImage(low_.front.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(depth.size() * sizeof(float)),
+                      depth.data());
     return depth;
 }
 
@@ -358,6 +389,8 @@ std::uint64_t SplatPass::low_res_bytes() const {
 }
 
 // glGetNamedBufferSubData waits for the copy, so reading with `wait` blocks until it is done.
-void SplatPass::wait_for_statistics(engine::MessageBus& bus) { collect_statistics(bus, true); }
+void SplatPass::wait_for_statistics(engine::MessageBus& bus) {
+    collect_statistics(bus, true);
+}
 
 }  // namespace splat_lod

@@ -6,8 +6,8 @@
 #include <memory>
 #include <optional>
 
-#include <plugin_msgs/lod_settings.h>
-#include <plugin_msgs/splat_statistics.h>
+#include "splat_lod/msgs/lod_settings.h"
+#include "splat_lod/msgs/splat_statistics.h"
 
 #include "engine/core/error.h"
 #include "engine/gl/objects.h"
@@ -91,8 +91,9 @@ private:
         count_{engine::gl::NoCreate}, cluster_list_{engine::gl::NoCreate}, budget_{engine::gl::NoCreate};
     struct LowResImages {
         int width = 0, height = 0;
-        std::array<engine::gl::Texture, 4> images{engine::gl::Texture(engine::gl::NoCreate), engine::gl::Texture(engine::gl::NoCreate),
-                                                  engine::gl::Texture(engine::gl::NoCreate), engine::gl::Texture(engine::gl::NoCreate)};
+        std::array<engine::gl::Texture, 4> images{
+            engine::gl::Texture(engine::gl::NoCreate), engine::gl::Texture(engine::gl::NoCreate),
+            engine::gl::Texture(engine::gl::NoCreate), engine::gl::Texture(engine::gl::NoCreate)};
         engine::gl::Texture front{engine::gl::NoCreate};
     } low_;
     std::array<Readback, 4> readbacks_;

@@ -392,7 +392,8 @@ void ChunkStreamer::update(const StreamView& view) {
         }
     }
     if (s.statistics) {
-        s.group_cell_scale = next_group_cell_scale(s.group_cell_scale, s.statistics->unbudgeted, s.statistics->splat_budget);
+        s.group_cell_scale =
+            next_group_cell_scale(s.group_cell_scale, s.statistics->unbudgeted, s.statistics->splat_budget);
         s.statistics.reset();
     }
     s.plan(view);

@@ -7,10 +7,13 @@
 
 namespace splat_lod::world {
 
-SceneResidencySink::SceneResidencySink(engine::Node& root, int sh_degree_cap) : root_(root), sh_degree_cap_(sh_degree_cap) {}
+SceneResidencySink::SceneResidencySink(engine::Node& root, int sh_degree_cap)
+    : root_(root), sh_degree_cap_(sh_degree_cap) {}
 
 void SceneResidencySink::upload(const LevelPart& part) {
-    if (!part.gaussians) engine::fail("SceneResidencySink: " + part.chunk_id + " level " + std::to_string(part.level) + " has no Gaussians");
+    if (!part.gaussians)
+        engine::fail("SceneResidencySink: " + part.chunk_id + " level " + std::to_string(part.level) +
+                     " has no Gaussians");
     engine::Node& node =
         root_.add_child(part.chunk_id + " L" + std::to_string(part.level) + " part " + std::to_string(part.part));
     auto component = std::make_unique<SplatComponent>();

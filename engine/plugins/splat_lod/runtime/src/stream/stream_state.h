@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "plugin_msgs/splat_statistics.h"
+#include "splat_lod/msgs/splat_statistics.h"
 #include "splat_lod/stream/chunk_streamer.h"
 #include "splat_lod/stream/stream_reader.h"
 
@@ -64,7 +64,7 @@ struct ChunkSlot {
     bool in_cut = true;
     bool near_cut = false;  // in the cut of a camera unload_distance_factor times nearer or farther
     bool drawn = false;     // decided after this update's uploads
-    bool shown = false;  // what the sink was last told (ResidencySink::show)
+    bool shown = false;     // what the sink was last told (ResidencySink::show)
 
     static constexpr std::size_t kNoSlot = static_cast<std::size_t>(-1);
     LevelSlot& level(int l) { return levels[static_cast<std::size_t>(l - 1)]; }
@@ -102,7 +102,7 @@ struct ChunkStreamer::State {
     std::optional<StreamerSettings> pending_settings;
     ResidencySink& sink;
     engine::MessageBus* bus;
-    std::vector<ChunkSlot> chunks;  // the manifest's chunks, then its groups
+    std::vector<ChunkSlot> chunks;    // the manifest's chunks, then its groups
     std::vector<PlannedLevel> order;  // this update's wanted levels in priority order
     std::uint64_t resident = 0;
     std::uint64_t frame = 0;
@@ -122,9 +122,9 @@ struct ChunkStreamer::State {
     bool make_room(std::uint64_t bytes);  // evicts levels outside the target set only
     void enforce_memory_budget();         // evicts anything, worst first, down to the budget
 
-    void link_groups();                          // parents and children of the quadtree
-    void choose_cut(const StreamView& view);     // ChunkSlot::in_cut
-    void decide_drawn();                         // ChunkSlot::drawn, then ResidencySink::show for changes
+    void link_groups();                       // parents and children of the quadtree
+    void choose_cut(const StreamView& view);  // ChunkSlot::in_cut
+    void decide_drawn();                      // ChunkSlot::drawn, then ResidencySink::show for changes
 
     // chunk_streamer.cpp
     void layout_levels(ChunkSlot& slot) const;

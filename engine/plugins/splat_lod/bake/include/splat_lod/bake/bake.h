@@ -27,7 +27,9 @@ namespace splat_lod::bake {
 inline constexpr int kMaxLevel = 4;
 
 // Render scale (per side) at which level l's coverage is measured: 4^(l−1).
-constexpr int level_scale(int level) { return 1 << (2 * (level - 1)); }
+constexpr int level_scale(int level) {
+    return 1 << (2 * (level - 1));
+}
 
 // How small Gaussians are grouped into the cells that each become one coarse Gaussian.
 enum class CellRule {
@@ -42,37 +44,37 @@ enum class PoolingRule {
 };
 
 struct BakeOptions {
-    int coarsest_level = kMaxLevel;    // build levels 2..coarsest_level (1 = ranges only)
-    double size_threshold_px = 2.0;    // S_T of the selection rule the bake is made for
-    double rel_min = 0.5;              // S_rel_min, used by the refinement's selection
-    double rel_max = 1.5;              // S_rel_max
-    double znear = 0.2;                // cameras see Gaussians with z > znear
-    int grid_cells = 400;              // level l uses ceil(grid_cells / l)³ cells over [−2, 2]³
+    int coarsest_level = kMaxLevel;  // build levels 2..coarsest_level (1 = ranges only)
+    double size_threshold_px = 2.0;  // S_T of the selection rule the bake is made for
+    double rel_min = 0.5;            // S_rel_min, used by the refinement's selection
+    double rel_max = 1.5;            // S_rel_max
+    double znear = 0.2;              // cameras see Gaussians with z > znear
+    int grid_cells = 400;            // level l uses ceil(grid_cells / l)³ cells over [−2, 2]³
     CellRule cells = CellRule::adaptive;
     PoolingRule pooling = PoolingRule::mean;
     // Bake twice, with (adaptive cells, enlargement ≤ 8) and (grid cells, enlargement ≤ 32), and
     // keep the adaptive result unless the grid one's levels score a mean PSNR at least 0.5 dB higher
-    // on the refinement cameras: neither wins everywhere (measured: adaptive on the donut by 11 dB summed over levels 2–4, grid on the
-    // guitar by 6 dB). Needs the refinement (its cameras and targets); `cells` and
-    // `max_enlargement` are ignored while it is on.
+    // on the refinement cameras: neither wins everywhere (measured: adaptive on the donut by 11 dB summed over levels
+    // 2–4, grid on the guitar by 6 dB). Needs the refinement (its cameras and targets); `cells` and `max_enlargement`
+    // are ignored while it is on.
     bool choose_recipe = true;
-    double max_enlargement = 8.0;      // clamp of S_T / S_avg
+    double max_enlargement = 8.0;  // clamp of S_T / S_avg
     double range_low_percentile = 10.0;
     double range_high_percentile = 90.0;
 
     // Refinement (step 7): Adam on SH DC and opacity logit of each coarse level.
-    int refine_iterations = 200;       // per level; 0 switches the refinement off
-    int refine_cameras = 16;           // at most this many bake cameras (evenly spread)
+    int refine_iterations = 200;  // per level; 0 switches the refinement off
+    int refine_cameras = 16;      // at most this many bake cameras (evenly spread)
     double learning_rate_dc = 0.02;
     double learning_rate_opacity = 0.1;
     double logit_clamp = 9.2;
-    bool ranges_after_refine = true;   // measure the ranges again after the refinement
-    std::uint64_t seed = 1;            // camera order of the refinement
+    bool ranges_after_refine = true;  // measure the ranges again after the refinement
+    std::uint64_t seed = 1;           // camera order of the refinement
 
-    glm::dvec3 background{0.0};        // behind the splats in the refinement's renders
+    glm::dvec3 background{0.0};  // behind the splats in the refinement's renders
     // When set, the refinement writes level<l>_{target,before,after}.png of its first camera here.
     std::string debug_image_dir;
-    int threads = 0;                   // 0: hardware concurrency
+    int threads = 0;  // 0: hardware concurrency
 
     // Called at the start of each stage and as it advances: stage name, fraction done in [0, 1].
     std::function<void(const std::string& stage, double fraction)> progress;
@@ -83,18 +85,18 @@ void validate(const BakeOptions& options);
 
 struct LevelSummary {
     int level = 0;
-    int scale = 1;                     // 4^(l−1)
-    std::size_t candidates = 0;        // Gaussians of finer levels seen by a camera
-    std::size_t small = 0;             // of those, below S_T at this scale in some camera
-    std::size_t added = 0;             // pooled Gaussians (non-empty cells)
-    double mean_enlargement = 1.0;     // mean of clamp(S_T / S_avg, 1, max)
+    int scale = 1;                  // 4^(l−1)
+    std::size_t candidates = 0;     // Gaussians of finer levels seen by a camera
+    std::size_t small = 0;          // of those, below S_T at this scale in some camera
+    std::size_t added = 0;          // pooled Gaussians (non-empty cells)
+    double mean_enlargement = 1.0;  // mean of clamp(S_T / S_avg, 1, max)
     std::size_t at_max_enlargement = 0;
     // Refinement: mean PSNR (dB) of the level's scale-k renders against the targets over the
     // refinement cameras, before and after; NaN when it did not run.
     double refine_psnr_before = 0.0;
     double refine_psnr_after = 0.0;
-    double refine_psnr_baseline = 0.0;  // level 1 alone, unfiltered, on the same cameras
-    double final_psnr = 0.0;            // `full` at this scale once the whole bake is done
+    double refine_psnr_baseline = 0.0;                       // level 1 alone, unfiltered, on the same cameras
+    double final_psnr = 0.0;                                 // `full` at this scale once the whole bake is done
     std::array<double, kMaxLevel> refine_drawn_per_level{};  // mean over the cameras of the selection
     int refine_iterations = 0;
 };
@@ -108,14 +110,14 @@ struct BakeSummary {
     std::size_t input_gaussians = 0;
     std::size_t output_gaussians = 0;
     std::size_t cameras = 0;
-    std::size_t unseen = 0;             // Gaussians no camera sees (ranges unset)
-    double normalisation_radius = 0.0;  // B of docs/algorithms.md §4 step 2
-    bool radius_from_gaussians = false; // the camera positions coincide: B from the Gaussians
-    std::vector<LevelSummary> levels;   // one per built level 2..coarsest
+    std::size_t unseen = 0;              // Gaussians no camera sees (ranges unset)
+    double normalisation_radius = 0.0;   // B of docs/algorithms.md §4 step 2
+    bool radius_from_gaussians = false;  // the camera positions coincide: B from the Gaussians
+    std::vector<LevelSummary> levels;    // one per built level 2..coarsest
     std::vector<StageTime> stages;
     std::size_t peak_memory_bytes = 0;  // process peak resident set (0 where unknown)
     std::vector<std::string> warnings;
-    std::string recipe;                 // "adaptive cells, enlargement <= 8" or the grid one
+    std::string recipe;                                         // "adaptive cells, enlargement <= 8" or the grid one
     std::vector<std::pair<std::string, double>> recipe_scores;  // mean final PSNR per recipe tried
 
     double added_fraction() const;

@@ -10,9 +10,9 @@
 namespace splat_lod::reference::detail {
 
 struct InstanceFrame {
-    glm::dmat4 model_view{1.0};       // W · model: local point → view space
-    glm::dmat3 local_to_camera{1.0};  // diag(1, −1, −1) · W₃ · M: local offsets → image-aligned frame
-    glm::dvec3 camera_local{0.0};     // the camera centre in the cloud's frame: model⁻¹ · c
+    glm::dmat4 model_view{1.0};          // W · model: local point → view space
+    glm::dmat3 local_to_camera{1.0};     // diag(1, −1, −1) · W₃ · M: local offsets → image-aligned frame
+    glm::dvec3 camera_local{0.0};        // the camera centre in the cloud's frame: model⁻¹ · c
     CullReason cull = CullReason::none;  // set when the model matrix itself is unusable
     int sh_degree = 0;
 };

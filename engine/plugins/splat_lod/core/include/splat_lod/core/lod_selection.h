@@ -2,7 +2,7 @@
 // Pixel coverage (multi-scale paper §4.1, docs/algorithms.md §2) and the per-frame selection rule (paper
 // Eq. 6 / Algorithm 2, docs/algorithms.md §3), stated once on the CPU. The GPU's splat_project pass
 // implements the same rule; tests compare the two Gaussian for Gaussian.
-#include <plugin_msgs/lod_settings.h>
+#include "splat_lod/msgs/lod_settings.h"
 
 namespace splat_lod {
 
@@ -12,7 +12,7 @@ struct LodRule {
     double rel_min = 0.5;            // S_rel_min
     double rel_max = 1.5;            // S_rel_max
     int finest_level = 1;
-    int coarsest_level = 4;          // the coarsest level present in the scene
+    int coarsest_level = 4;  // the coarsest level present in the scene
 };
 
 // S = 2·min(sqrt(L / Σ⁻¹ₓₓ), sqrt(L / Σ⁻¹ᵧᵧ)), L = 2·ln(255·opacity), from the UNdilated 2D

@@ -31,7 +31,8 @@ void parallel_for(std::size_t count, int threads, const Body& body) {
             next.store(count);
         }
     };
-    const std::size_t helpers = std::min<std::size_t>(count, static_cast<std::size_t>(std::max(threads, 1))) - (count > 0);
+    const std::size_t helpers =
+        std::min<std::size_t>(count, static_cast<std::size_t>(std::max(threads, 1))) - (count > 0);
     std::vector<std::thread> pool;
     pool.reserve(helpers);
     for (std::size_t t = 0; t < helpers; ++t) pool.emplace_back(worker);

@@ -13,7 +13,7 @@ struct PlyVertexLayout {
     std::uint64_t header_bytes = 0;  // = header.size(): the file offset of the first record
     std::uint64_t vertex_bytes = 0;  // bytes per record
     std::uint64_t vertex_count = 0;
-    std::uint64_t file_bytes = 0;    // the file's size on disk
+    std::uint64_t file_bytes = 0;  // the file's size on disk
 };
 
 // Reads and checks the header of `path` (parse_ply's rules, plus: binary little-endian, a single

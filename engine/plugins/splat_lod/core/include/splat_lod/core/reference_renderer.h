@@ -23,10 +23,10 @@ struct GradientImage;  // splat_lod/core/upscale.h
 namespace splat_lod::reference {
 
 // The constants of docs/algorithms.md §1, named once.
-inline constexpr double kMinAlpha = 1.0 / 255.0;      // skip below; also the visibility cull
-inline constexpr double kMaxAlpha = 0.99;             // per-splat α cap
-inline constexpr double kMinTransmittance = 1e-4;     // stop before T would fall below
-inline constexpr double kJacobianClampFactor = 1.3;   // x/z, y/z clamped to ±1.3·tan(fov/2)
+inline constexpr double kMinAlpha = 1.0 / 255.0;     // skip below; also the visibility cull
+inline constexpr double kMaxAlpha = 0.99;            // per-splat α cap
+inline constexpr double kMinTransmittance = 1e-4;    // stop before T would fall below
+inline constexpr double kJacobianClampFactor = 1.3;  // x/z, y/z clamped to ±1.3·tan(fov/2)
 
 // One splat component: its cloud and the world matrix of its node (affine).
 struct ReferenceInstance {
@@ -36,12 +36,12 @@ struct ReferenceInstance {
 };
 
 struct ReferenceSettings {
-    double znear = 0.2;            // cull z ≤ znear (z = −z_view); CameraView::znear is for GL only
-    double dilation = 0.3;         // added to the diagonal of Σ2D (the EWA low-pass)
-    bool mip_filter = false;       // opacity × sqrt(det Σ2D / det(Σ2D + dilation·I))
-    glm::dvec3 background{0.0};    // composited behind the splats when there is no mesh layer
+    double znear = 0.2;          // cull z ≤ znear (z = −z_view); CameraView::znear is for GL only
+    double dilation = 0.3;       // added to the diagonal of Σ2D (the EWA low-pass)
+    bool mip_filter = false;     // opacity × sqrt(det Σ2D / det(Σ2D + dilation·I))
+    glm::dvec3 background{0.0};  // composited behind the splats when there is no mesh layer
     int sh_degree_cap = kMaxShDegree;
-    int threads = 0;               // 0: std::thread::hardware_concurrency()
+    int threads = 0;  // 0: std::thread::hardware_concurrency()
     // Also output the splat-only colour and alpha with their x, y and xy image derivatives
     // (docs/algorithms.md §5), the input of the spline upscaler. Off: no extra memory and no extra work.
     bool gradients = false;
@@ -51,8 +51,8 @@ struct ReferenceSettings {
 // the renderer works in the derived "image-aligned" frame x right, y down, z = −z_view forward,
 // in which the projection is u = cx + fx·x/z, v = cy + fy·y/z and 3DGS's Jacobian applies as is.
 struct ReferenceCamera {
-    glm::dmat4 view{1.0};          // world → view
-    glm::dvec3 position{0.0};      // camera centre in world space
+    glm::dmat4 view{1.0};      // world → view
+    glm::dvec3 position{0.0};  // camera centre in world space
     double fx = 1.0;
     double fy = 1.0;
     double cx = 0.5;
@@ -107,13 +107,13 @@ struct PixelRect {
 // the fields computed before the test that culled it (an `outside` one has mean, cov2d, conic).
 struct ProjectedGaussian {
     CullReason cull = CullReason::none;
-    double depth = 0.0;            // z = −z_view
-    double opacity = 0.0;          // sigmoid(logit), × the mip factor when that is on
-    glm::dvec2 mean{0.0};          // μ2D in pixels, top-left origin
-    glm::dvec3 cov2d{0.0};         // dilated Σ2D as (xx, xy, yy)
-    glm::dvec3 conic{0.0};         // its inverse as (xx, xy, yy)
-    glm::dvec3 colour{0.0};        // SH + 0.5, clamped at 0 (no upper clamp)
-    glm::dvec2 extent{0.0};        // half-widths of the bounding box of dᵀΣ2D⁻¹d ≤ 2·ln(255·o)
+    double depth = 0.0;      // z = −z_view
+    double opacity = 0.0;    // sigmoid(logit), × the mip factor when that is on
+    glm::dvec2 mean{0.0};    // μ2D in pixels, top-left origin
+    glm::dvec3 cov2d{0.0};   // dilated Σ2D as (xx, xy, yy)
+    glm::dvec3 conic{0.0};   // its inverse as (xx, xy, yy)
+    glm::dvec3 colour{0.0};  // SH + 0.5, clamped at 0 (no upper clamp)
+    glm::dvec2 extent{0.0};  // half-widths of the bounding box of dᵀΣ2D⁻¹d ≤ 2·ln(255·o)
     PixelRect pixels;
 
     bool drawn() const { return cull == CullReason::none; }
@@ -147,9 +147,9 @@ struct MeshLayer {
 struct ReferenceImage {
     int width = 0;
     int height = 0;
-    std::vector<double> rgb;                   // 3 per pixel, row-major, top row first
-    std::vector<double> alpha;                 // A = 1 − T
-    std::vector<std::uint32_t> contributors;   // splats blended into the pixel
+    std::vector<double> rgb;                  // 3 per pixel, row-major, top row first
+    std::vector<double> alpha;                // A = 1 − T
+    std::vector<std::uint32_t> contributors;  // splats blended into the pixel
     // With ReferenceSettings::gradients only (empty otherwise), 4 per pixel as (r, g, b, A): the
     // splat-only premultiplied colour C = Σ cᵢαᵢTᵢ and alpha A = 1 − T, before the background or
     // the mesh colour is added, and their derivatives in pixels of this image (x right, y down).

@@ -47,7 +47,9 @@ constexpr int kMaxShDegree = 3;
 constexpr float kShC0 = 0.28209479177387814f;  // Y_0^0, the DC basis value
 
 // Number of SH coefficients per channel beyond DC: 0, 3, 8, 15 for degree 0..3.
-constexpr int sh_rest_coeffs(int degree) { return (degree + 1) * (degree + 1) - 1; }
+constexpr int sh_rest_coeffs(int degree) {
+    return (degree + 1) * (degree + 1) - 1;
+}
 
 struct SplatCloud {
     std::vector<glm::vec3> positions;

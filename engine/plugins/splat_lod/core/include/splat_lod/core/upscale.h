@@ -14,7 +14,7 @@
 #include <cstddef>
 #include <vector>
 
-#include <plugin_msgs/lod_settings.h>
+#include "splat_lod/msgs/lod_settings.h"
 
 namespace splat_lod::upscale {
 

@@ -59,16 +59,16 @@ struct ChunkLevel {
 };
 
 struct ChunkEntry {
-    std::string id;                        // "chunk_+003_-002": grid column and row, signed
-    std::filesystem::path file;            // relative to the manifest's folder
-    glm::ivec2 cell{0};                    // grid column (x) and row (z)
-    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // of the Gaussians' means, world space
+    std::string id;                                     // "chunk_+003_-002": grid column and row, signed
+    std::filesystem::path file;                         // relative to the manifest's folder
+    glm::ivec2 cell{0};                                 // grid column (x) and row (z)
+    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};       // of the Gaussians' means, world space
     std::array<std::uint64_t, kLevels> prefix_count{};  // [l − 1]: Gaussians with stream level ≥ l
     std::array<ChunkLevel, kLevels> levels{};           // [l − 1]
     std::uint64_t header_bytes = 0;
-    std::uint64_t vertex_bytes = 0;        // bytes per Gaussian record in the file
-    std::uint64_t file_bytes = 0;          // the whole file (checked before use)
-    std::uint32_t header_crc32 = 0;        // CRC-32 of the header_bytes header bytes
+    std::uint64_t vertex_bytes = 0;           // bytes per Gaussian record in the file
+    std::uint64_t file_bytes = 0;             // the whole file (checked before use)
+    std::uint32_t header_crc32 = 0;           // CRC-32 of the header_bytes header bytes
     std::vector<std::uint32_t> record_crc32;  // one per record block (record_block_count), file order
 
     // Chunk groups only (world_groups.h): the quadtree depth (≥ 1; 0 for a chunk) and the pooling
@@ -80,7 +80,7 @@ struct ChunkEntry {
 };
 
 struct Prop {
-    std::filesystem::path mesh;            // a glTF file, relative to the manifest's folder
+    std::filesystem::path mesh;  // a glTF file, relative to the manifest's folder
     glm::vec3 translation{0.0f};
     glm::vec3 rotation_euler_deg{0.0f};
     glm::vec3 scale{1.0f};
@@ -89,22 +89,22 @@ struct Prop {
 struct WorldManifest {
     int version = kManifestVersion;
     std::uint64_t seed = 1;
-    float size_m = 1024.0f;                // the world spans [−size/2, size/2] in x and z
+    float size_m = 1024.0f;  // the world spans [−size/2, size/2] in x and z
     float chunk_size_m = 64.0f;
     glm::vec3 up{0.0f, 1.0f, 0.0f};
-    std::uint64_t gaussians = 0;           // over all chunks
+    std::uint64_t gaussians = 0;  // over all chunks
     // What the world was made with beyond seed and sizes: the Gaussian count scale and the
     // generator's content and bake settings. A cached world is reused only when both are equal.
     float density = 1.0f;
     std::string generator;
-    StreamLevelRule stream_levels;         // how the chunk files were split into stream levels
+    StreamLevelRule stream_levels;  // how the chunk files were split into stream levels
     std::vector<ChunkEntry> chunks;
     // The chunk groups (world_groups.h), depth 1 first; every Gaussian of a group is of stream level 4.
     // `group_generator` says how they were pooled (empty when the world has none).
     std::vector<ChunkEntry> groups;
     std::string group_generator;
     std::vector<Prop> props;
-    std::filesystem::path terrain_mesh;    // optional glTF ground under the splats (may be empty)
+    std::filesystem::path terrain_mesh;  // optional glTF ground under the splats (may be empty)
 };
 
 // A block of records covered by one checksum: records [begin, end), record_crc32[index].

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include <plugin_msgs/lod_settings.h>
+#include "splat_lod/msgs/lod_settings.h"
 
 namespace splat_lod {
 struct SplatPassSettings;

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include <plugin_msgs/splat_statistics.h>
+#include "splat_lod/msgs/splat_statistics.h"
 
 #include "engine/render/image.h"
 #include "splat_lod/core/camera_set.h"

@@ -5,7 +5,7 @@
 #include <map>
 #include <string>
 
-#include <plugin_msgs/splat_statistics.h>
+#include "splat_lod/msgs/splat_statistics.h"
 
 #include "engine/engine.h"
 #include "engine/render/camera.h"

@@ -15,13 +15,19 @@ struct FloatImage {
     int height = 0;
     std::vector<float> rgb;
 
-    float& at(int x, int y, int c) { return rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3 + static_cast<std::size_t>(c)]; }
-    float at(int x, int y, int c) const { return rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3 + static_cast<std::size_t>(c)]; }
+    float& at(int x, int y, int c) {
+        return rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3 +
+                   static_cast<std::size_t>(c)];
+    }
+    float at(int x, int y, int c) const {
+        return rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) * 3 +
+                   static_cast<std::size_t>(c)];
+    }
 };
 
 FloatImage make_float_image(int width, int height, float value = 0.0f);
-FloatImage to_float(const engine::Image& image);    // drops alpha, divides by 255
-engine::Image to_rgba8(const FloatImage& image);    // rounds, alpha 255
+FloatImage to_float(const engine::Image& image);  // drops alpha, divides by 255
+engine::Image to_rgba8(const FloatImage& image);  // rounds, alpha 255
 
 // +inf for identical images. Throws engine::Error when the sizes differ.
 double psnr(const FloatImage& a, const FloatImage& b);

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "splat_lod/eval/eval_run.h"
 #include "splat_lod/core/splat_cloud.h"
+#include "splat_lod/eval/eval_run.h"
 
 namespace splat_lod::eval {
 

@@ -52,8 +52,8 @@
 //   The splat budget: group Gaussians are drawn whole, so the renderer's raised threshold cannot thin
 // them. With a bus, the streamer reads the renderer's plugin_msgs::SplatStatistics (a few frames late)
 // and, while a budget binds, scales group_cell_px for the cut by next_group_cell_scale()
-// (stream_policy.h), so that coarser groups replace more chunks; group_cell_scale() says by how much. group_cell_px = 0 or a manifest
-// without groups: every chunk is always in the cut (the behaviour without groups).
+// (stream_policy.h), so that coarser groups replace more chunks; group_cell_scale() says by how much. group_cell_px = 0
+// or a manifest without groups: every chunk is always in the cut (the behaviour without groups).
 //
 // Oversized levels: a level is read and uploaded in parts of at most
 // floor(upload_budget / bytes per Gaussian) Gaussians, so no frame ever uploads more than the
@@ -77,10 +77,10 @@
 #include <glm/vec3.hpp>
 
 #include "engine/core/message_bus.h"
-#include "plugin_msgs/stream_events.h"
+#include "splat_lod/core/world_manifest.h"
+#include "splat_lod/msgs/stream_events.h"
 #include "splat_lod/stream/stream_interfaces.h"
 #include "splat_lod/stream/stream_policy.h"
-#include "splat_lod/core/world_manifest.h"
 
 namespace splat_lod::world {
 

@@ -55,8 +55,8 @@
 #include <vector>
 
 #include "splat_lod/bake/bake.h"
-#include "splat_lod/worldgen/world_groups.h"
 #include "splat_lod/core/world_manifest.h"
+#include "splat_lod/worldgen/world_groups.h"
 
 namespace splat_lod::world {
 
@@ -66,9 +66,9 @@ struct WorldProgress {
     std::string stage;
     std::size_t chunks_done = 0;
     std::size_t chunks_total = 0;
-    std::uint64_t gaussians = 0;     // in the chunks baked so far
-    double elapsed_seconds = 0.0;    // since generate_world() started
-    double eta_seconds = -1.0;       // for the remaining chunks; −1 before the first is done
+    std::uint64_t gaussians = 0;   // in the chunks baked so far
+    double elapsed_seconds = 0.0;  // since generate_world() started
+    double eta_seconds = -1.0;     // for the remaining chunks; −1 before the first is done
 };
 
 // The bake recipe of every chunk: one recipe (adaptive cells, enlargement ≤ 8; choose_recipe off
@@ -87,20 +87,20 @@ bake::BakeOptions default_world_bake_options();
 
 struct WorldOptions {
     std::uint64_t seed = 1;
-    float size_m = 1024.0f;          // the world spans [−size/2, size/2] in x and z
-    float chunk_size_m = 64.0f;      // size_m must be a whole multiple of it
-    float density = 1.0f;            // scales every Gaussian count, (0, 8]
-    int threads = 0;                 // chunks baked at once (each bake single-threaded); 0: all cores
+    float size_m = 1024.0f;      // the world spans [−size/2, size/2] in x and z
+    float chunk_size_m = 64.0f;  // size_m must be a whole multiple of it
+    float density = 1.0f;        // scales every Gaussian count, (0, 8]
+    int threads = 0;             // chunks baked at once (each bake single-threaded); 0: all cores
     bake::BakeOptions bake = default_world_bake_options();
-    int bake_width = 512;            // chunk camera images: both sides divisible by 64 for the refinement
+    int bake_width = 512;  // chunk camera images: both sides divisible by 64 for the refinement
     int bake_height = 384;
-    bool terrain_mesh = true;        // write meshes/terrain.glb and name it in the manifest
+    bool terrain_mesh = true;  // write meshes/terrain.glb and name it in the manifest
     // Smallest reach (metres per pixel of focal length) of stream levels 4, 3, 2 (stream_levels.h);
     // the reaches are computed with the bake's S_T and S_rel_min.
     std::array<float, 3> stream_reach_min = StreamLevelRule{}.reach_min;
-    GroupOptions groups;             // the chunk groups pooled from the chunks (world_groups.h)
-    std::filesystem::path output;    // the world's folder (created)
-    bool force = false;              // regenerate even when the cached world matches
+    GroupOptions groups;           // the chunk groups pooled from the chunks (world_groups.h)
+    std::filesystem::path output;  // the world's folder (created)
+    bool force = false;            // regenerate even when the cached world matches
     std::function<void(const WorldProgress&)> progress;
 };
 
@@ -131,17 +131,17 @@ struct StageSeconds {
 
 struct WorldSummary {
     bool cached = false;
-    std::string cache_note;          // why the cache was not used (when it was not)
+    std::string cache_note;  // why the cache was not used (when it was not)
     std::size_t chunks = 0;
     std::size_t props = 0;
     std::uint64_t fine_gaussians = 0;                          // level 1: what the generator made (0 when cached)
     std::array<std::uint64_t, kLevels> gaussians_per_level{};  // on disk by bake level, [l − 1] (0 when cached)
     std::array<std::uint64_t, kLevels> gaussians_per_stream_level{};  // on disk by stream level, [l − 1]
-    std::uint64_t gaussians = 0;                               // on disk, all levels
+    std::uint64_t gaussians = 0;                                      // on disk, all levels
     std::uint64_t chunk_bytes = 0, mesh_bytes = 0;
-    std::size_t groups = 0;                  // chunk groups (world_groups.h) and their Gaussians and bytes
+    std::size_t groups = 0;  // chunk groups (world_groups.h) and their Gaussians and bytes
     std::uint64_t group_gaussians = 0, group_bytes = 0;
-    bool groups_rebuilt = false;             // a cached world's chunks with new groups
+    bool groups_rebuilt = false;  // a cached world's chunks with new groups
     // Generated (level-1) Gaussians by kind; trees are counted as objects (empty for a cached world).
     std::uint64_t ground = 0, water = 0, trees = 0, tree_gaussians = 0, grass = 0, rocks = 0, fences = 0;
     // The bakes' quality, per level l = 2..4 ([l − 1]; [0] unused): the mean over the chunks of the

@@ -43,8 +43,8 @@
 
 #include <glm/glm.hpp>
 
-#include "splat_lod/core/splat_cloud.h"
 #include "splat_lod/core/chunk_quadtree.h"
+#include "splat_lod/core/splat_cloud.h"
 #include "splat_lod/core/world_manifest.h"
 
 namespace splat_lod::world {

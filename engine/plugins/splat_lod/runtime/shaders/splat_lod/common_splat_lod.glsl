@@ -1,0 +1,62 @@
+// Pixel coverage and the LOD selection rule, the GLSL twin of splat_lod/core/lod_selection.h (the
+// tests compare them Gaussian for Gaussian). Needs `frame` (FrameUniforms).
+
+// docs/algorithms.md §2: S = 2·min(sqrt(L/Σ⁻¹ₓₓ), sqrt(L/Σ⁻¹ᵧᵧ)), L = 2·ln(255·o), undilated Σ2D.
+float pixel_coverage(mat2 cov, float det, float opacity) {
+    if (!(opacity > 1.0 / 255.0) || !(det > 0.0) || !(cov[0][0] > 0.0) || !(cov[1][1] > 0.0)) return 0.0;
+    float level_set = 2.0 * log(255.0 * opacity);
+    return 2.0 * min(sqrt(level_set * det / cov[1][1]), sqrt(level_set * det / cov[0][0]));
+}
+
+// docs/algorithms.md §3 (paper Eq. 6); bounds of −1 are unset.
+bool lod_selected(uint level, float coverage, float coverage_min, float coverage_max) {
+    uint mode = frame.lod_mode, finest = frame.finest_level, coarsest = frame.coarsest_level;
+    bool all_levels = mode == SPLAT_LOD_MODE_INSERT_LARGE || mode == SPLAT_LOD_MODE_FULL;
+    if (!all_levels && level != finest) return false;
+    if (mode == SPLAT_LOD_MODE_BASELINE || mode == SPLAT_LOD_MODE_INSERT_LARGE) return true;
+    bool not_too_large = level == finest || coverage_max < 0.0 || coverage / coverage_max <= frame.rel_max;
+    bool not_too_small = level == coarsest || coverage_min < 0.0 || coverage >= frame.size_threshold ||
+                         coverage / coverage_min >= frame.rel_min;
+    return not_too_large && not_too_small;
+}
+
+// Debug view: each level tinted (1 grey, 2 green, 3 blue, 4 red), keeping the shading's brightness.
+vec3 level_colour(uint level, vec3 colour) {
+    const vec3 tint[4] = vec3[](vec3(0.8), vec3(0.2, 0.9, 0.2), vec3(0.25, 0.45, 1.0), vec3(1.0, 0.25, 0.2));
+    float brightness = dot(colour, vec3(0.299, 0.587, 0.114));
+    return tint[level - 1u] * (0.35 + 0.65 * clamp(brightness, 0.0, 1.0));
+}
+
+// The splat budget (splat_lod_shared.h): the β bins [x, y] in which the Gaussian is selected with its
+// coverage divided by β = 2^(b/8); empty when y < x. Bin 0 (β = 1) agrees with lod_selected exactly,
+// so a budget that does not bind changes nothing. "Not too large" holds from β ≥ S / (S_max·S_rel_max)
+// on, "not too small" up to β ≤ max(S / S_T, S / (S_min·S_rel_min)).
+ivec2 budget_bins(uint level, float coverage, float coverage_min, float coverage_max) {
+    const ivec2 none = ivec2(1, 0);
+    uint mode = frame.lod_mode, finest = frame.finest_level, coarsest = frame.coarsest_level;
+    bool all_levels = mode == SPLAT_LOD_MODE_INSERT_LARGE || mode == SPLAT_LOD_MODE_FULL;
+    if (!all_levels && level != finest) return none;
+    if (mode == SPLAT_LOD_MODE_BASELINE || mode == SPLAT_LOD_MODE_INSERT_LARGE) return ivec2(0, SPLAT_BUDGET_BINS - 1);
+    if (!(coverage >= 0.0)) return none;
+    bool large_ok = level == finest || coverage_max < 0.0 || coverage / coverage_max <= frame.rel_max;
+    bool small_ok = level == coarsest || coverage_min < 0.0 || coverage >= frame.size_threshold ||
+                    coverage / coverage_min >= frame.rel_min;
+    if (!small_ok) return none;
+    int lo = 0;
+    if (!large_ok) {
+        float beta = coverage / (coverage_max * frame.rel_max);
+        lo = int(clamp(ceil(SPLAT_BUDGET_BINS_PER_OCTAVE * log2(beta)), 1.0, float(SPLAT_BUDGET_BINS)));
+    }
+    int hi = SPLAT_BUDGET_BINS - 1;
+    if (!(level == coarsest || coverage_min < 0.0)) {
+        float beta = max(coverage / frame.size_threshold, coverage / (coverage_min * frame.rel_min));
+        hi = int(clamp(floor(SPLAT_BUDGET_BINS_PER_OCTAVE * log2(beta)), 0.0, float(SPLAT_BUDGET_BINS - 1)));
+    }
+    return ivec2(lo, hi);
+}
+
+// The coverage histogram's bin of a coverage in px (splat_lod_shared.h).
+uint coverage_bin(float coverage) {
+    float k = floor(SPLAT_BUDGET_BINS_PER_OCTAVE * log2(max(coverage, 1e-30)) + SPLAT_COVERAGE_BIN_OFFSET);
+    return uint(clamp(k, 0.0, float(SPLAT_COVERAGE_BINS - 1)));
+}

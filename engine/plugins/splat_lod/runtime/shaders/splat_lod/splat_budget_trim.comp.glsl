@@ -1,0 +1,28 @@
+// Step 1d, the splat budget's trim: one invocation per Gaussian of the clusters step 1a kept (the
+// same indirect dispatch as step 1b). A splat that step 1b projected stays only if it is selected
+// at the β bin step 1c chose and its coverage is not below the cut; the others get 0 tiles, so no
+// later pass sees them. Counts the drawn Gaussians per level (step 1b does not, under a budget).
+#include "common_splat_bindings.glsl"
+
+layout(local_size_x = SPLAT_PROJECT_WORKGROUP_SIZE) in;
+layout(std430, binding = SPLAT_BINDING_PROJECTED) readonly buffer Projected { ProjectedSplat projected[]; };
+layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) buffer TileCounts { uint tile_counts[]; };
+layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
+layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
+layout(std430, binding = SPLAT_BINDING_BUDGET) readonly buffer Budget { SplatBudgetState budget; };
+
+void main() {
+    uint cluster = cluster_list.ids[gl_WorkGroupID.x];
+    uint index = cluster * SPLAT_PROJECT_WORKGROUP_SIZE + gl_LocalInvocationIndex;
+    if (index >= frame.gaussian_count || tile_counts[index] == 0u) return;  // culled by step 1b
+    uint bits = floatBitsToUint(projected[index].conic.w);
+    uint lo = bits & 0xFFu, hi = (bits >> 8) & 0xFFu, cbin = (bits >> 16) & 0xFFu;
+    uint level = ((bits >> 24) & 0x3u) + 1u;
+    uint chosen = budget.choice.x, cut = budget.choice.y;
+    if (lo <= chosen && chosen <= hi && cbin >= cut) {
+        atomicAdd(stats.visible, 1u);
+        atomicAdd(stats.per_level[level - 1u], 1u);
+    } else {
+        tile_counts[index] = 0u;
+    }
+}

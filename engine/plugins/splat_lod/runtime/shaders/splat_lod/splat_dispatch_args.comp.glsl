@@ -1,0 +1,18 @@
+// Step 3, before binning: turns the key total (on the GPU) into the clamped sort count, the
+// overflow flag and the indirect dispatch size of the tile-range pass, without a CPU read-back.
+#include "common_splat_bindings.glsl"
+
+layout(local_size_x = 1) in;
+layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) readonly buffer KeyOffsets { uint key_offsets[]; };
+layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
+// x, y, z: dispatch size of splat_tile_ranges; w: the number of keys to sort and use.
+layout(std430, binding = SPLAT_BINDING_ARGS) writeonly buffer Args { uvec4 args; };
+
+void main() {
+    uint total = key_offsets[frame.gaussian_count];
+    uint used = min(total, frame.key_capacity);
+    stats.considered = frame.gaussian_count;
+    stats.keys_needed = total;
+    stats.overflowed = total > frame.key_capacity ? 1u : 0u;
+    args = uvec4((used + SPLAT_RANGES_WORKGROUP_SIZE - 1u) / SPLAT_RANGES_WORKGROUP_SIZE, 1u, 1u, used);
+}

@@ -1,0 +1,255 @@
+// The splat_lod GPU contract, compiled by C++ and GLSL alike: struct layouts (std430), binding
+// indices and workgroup sizes. C++ checks sizes and offsets with static_assert
+// (engine/plugins/splat_lod/runtime/src/gpu/gpu_layout.h); GLSL includes this file directly.
+// Rule: no bare vec3 members in std430 structs (use vec4 or explicit padding).
+#ifndef SPLAT_LOD_SHARED_H
+#define SPLAT_LOD_SHARED_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace splat_lod::gpu {
+using uint = std::uint32_t;
+using vec2 = glm::vec2;
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+using uvec2 = glm::uvec2;
+using uvec4 = glm::uvec4;
+using mat4 = glm::mat4;
+#define SPLAT_LOD_STRUCT(name) struct alignas(16) name
+#else
+#define SPLAT_LOD_STRUCT(name) struct name
+#endif
+
+// ---- Radix sort and prefix scan (splat_lod/radix_sort_*.comp.glsl, prefix_scan_*.comp.glsl) ----
+// Sizes measured on llvmpipe (process CPU time per 1M-key sort, hi_bits 12): the scatter reads
+// SORT_WORKGROUP_SIZE / 32 mask words per element, so 64 invocations took 350 ms against 400 ms
+// for 128 and 700 ms for 256; 4-bit digits (11 passes instead of 6) took 595 ms. Tiles of 2048
+// keys balance per-tile overhead against the histogram length. Scans of 4M values ran ~3x
+// faster with 16 elements per thread than with 4 (the workgroup scan is amortised).
+#define SORT_WORKGROUP_SIZE 64
+#define SORT_RADIX_BITS 8
+#define SORT_RADIX_SIZE 256          // 1 << SORT_RADIX_BITS
+#define SORT_ELEMENTS_PER_THREAD 32  // elements one thread handles in a sort pass
+#define SCAN_WORKGROUP_SIZE 256
+#define SCAN_ELEMENTS_PER_THREAD 16
+
+// A sort tile is what one workgroup ranks: SORT_WORKGROUP_SIZE keys per round, in order.
+#define SORT_TILE_SIZE (SORT_WORKGROUP_SIZE * SORT_ELEMENTS_PER_THREAD)
+// The scatter ranks a round with one bit per invocation per digit: this many words per digit.
+#define SORT_MASK_WORDS (SORT_WORKGROUP_SIZE / 32)
+// Elements one scan workgroup reduces or scans; each level of block sums is this much shorter.
+#define SCAN_BLOCK_SIZE (SCAN_WORKGROUP_SIZE * SCAN_ELEMENTS_PER_THREAD)
+// Levels of block sums: the indirect dispatch limit (65535 groups) is reached before level 3.
+#define SCAN_MAX_LEVELS 4
+
+// Sort bindings (radix_sort_*.comp.glsl).
+#define SORT_BINDING_KEYS_IN 0
+#define SORT_BINDING_VALUES_IN 1
+#define SORT_BINDING_KEYS_OUT 2
+#define SORT_BINDING_VALUES_OUT 3
+#define SORT_BINDING_HISTOGRAM 4  // per-tile digit counts, digit-major: [digit * tile_count + tile]
+#define SORT_BINDING_PARAMS 5     // SortParams
+#define SORT_BINDING_COUNT 6      // the caller's element count (radix_sort_dispatch_args only)
+
+// Scan bindings (prefix_scan_*.comp.glsl).
+#define SCAN_BINDING_DATA 0    // the level being reduced or scanned
+#define SCAN_BINDING_SUMS 1    // block sums of the level (the next level's data)
+#define SCAN_BINDING_LEVELS 2  // ScanLevel[SCAN_MAX_LEVELS]
+#define SCAN_BINDING_COUNT 3   // the caller's element count (prefix_scan_dispatch_args only)
+#define SCAN_BINDING_TOTAL 4   // where the top level writes the sum of all elements
+
+// Written on the GPU from the element count by radix_sort_dispatch_args; `dispatch` is the
+// glDispatchComputeIndirect argument (x = tile_count, y = z = 1) at byte offset 0.
+SPLAT_LOD_STRUCT(SortParams) {
+    uvec4 dispatch;
+    uint count;            // min(caller's count, max_count)
+    uint tile_count;       // ceil(count / SORT_TILE_SIZE)
+    uint histogram_count;  // SORT_RADIX_SIZE * tile_count: the length of the scanned histogram
+    uint histogram_total;  // written by the histogram scan (equals count)
+};
+
+// One scan level: x, y, z are its glDispatchComputeIndirect arguments (byte offset 16 * level).
+SPLAT_LOD_STRUCT(ScanLevel) {
+    uint groups_x;
+    uint groups_y;
+    uint groups_z;
+    uint count;  // elements at this level
+};
+
+// ---- The frame pipeline: cull/project, bin, tile ranges, raster (splat_lod/splat_*.comp.glsl) ----
+#define SPLAT_TILE_SIZE 16  // pixels per tile side (the raster workgroup is one tile)
+#define SPLAT_PROJECT_WORKGROUP_SIZE 256
+#define SPLAT_CLUSTER_WORKGROUP_SIZE 64
+#define SPLAT_BIN_WORKGROUP_SIZE 256
+#define SPLAT_RANGES_WORKGROUP_SIZE 256
+#define SPLAT_MAX_SH_DEGREE 3
+#define SPLAT_MAX_LEVELS 4
+#define SPLAT_LOD_MODE_BASELINE 0      // finest level only, no filter
+#define SPLAT_LOD_MODE_FILTER_SMALL 1  // finest level only, the rule applied
+#define SPLAT_LOD_MODE_INSERT_LARGE 2  // every level, no filter
+#define SPLAT_LOD_MODE_FULL 3          // every level, the rule applied
+
+// Shader storage bindings.
+#define SPLAT_BINDING_GAUSSIANS 0    // GpuGaussian[N], static per cloud
+#define SPLAT_BINDING_SH 1           // float[N * sh_stride], static per cloud
+#define SPLAT_BINDING_INSTANCES 2    // GpuInstance[], per frame
+#define SPLAT_BINDING_PROJECTED 3    // ProjectedSplat[N], per frame
+#define SPLAT_BINDING_TILE_COUNTS 4  // uint[N + 1]: tiles touched; scanned in place into key offsets, total at [N]
+#define SPLAT_BINDING_KEYS 5         // uvec2[capacity]: (depth bits, tile index)
+#define SPLAT_BINDING_VALUES 6       // uint[capacity]: Gaussian index
+#define SPLAT_BINDING_TILE_RANGES 7  // uvec2[tile_count]: [begin, end) into the sorted keys
+#define SPLAT_BINDING_STATS 8        // FrameCounters
+#define SPLAT_BINDING_ARGS 9         // uvec4: tile-range dispatch size (xyz) and keys in use (w)
+#define SPLAT_BINDING_CLUSTERS 10    // GpuCluster[ceil(N / SPLAT_PROJECT_WORKGROUP_SIZE)], static per scene
+#define SPLAT_BINDING_CLUSTER_LIST \
+    11                              // { uvec4 dispatch; uint ids[]; }: the clusters step 1b projects;
+                                    // dispatch = its indirect arguments (x = clusters kept; the
+                                    // CPU resets it to (0, 1, 1) each frame)
+#define SPLAT_BINDING_BUDGET 12     // SplatBudgetState: the splat budget's histograms and choice, per frame
+#define SPLAT_UNIFORM_FRAME 0       // FrameUniforms (uniform block binding)
+#define SPLAT_IMAGE_COLOR 0         // the frame's display-space colour (rgba8), read and written
+#define SPLAT_TEXTURE_VIEW_DEPTH 1  // the mesh pass's view depth (r32f), +inf where no mesh
+// Below render scale 1 (docs/algorithms.md §5) the raster writes these low-resolution images (rgba32f:
+// premultiplied colour C and alpha A, and their ∂/∂x, ∂/∂y, ∂²/∂x∂y per low-res pixel; r32f: the
+// view depth where the transmittance first falls below ½, else the depth the texel was cut at),
+// which the upscale pass reads.
+#define SPLAT_IMAGE_LOW_VALUE 1
+#define SPLAT_IMAGE_LOW_DX 2
+#define SPLAT_IMAGE_LOW_DY 3
+#define SPLAT_IMAGE_LOW_DXY 4
+#define SPLAT_IMAGE_LOW_FRONT 5
+// The upscale pass's method (its UPSCALE_METHOD define), in the order of plugin_msgs::Upscaler.
+#define SPLAT_UPSCALER_SPLINE 0
+#define SPLAT_UPSCALER_BICUBIC 1
+#define SPLAT_UPSCALER_BILINEAR 2
+#define SPLAT_UPSCALER_LANCZOS3 3
+#define SPLAT_UPSCALE_WORKGROUP_SIZE 8  // the upscale pass: 8×8 output pixels per workgroup
+
+// The splat budget (SplatPassSettings::splat_budget): when the selection would draw more than N
+// Gaussians, the frame selects as if every coverage were β times smaller, β = 2^(b/8) for the
+// smallest bin b whose count fits (an eighth of an octave per bin: the LOD cut moves to coarser
+// levels); if even the last bin does not fit, the smallest Gaussians of that cut are dropped by a
+// coverage histogram of the same resolution. Both histograms are filled by step 1b and read by
+// splat_budget.comp.glsl in the same frame, so no frame ever draws more than N.
+#define SPLAT_BUDGET_BINS 96  // β from 1 to 2^(95/8) ≈ 3700
+#define SPLAT_BUDGET_BINS_PER_OCTAVE 8.0
+#define SPLAT_COVERAGE_BINS 256         // coverage 2^(k/8 − 8) px: 1/256 px … ≈ 2^24 px
+#define SPLAT_COVERAGE_BIN_OFFSET 64.0  // 8 octaves below 1 px
+// Under a budget step 1b stores a splat's bins in ProjectedSplat::conic.w as float bits: first β bin
+// (bits 0–7), last β bin (8–15), coverage bin (16–23), level − 1 (24–25), and bit 30 set, which
+// keeps the value a normal float (no denormal flushing can change it).
+#define SPLAT_BUDGET_PACK_FLAG 0x40000000u
+
+// GpuInstance::info.z: the SH degree in the low byte; this bit set for a component that is resident
+// but not drawn (SplatComponent::visible false): step 1a drops its clusters before any other test.
+#define SPLAT_INSTANCE_SH_DEGREE_MASK 0xFFu
+#define SPLAT_INSTANCE_HIDDEN 0x100u
+
+// Gaussians with their 3D covariance precomputed (local space of the cloud).
+SPLAT_LOD_STRUCT(GpuGaussian) {
+    vec4 position_opacity;  // xyz local mean, w activated opacity
+    vec4 covariance_a;      // Σ xx, xy, xz, yy
+    vec4 covariance_b;      // Σ yz, zz, w = uintBitsToFloat(instance index)
+    vec4 lod;               // x coverage_min, y coverage_max, z level (1..4), w unused
+};
+
+// One splat component this frame.
+SPLAT_LOD_STRUCT(GpuInstance) {
+    mat4 model;             // local → world
+    mat4 rotation_inverse;  // world → local directions (for SH)
+    uvec4 info;             // x first slot of its first page, y count, z SH degree used (bits 0-7) and
+                            // SPLAT_INSTANCE_HIDDEN, w floatBitsToUint(‖M‖₂), M = mat3(model)
+};
+
+// What the project pass knows about the Gaussians one of its workgroups handles (cluster c holds
+// Gaussians [c·SPLAT_PROJECT_WORKGROUP_SIZE, (c + 1)·SPLAT_PROJECT_WORKGROUP_SIZE)). Baked files
+// are sorted by level and along a Morton curve, so a cluster is one level of one small region: when
+// even its largest member would be too small to draw at the cluster's nearest depth, the whole
+// workgroup skips its Gaussians (docs/algorithms.md §3 "not too small", bounded from above).
+SPLAT_LOD_STRUCT(GpuCluster) {
+    vec4 sphere;  // local-space centre xyz and radius w of the members' means; w < 0: an empty
+                  // cluster (a freed or padding range of the scene), never projected
+    vec4 bounds;  // x: max over members of sqrt(2·ln(255·o))·min(σ_max, √2·σ_mid) (local units; 0 if invisible)
+                  // y: max over members of that extent / coverage_min (−1 when any member has no
+                  //    coverage_min > 0: never skipped)
+                  // z: highest member level; w: instance index as float bits, or −1 (mixed instances)
+    vec4 reach;   // x: max over members of sqrt(2·ln(255·o))·σ_max, how far (local units) a member's
+                  //    α = 1/255 ellipsoid reaches from its mean; −1: never frustum-culled
+                  //    (non-finite bounds); yzw unused
+};
+
+// A projected Gaussian, stored at its Gaussian index (entries of culled ones are not read).
+SPLAT_LOD_STRUCT(ProjectedSplat) {
+    vec4 mean_depth;  // x, y image position (top-left origin), z view depth, w opacity
+    vec4 conic;       // inverse of the dilated 2D covariance: xx, xy, yy; w unused
+    vec4 color;       // rgb (SH + 0.5, clamped at 0), w unused
+    uvec4 tile_rect;  // tiles [x0, x1) × [y0, y1)
+};
+
+// The frame's parameters (uniform block SPLAT_UNIFORM_FRAME, std140). Laid out so that std140 and
+// the C++ struct agree without padding rules: each vec2/uvec2 at a multiple of 8 bytes, the vec3 followed
+// by a float that fills its 16 bytes; gpu_layout.h checks the offsets.
+SPLAT_LOD_STRUCT(FrameUniforms) {
+    mat4 view;                   // world → view
+    vec3 camera_position;        // world
+    float znear;                 // the near plane of the selection and raster (docs/algorithms.md §1)
+    vec2 focal;                  // fx, fy (raster pixels)
+    vec2 principal;              // cx, cy (raster pixels)
+    vec2 raster_size;            // raster width, height (px)
+    vec2 jacobian_clamp;         // 1.3·tan(fov_x/2), 1.3·tan(fov_y/2) of the output camera
+    float dilation;              // the EWA low-pass (raster px²)
+    uint mip_filter;             // 1: Mip-Splatting's 2D filter
+    uint cluster_skipping;       // 1: step 1a skips clusters that are all too small
+    uint frustum_culling;        // 1: step 1a culls clusters outside the view
+    uint gaussian_count;         // Gaussians in the scene's buffers (pages included)
+    uint sh_stride;              // floats of SH per Gaussian
+    uint key_capacity;           // (depth, tile) keys the key buffer holds
+    uint instance_count;         // GpuInstance records
+    uvec2 tiles;                 // tiles_x, tiles_y
+    uint tile_count;             // tiles_x · tiles_y
+    uint tile_size;              // tile side (px)
+    float size_threshold;        // S_T (px)
+    float rel_min;               // S_rel_min
+    float rel_max;               // S_rel_max
+    float coverage_scale;        // output px per raster px (1/s): coverage is measured at the output
+    uint lod_mode;               // SPLAT_LOD_MODE_*
+    uint finest_level;           // finest bake level drawn
+    uint coarsest_level;         // highest bake level present
+    uint level_colouring;        // 1: debug view, tint each Gaussian by its level
+    vec2 output_size;            // output width, height (px)
+    float render_scale;          // s (1 natively)
+    float inverse_render_scale;  // 1/s
+    uint splat_budget;           // at most this many Gaussians drawn (0: no budget)
+    uint reserved0;
+    uint reserved1;
+    uint reserved2;
+};
+
+// Written by the GPU each frame and read back asynchronously by the CPU.
+SPLAT_LOD_STRUCT(FrameCounters) {
+    uint considered;
+    uint visible;
+    uint keys_needed;  // tile-splat pairs this frame asked for
+    uint overflowed;   // 1 when keys_needed > key capacity (the frame dropped pairs)
+    uvec4 per_level;   // visible Gaussians per LOD level 1..4
+    uvec4 skipping;    // x: Gaussians in project workgroups skipped as too small (GpuCluster),
+                       // y: Gaussians in clusters culled by the view frustum, z: in clusters of hidden
+                       // instances (SPLAT_INSTANCE_HIDDEN); w unused
+    uvec4 budget;      // x: β bin chosen (0: the budget did not bind), y: coverage bin below which the
+                       // last cut's Gaussians were dropped (0: none), z: Gaussians the selection
+                       // would have drawn without the budget, w unused
+};
+
+// The splat budget's per-frame state (SPLAT_BINDING_BUDGET), cleared by the CPU each frame.
+SPLAT_LOD_STRUCT(SplatBudgetState) {
+    uvec4 choice;                        // x: β bin, y: coverage cut bin, z: count at β = 1, w unused
+    uint selected[SPLAT_BUDGET_BINS];    // difference array: +1 at a Gaussian's first bin, −1 after its last
+    uint coverage[SPLAT_COVERAGE_BINS];  // Gaussians still selected at the last β bin, by coverage bin
+};
+
+#ifdef __cplusplus
+}  // namespace splat_lod::gpu
+#endif
+
+#endif  // SPLAT_LOD_SHARED_H

@@ -1,0 +1,103 @@
+// Step 1b, cull + project + colour (docs/algorithms.md §1): one invocation per Gaussian of the clusters
+// step 1a kept. Survivors get their projected form at their own index and the number of raster tiles
+// (frame.tile_size px a side) their extent touches; culled ones get 0 tiles. A scan of the counts then gives every splat its key range.
+#include "common_splat_bindings.glsl"
+
+layout(local_size_x = SPLAT_PROJECT_WORKGROUP_SIZE) in;
+layout(std430, binding = SPLAT_BINDING_GAUSSIANS) readonly buffer Gaussians { GpuGaussian gaussians[]; };
+layout(std430, binding = SPLAT_BINDING_SH) readonly buffer ShCoefficients { float sh[]; };
+layout(std430, binding = SPLAT_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
+layout(std430, binding = SPLAT_BINDING_PROJECTED) writeonly buffer Projected { ProjectedSplat projected[]; };
+layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) writeonly buffer TileCounts { uint tile_counts[]; };
+layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
+layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
+layout(std430, binding = SPLAT_BINDING_BUDGET) buffer Budget { SplatBudgetState budget; };
+
+#include "common_splat_sh.glsl"
+#include "common_splat_lod.glsl"
+
+// The view transform into a camera frame whose y points down the image and z forward (so that
+// the 3DGS Jacobian applies as written); F = diag(1, −1, −1).
+const mat3 VIEW_TO_CAMERA = mat3(1, 0, 0, 0, -1, 0, 0, 0, -1);
+
+mat3 local_covariance(GpuGaussian g) {
+    vec4 a = g.covariance_a, b = g.covariance_b;
+    return mat3(a.x, a.y, a.z, a.y, a.w, b.x, a.z, b.x, b.y);
+}
+
+// Returns the tile count; 0 means culled.
+uint project(uint index) {
+    GpuGaussian g = gaussians[index];
+    GpuInstance inst = instances[floatBitsToUint(g.covariance_b.w)];
+    vec3 world = (inst.model * vec4(g.position_opacity.xyz, 1.0)).xyz;
+    vec3 cam = VIEW_TO_CAMERA * (frame.view * vec4(world, 1.0)).xyz;
+    float z = cam.z;
+    float opacity = g.position_opacity.w;
+    if (!(z > frame.znear) || !(opacity > 1.0 / 255.0)) return 0u;
+
+    // Σ2D = J T Σ Tᵀ Jᵀ, T = F·W·M; x/z and y/z clamped to 1.3·tan(fov/2) as 3DGS does.
+    mat3 t = VIEW_TO_CAMERA * mat3(frame.view) * mat3(inst.model);
+    mat3 sigma = t * local_covariance(g) * transpose(t);
+    float fx = frame.focal.x, fy = frame.focal.y;
+    float tx = clamp(cam.x / z, -frame.jacobian_clamp.x, frame.jacobian_clamp.x) * z;
+    float ty = clamp(cam.y / z, -frame.jacobian_clamp.y, frame.jacobian_clamp.y) * z;
+    mat3x2 j = mat3x2(fx / z, 0.0, 0.0, fy / z, -fx * tx / (z * z), -fy * ty / (z * z));
+    mat2 cov = mat2(j * sigma * transpose(j));
+    float det_undilated = cov[0][0] * cov[1][1] - cov[0][1] * cov[0][1];
+    // Selected by the coverage at the output resolution (what the viewer sees), also when the
+    // splats are rasterised smaller for upscaling (docs/algorithms.md §5).
+    float coverage = pixel_coverage(cov, det_undilated, opacity) * frame.coverage_scale;
+    // Under a splat budget every Gaussian selected at some β is projected; the budget pass then
+    // picks β and the trim pass keeps those selected at it.
+    bool budgeted = frame.splat_budget != 0u;
+    ivec2 bins = budgeted ? budget_bins(uint(g.lod.z), coverage, g.lod.x, g.lod.y) : ivec2(0);
+    if (budgeted ? bins.y < bins.x : !lod_selected(uint(g.lod.z), coverage, g.lod.x, g.lod.y)) return 0u;
+    float dilation = frame.dilation;
+    cov[0][0] += dilation;
+    cov[1][1] += dilation;
+    float det = cov[0][0] * cov[1][1] - cov[0][1] * cov[0][1];
+    if (!(det > 0.0)) return 0u;
+    if (frame.mip_filter != 0u) opacity *= sqrt(max(det_undilated, 0.0) / det);  // optional 2D mip filter
+    if (!(opacity > 1.0 / 255.0)) return 0u;
+
+    // Extent: the ellipse where α reaches 1/255 (docs/algorithms.md §1), as pixel-centre bounds.
+    vec2 mean = vec2(frame.principal.x + fx * cam.x / z, frame.principal.y + fy * cam.y / z);
+    float level_set = 2.0 * log(255.0 * opacity);
+    vec2 radius = sqrt(level_set * vec2(cov[0][0], cov[1][1]));
+    vec2 lo = ceil(mean - radius - 0.5), hi = floor(mean + radius - 0.5);
+    vec2 size = frame.raster_size;
+    if (any(isnan(lo)) || any(isnan(hi)) || hi.x < 0.0 || hi.y < 0.0 || lo.x > size.x - 1.0 || lo.y > size.y - 1.0 || any(greaterThan(lo, hi)))
+        return 0u;
+    uvec2 pmin = uvec2(max(lo, vec2(0.0))), pmax = uvec2(min(hi, size - 1.0));
+    uvec4 rect = uvec4(pmin / frame.tile_size, pmax / frame.tile_size + 1u);
+
+    uint sh_base = index * frame.sh_stride;
+    vec3 direction = normalize(mat3(inst.rotation_inverse) * (world - frame.camera_position));
+    vec3 color = evaluate_sh(sh_base, inst.info.z & SPLAT_INSTANCE_SH_DEGREE_MASK, direction);
+    uint level = clamp(uint(g.lod.z), 1u, 4u);
+    if (frame.level_colouring != 0u) color = level_colour(level, color);  // debug view
+
+    vec4 conic = vec4(vec3(cov[1][1], -cov[0][1], cov[0][0]) / det, 0.0);
+    if (budgeted) {
+        uint cbin = coverage_bin(coverage);
+        conic.w = uintBitsToFloat(SPLAT_BUDGET_PACK_FLAG | uint(bins.x) | (uint(bins.y) << 8) | (cbin << 16) |
+                                  ((level - 1u) << 24));
+        atomicAdd(budget.selected[bins.x], 1u);
+        if (bins.y + 1 < SPLAT_BUDGET_BINS) atomicAdd(budget.selected[bins.y + 1], 0xFFFFFFFFu);  // −1
+        else atomicAdd(budget.coverage[cbin], 1u);
+    } else {
+        atomicAdd(stats.visible, 1u);
+        atomicAdd(stats.per_level[level - 1u], 1u);
+    }
+    projected[index] = ProjectedSplat(vec4(mean, z, opacity), conic, vec4(color, 0.0), rect);
+    return (rect.z - rect.x) * (rect.w - rect.y);
+}
+
+// One workgroup per cluster that step 1a kept (GpuCluster): the Gaussians of skipped clusters
+// keep the tile count 0 they were cleared to.
+void main() {
+    uint cluster = cluster_list.ids[gl_WorkGroupID.x];
+    uint index = cluster * SPLAT_PROJECT_WORKGROUP_SIZE + gl_LocalInvocationIndex;
+    if (index >= frame.gaussian_count) return;
+    tile_counts[index] = project(index);
+}

@@ -1,0 +1,192 @@
+// The chunk streamer (splat_lod/stream/chunk_streamer.h) with chunk groups: the small synthetic world
+// of chunk_streamer_test_helpers.h under a quadtree of groups, drawn as a cut without holes or overlap
+// while the camera flies in and out, with a missing group, groups off, the memory budget, and a
+// binding splat budget that coarsens the cut.
+#include <cmath>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/glm.hpp>
+
+#include "chunk_streamer_test_helpers.h"
+#include "engine/core/message_bus.h"
+#include "splat_lod/core/chunk_quadtree.h"
+#include "splat_lod/core/world_manifest.h"
+#include "splat_lod/msgs/splat_statistics.h"
+#include "splat_lod/msgs/stream_events.h"
+#include "splat_lod/stream/chunk_streamer.h"
+
+namespace sw = splat_lod::world;
+using namespace chunk_streamer_test;
+using plugin_msgs::StreamEventType;
+
+namespace {
+
+// make_world() with chunk groups: 2 × 2 groups of depth 1 (cells of 0.5 m: drawn from 50 m at
+// f = 100 px and 1 px) and a root of depth 2 (1 m cells: from 100 m), 30 Gaussians each, all of
+// stream level 4.
+sw::WorldManifest make_grouped_world() {
+    sw::WorldManifest world = make_world();
+    const int count = sw::chunks_per_side(world);
+    for (sw::ChunkEntry& c : world.chunks) c.cell -= glm::ivec2(count / 2);  // cells from −count/2, as generated
+    for (int depth = 1; depth <= 2; ++depth) {
+        std::set<std::pair<int, int>> made;
+        for (const sw::ChunkEntry& c : world.chunks) {
+            const glm::ivec2 g = sw::group_of_chunk(c.cell, count, depth);
+            if (!made.insert({g.x, g.y}).second) continue;
+            sw::ChunkEntry e = c;
+            e.id = sw::group_id(depth, g);
+            e.file = e.id + ".ply";
+            e.cell = g;
+            e.depth = depth;
+            e.cell_m = depth == 1 ? 0.5f : 1.0f;
+            e.bounds_min = glm::vec3(1e9f);
+            e.bounds_max = glm::vec3(-1e9f);
+            for (const sw::ChunkEntry& m : world.chunks)
+                if (sw::group_of_chunk(m.cell, count, depth) == g) {
+                    e.bounds_min = glm::min(e.bounds_min, m.bounds_min);
+                    e.bounds_max = glm::max(e.bounds_max, m.bounds_max);
+                }
+            e.prefix_count = {30, 30, 30, 30};
+            e.levels = {};
+            e.file_bytes = e.prefix_bytes(1);
+            world.groups.push_back(e);
+        }
+    }
+    return world;
+}
+
+// Over every chunk, how many nodes on its path to the root are drawn: exactly one means no hole and
+// nothing drawn twice over the same ground.
+std::vector<std::string> coverage_problems(const Harness& h, const sw::WorldManifest& world) {
+    std::vector<std::string> problems;
+    const int count = sw::chunks_per_side(world);
+    for (const sw::ChunkEntry& c : world.chunks) {
+        int drawn = h.sink.drawn(c.id) ? 1 : 0;
+        for (int depth = 1; depth <= 2; ++depth)
+            drawn += h.sink.drawn(sw::group_id(depth, sw::group_of_chunk(c.cell, count, depth))) ? 1 : 0;
+        if (drawn != 1) problems.push_back(c.id + " is drawn " + std::to_string(drawn) + " times");
+    }
+    return problems;
+}
+
+}  // namespace
+
+TEST(ChunkStreamerGroups, FarViewLoadsTheRootOnly) {
+    Harness h(sync_settings(), nullptr, make_grouped_world());
+    h.steps({20.0f, 400.0f, 20.0f}, 4);
+    EXPECT_TRUE(h.sink.drawn("group_2_+000_+000"));
+    EXPECT_EQ(h.sink.total, 30u * kPerGaussian) << "only the root is resident";
+    EXPECT_EQ(h.streamer.residency().drawn_groups, 1u);
+    EXPECT_EQ(h.streamer.residency().drawn_chunks, 0u);
+    EXPECT_TRUE(h.status("group_2_+000_+000").in_cut);
+    EXPECT_FALSE(h.status("chunk_0_0").in_cut);
+    EXPECT_TRUE(h.sink.violations.empty());
+    EXPECT_TRUE(coverage_problems(h, make_grouped_world()).empty());
+}
+
+TEST(ChunkStreamerGroups, FlyingInAndOutNeverLeavesAHoleOrDrawsTwice) {
+    sw::StreamerSettings settings = sync_settings();
+    settings.upload_budget_bytes_per_frame = 200 * kPerGaussian;  // levels arrive over several frames
+    settings.unload_delay_frames = 3;
+    const sw::WorldManifest world = make_grouped_world();
+    Harness h(settings, nullptr, world);
+    glm::vec3 eye{20.0f, 400.0f, 20.0f};
+    h.steps(eye, 3);
+    std::set<std::string> seen_drawn;
+    for (int k = 0; k < 160; ++k) {  // down to the ground in the corner chunk and back up
+        const float t = k < 80 ? static_cast<float>(k) / 79.0f : static_cast<float>(159 - k) / 79.0f;
+        eye = glm::mix(glm::vec3(20.0f, 400.0f, 20.0f), glm::vec3(2.0f, 1.5f, 2.0f), std::pow(t, 0.4f));
+        h.step(eye);
+        for (const std::string& problem : coverage_problems(h, world)) ADD_FAILURE() << "step " << k << ": " << problem;
+        for (const auto& [id, visible] : h.sink.shown)
+            if (h.sink.drawn(id)) seen_drawn.insert(id);
+    }
+    EXPECT_TRUE(seen_drawn.count("chunk_0_0"));
+    EXPECT_TRUE(seen_drawn.count("group_1_+001_+001"));
+    EXPECT_TRUE(seen_drawn.count("group_1_+000_+000"));
+    EXPECT_TRUE(seen_drawn.count("group_2_+000_+000"));
+    EXPECT_TRUE(h.sink.violations.empty()) << h.sink.violations.front();
+}
+
+TEST(ChunkStreamerGroups, NearViewDrawsChunksAndReleasesGroups) {
+    sw::StreamerSettings settings = sync_settings();
+    Harness h(settings, nullptr, make_grouped_world());
+    h.steps({20.0f, 400.0f, 20.0f}, 3);
+    h.steps({5.0f, 1.0f, 5.0f}, 6);  // inside chunk_0_0: its group 1 is 0 m away
+    EXPECT_TRUE(h.sink.drawn("chunk_0_0"));
+    EXPECT_FALSE(h.sink.drawn("group_2_+000_+000"));
+    EXPECT_EQ(h.sink.level_bytes.count({"group_2_+000_+000", 4}), 0u) << "released once replaced";
+    // Chunks more than 50 m away are drawn from their depth-1 group... none here (the world is 40 m):
+    EXPECT_EQ(h.streamer.residency().drawn_groups, 0u);
+    EXPECT_EQ(h.streamer.residency().drawn_chunks, 16u);
+}
+
+TEST(ChunkStreamerGroups, AMissingGroupIsReportedAndItsChunksDrawn) {
+    Harness h(sync_settings(), nullptr, make_grouped_world());
+    h.source.missing.insert("group_2_+000_+000.ply");
+    h.steps({20.0f, 400.0f, 20.0f}, 6);
+    const auto failed = h.of(StreamEventType::failed, "group_2_+000_+000");
+    ASSERT_EQ(failed.size(), 1u);
+    EXPECT_NE(failed[0].second.message.find("group_2_+000_+000.ply"), std::string::npos);
+    EXPECT_FALSE(h.sink.drawn("group_2_+000_+000"));
+    EXPECT_EQ(h.streamer.residency().drawn_groups, 4u) << "the depth-1 groups stand in for the root";
+    EXPECT_TRUE(coverage_problems(h, make_grouped_world()).empty());
+}
+
+TEST(ChunkStreamerGroups, GroupsOffStreamsChunksOnly) {
+    sw::StreamerSettings settings = sync_settings();
+    settings.group_cell_px = 0.0f;
+    Harness h(settings, nullptr, make_grouped_world());
+    h.steps({20.0f, 400.0f, 20.0f}, 4);
+    EXPECT_EQ(h.streamer.residency().drawn_chunks, 16u);
+    EXPECT_EQ(h.streamer.residency().groups.resident, 0u);
+    for (const auto& [key, bytes] : h.sink.level_bytes) EXPECT_EQ(key.first.rfind("chunk_", 0), 0u) << key.first;
+}
+
+TEST(ChunkStreamerGroups, MemoryBudgetHoldsWhileTheCutMoves) {
+    sw::StreamerSettings settings = sync_settings();
+    settings.memory_budget_bytes = 4 * (10 + 40) * kPerGaussian + 60 * kPerGaussian;
+    settings.upload_budget_bytes_per_frame = 100 * kPerGaussian;
+    Harness h(settings, nullptr, make_grouped_world());
+    for (int k = 0; k < 60; ++k)
+        h.step(glm::mix(glm::vec3(20.0f, 400.0f, 20.0f), glm::vec3(5.0f, 2.0f, 5.0f), static_cast<float>(k) / 59.0f));
+    EXPECT_TRUE(h.sink.violations.empty());
+    EXPECT_GT(h.streamer.residency().drawn_chunks, 0u);
+}
+
+TEST(ChunkStreamerGroups, ABindingSplatBudgetMakesTheCutCoarser) {
+    EXPECT_EQ(sw::next_group_cell_scale(1.0f, 500, 0), 1.0f) << "no budget";
+    EXPECT_EQ(sw::next_group_cell_scale(1.0f, 150, 200), 1.0f) << "within the budget, at 1";
+    EXPECT_NEAR(sw::next_group_cell_scale(1.0f, 210, 200), std::sqrt(210.0f / 200.0f), 1e-6f);
+    EXPECT_NEAR(sw::next_group_cell_scale(1.0f, 2000, 200), std::exp2(0.25f), 1e-6f) << "at most 2^(1/4) a step";
+    EXPECT_EQ(sw::next_group_cell_scale(3.0f, 180, 200), 3.0f) << "between 70 % and 100 %: held";
+    EXPECT_NEAR(sw::next_group_cell_scale(3.0f, 100, 200), 3.0f / std::exp2(0.125f), 1e-6f);
+    EXPECT_EQ(sw::next_group_cell_scale(1.01f, 0, 200), 1.0f);
+
+    // 60 m above the middle of the world (the boxes 60 m away): the depth-1 groups (0.5 m cells,
+    // 0.83 px) are the cut at 1 px, the root (1 m cells, 1.67 px) once the switch is scaled by 2. The
+    // renderer's statistics reach the streamer on the bus: a budget drawn 4× over scales it by √4 = 2
+    // in steps of at most 2^(1/4).
+    engine::MessageBus bus;
+    Harness h(sync_settings(), &bus, make_grouped_world());
+    h.steps({20.0f, 62.0f, 20.0f}, 4);
+    EXPECT_EQ(h.streamer.residency().drawn_groups, 4u);
+    EXPECT_EQ(h.streamer.group_cell_scale(), 1.0f);
+    plugin_msgs::SplatStatistics over;
+    over.splat_budget = 100;
+    over.unbudgeted = 400;
+    for (int k = 0; k < 4; ++k) {
+        bus.publish(over);
+        h.step({20.0f, 62.0f, 20.0f});
+    }
+    EXPECT_NEAR(h.streamer.group_cell_scale(), 2.0f, 1e-5f);
+    h.steps({20.0f, 62.0f, 20.0f}, 3);  // no new statistics: the scale holds
+    EXPECT_NEAR(h.streamer.group_cell_scale(), 2.0f, 1e-5f);
+    EXPECT_TRUE(h.status("group_2_+000_+000").in_cut);
+    EXPECT_TRUE(h.sink.drawn("group_2_+000_+000"));
+    EXPECT_EQ(h.streamer.residency().drawn_groups, 1u);
+}
