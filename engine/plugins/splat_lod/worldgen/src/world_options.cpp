@@ -83,8 +83,10 @@ std::string generator_settings(const WorldOptions& o) {
     return s.str();
 }
 
-std::string format_summary(const WorldSummary& s) {
-    std::ostringstream out;
+namespace {
+
+// The summary's first lines: Gaussians on disk, per bake and stream level, and what was generated.
+void summary_counts(const WorldSummary& s, std::ostringstream& out) {
     char line[256];
     if (s.cached)
         std::snprintf(line, sizeof line, "cached world: %zu chunks, %llu Gaussians on disk, %zu props\n", s.chunks,
@@ -115,6 +117,11 @@ std::string format_summary(const WorldSummary& s) {
                       static_cast<unsigned long long>(s.fences));
         out << line;
     }
+}
+
+// The coarse levels' quality over the bake views, and the bytes of chunks, meshes and groups.
+void summary_quality_and_bytes(const WorldSummary& s, std::ostringstream& out) {
+    char line[256];
     for (int l = 2; l <= kLevels; ++l) {
         const auto i = static_cast<std::size_t>(l - 1);
         if (s.mean_level_psnr[i] == 0.0) continue;
@@ -132,6 +139,11 @@ std::string format_summary(const WorldSummary& s) {
                   static_cast<unsigned long long>(s.group_gaussians),
                   static_cast<double>(s.group_bytes) / (1024.0 * 1024.0));
     out << line;
+}
+
+// The time of every stage, and of the per-chunk work summed over the workers.
+void summary_times(const WorldSummary& s, std::ostringstream& out) {
+    char line[256];
     for (const auto& stage : s.stages) {
         std::snprintf(line, sizeof line, "  %-28s %9.1f s\n", stage.stage.c_str(), stage.seconds);
         out << line;
@@ -143,6 +155,15 @@ std::string format_summary(const WorldSummary& s) {
     }
     std::snprintf(line, sizeof line, "  total %.1f s\n", s.seconds);
     out << line;
+}
+
+}  // namespace
+
+std::string format_summary(const WorldSummary& s) {
+    std::ostringstream out;
+    summary_counts(s, out);
+    summary_quality_and_bytes(s, out);
+    summary_times(s, out);
     return out.str();
 }
 

@@ -216,7 +216,6 @@ void SplatPass::record_selection(engine::FrameContext& frame, std::uint32_t n) {
 
 // Steps 6 and 7 of execute.
 void SplatPass::record_raster(engine::FrameContext& frame, const RasterSize& raster) {
-    const std::uint32_t tiles_x = raster.tiles_x, tiles_y = raster.tiles_y;
     {  // 6. per-tile front-to-back raster, stopping at the mesh depth; composite C + T·mesh, or below
        //    render scale 1, C and A with their derivatives at low resolution
         GpuTimerScope t(frame.timers, "splat.raster");
@@ -225,7 +224,7 @@ void SplatPass::record_raster(engine::FrameContext& frame, const RasterSize& ras
         if (raster.upscaled) defines.push_back("SPLAT_GRADIENTS");
         const auto& raster_program = frame.shaders.program({"splat_lod/splat_tile_raster.comp.glsl"}, defines);
         glUseProgram(raster_program.id());
-        glDispatchCompute(tiles_x, tiles_y, 1);
+        glDispatchCompute(raster.tiles_x, raster.tiles_y, 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
                         GL_TEXTURE_UPDATE_BARRIER_BIT);
     }
@@ -253,13 +252,23 @@ void SplatPass::execute(engine::FrameContext& frame) {
         sort_ = std::make_unique<gpu::RadixSort>(frame.shaders);
     }
     const RasterSize raster = raster_size(frame);
-    const std::uint32_t tiles_x = raster.tiles_x, tiles_y = raster.tiles_y;
     if (raster.upscaled)
         ensure_low_res_images(raster.width, raster.height);
     else if (low_.width > 0)
         low_ = LowResImages{};  // back at native resolution: nothing keeps them
-    ensure_frame_buffers(n, tiles_x * tiles_y);
+    ensure_frame_buffers(n, raster.tiles_x * raster.tiles_y);
     upload_frame_uniforms(frame, raster);
+    clear_frame_buffers();
+    record_selection(frame, n);     // 1. a–d: cull, skip, project, the splat budget
+    record_sort(frame, n, raster);  // 2–5. scan, bin, sort, tile ranges
+    record_raster(frame, raster);   // 6. raster; 7. upscale below render scale 1
+    glUseProgram(0);
+    record_statistics(frame);
+}
+
+// The per-frame counters, the budget's histograms, the tile ranges and counts start at zero, and the
+// cluster list empty, before step 1 fills them.
+void SplatPass::clear_frame_buffers() {
     glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     if (settings.splat_budget > 0)
         glClearNamedBufferData(budget_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
@@ -269,9 +278,11 @@ void SplatPass::execute(engine::FrameContext& frame) {
     const glm::uvec4 no_clusters(0u, 1u, 1u, 0u);
     cluster_list_.upload(0, sizeof(no_clusters), &no_clusters);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+}
 
-    record_selection(frame, n);  // 1. a–d: cull, skip, project, the splat budget
-    {                            // 2. exclusive scan of tile counts: each splat's key range; the total lands at [n]
+// Steps 2–5: the splats' key ranges, their (depth, tile) keys, the sort and each tile's range of keys.
+void SplatPass::record_sort(engine::FrameContext& frame, std::uint32_t n, const RasterSize& raster) {
+    {  // 2. exclusive scan of tile counts: each splat's key range; the total lands at [n]
         GpuTimerScope t(frame.timers, "splat.scan");
         scan_->record({tile_counts_, count_, 0, n, tile_counts_, std::size_t(n) * sizeof(std::uint32_t)});
     }
@@ -286,7 +297,7 @@ void SplatPass::execute(engine::FrameContext& frame) {
     }
     {  // 4. stable radix sort by (tile, depth); the key count stays on the GPU
         GpuTimerScope t(frame.timers, "splat.sort");
-        const auto hi_bits = static_cast<std::uint32_t>(std::bit_width(tiles_x * tiles_y - 1));
+        const auto hi_bits = static_cast<std::uint32_t>(std::bit_width(raster.tiles_x * raster.tiles_y - 1));
         sort_->record({keys_, values_, args_, 3 * sizeof(std::uint32_t), key_capacity_, hi_bits});
     }
     {  // 5. tile ranges in the sorted keys
@@ -297,9 +308,6 @@ void SplatPass::execute(engine::FrameContext& frame) {
         glDispatchComputeIndirect(0);
         barrier();
     }
-    record_raster(frame, raster);  // 6. raster; 7. upscale below render scale 1
-    glUseProgram(0);
-    record_statistics(frame);
 }
 
 void SplatPass::record_statistics(engine::FrameContext& frame) {

@@ -75,7 +75,9 @@ private:
     std::uint64_t low_res_bytes() const;
     void upload_frame_uniforms(const engine::FrameContext& frame, const RasterSize& raster);
     void bind_all(const engine::FrameContext& frame);
+    void clear_frame_buffers();
     void record_selection(engine::FrameContext& frame, std::uint32_t gaussians);
+    void record_sort(engine::FrameContext& frame, std::uint32_t gaussians, const RasterSize& raster);
     void record_raster(engine::FrameContext& frame, const RasterSize& raster);
     void record_statistics(engine::FrameContext& frame);
     void collect_statistics(engine::MessageBus& bus, bool wait);
