@@ -58,6 +58,9 @@ void add_lod_options(CLI::App& app, CommandLine& c) {
     app.add_option("--lod-size-threshold", lod.size_threshold_px, "S_T in pixels")->capture_default_str();
     app.add_option("--lod-rel-min", lod.rel_min, "S_rel_min")->capture_default_str();
     app.add_option("--lod-rel-max", lod.rel_max, "S_rel_max")->capture_default_str();
+    app.add_option("--lod-transition-band", lod.transition_band,
+                   "Octaves of coverage over which a Gaussian fades into its coarser level (0: hard switching)")
+        ->capture_default_str();
     app.add_option("--render-scale", lod.render_scale, "Splat raster resolution relative to the output, (0, 1]")
         ->capture_default_str();
     app.add_option("--upscaler", c.upscaler, "spline (default), bicubic, bilinear or lanczos3")

@@ -112,6 +112,7 @@ TEST(PluginMsgs, LodSettingsRoundTripEveryModeAndUpscaler) {
             settings.mip_filter = true;
             settings.level_colouring = true;
             settings.splat_budget = 200000;
+            settings.transition_band = 0.75f;
             expect_round_trip(settings);
         }
     }
@@ -159,6 +160,8 @@ TEST(PluginMsgs, LodSettingsRejectOutOfRangeValuesNamingTheKey) {
         {R"({"rel_min": 2.0})", "lod_settings.rel_min: must be in (0, rel_max = 1.5]"},
         {R"({"rel_min": 0.5, "rel_max": 0.4})", "lod_settings.rel_min"},
         {R"({"rel_max": -1})", "lod_settings.rel_max"},
+        {R"({"transition_band": -0.5})", "lod_settings.transition_band: must be in [0, 4.0] octaves of coverage"},
+        {R"({"transition_band": 9})", "lod_settings.transition_band"},
     });
 }
 

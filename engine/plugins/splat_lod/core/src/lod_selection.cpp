@@ -28,4 +28,21 @@ bool lod_selected(const LodRule& rule, int level, double coverage, double covera
     return not_too_large && not_too_small;
 }
 
+double lod_weight(const LodRule& rule, int level, double coverage, double coverage_min, double coverage_max) {
+    const double band = rule.transition_band;
+    if (rule.mode != plugin_msgs::LodMode::full || !(band > 0.0) || !(coverage > 0.0))
+        return lod_selected(rule, level, coverage, coverage_min, coverage_max) ? 1.0 : 0.0;
+    double weight = 1.0;
+    if (level != rule.finest_level && coverage_max >= 0.0) {
+        const double x = std::log2(coverage / (coverage_max * rule.rel_max));
+        weight *= std::clamp(0.5 - x / band, 0.0, 1.0);
+    }
+    if (level != rule.coarsest_level && coverage_min >= 0.0) {
+        const double y =
+            std::log2(std::max(coverage / rule.size_threshold_px, coverage / (coverage_min * rule.rel_min)));
+        weight *= std::clamp(0.5 + y / band, 0.0, 1.0);
+    }
+    return weight;
+}
+
 }  // namespace splat_lod

@@ -33,8 +33,15 @@ TEST(LodSelection, ModesChooseLevels) {
     EXPECT_TRUE(lod_selected(rule, 1, 100.0, 5.0, 10.0));  // finest is never too large
 }
 
+// The hard rule: full with no transition band.
+static LodRule hard_rule() {
+    LodRule rule;  // full, S_T 2, rel_min 0.5, rel_max 1.5, levels 1..4
+    rule.transition_band = 0.0;
+    return rule;
+}
+
 TEST(LodSelection, FullRuleWithExemptions) {
-    const LodRule rule;  // full, S_T 2, rel_min 0.5, rel_max 1.5, levels 1..4
+    const LodRule rule = hard_rule();
     EXPECT_TRUE(lod_selected(rule, 2, 8.0, 5.0, 10.0));
     EXPECT_FALSE(lod_selected(rule, 2, 16.0, 5.0, 10.0));  // 1.6 > rel_max
     EXPECT_TRUE(lod_selected(rule, 2, 15.0, 5.0, 10.0));   // 1.5 = rel_max
@@ -48,4 +55,75 @@ TEST(LodSelection, FullRuleWithExemptions) {
     LodRule two_levels = rule;
     two_levels.coarsest_level = 2;
     EXPECT_TRUE(lod_selected(two_levels, 2, 0.01, 5.0, 10.0));
+}
+
+using splat_lod::lod_weight;
+
+TEST(LodWeight, HardSwitchingIsTheSelectionRule) {
+    LodRule rule = hard_rule();
+    for (const auto mode : {LodMode::baseline, LodMode::filter_small, LodMode::insert_large, LodMode::full}) {
+        rule.mode = mode;
+        for (int level = 1; level <= 4; ++level)
+            for (const double s : {0.01, 1.9, 2.0, 2.5, 8.0, 15.0, 16.0, 300.0})
+                EXPECT_EQ(lod_weight(rule, level, s, 5.0, 10.0), lod_selected(rule, level, s, 5.0, 10.0) ? 1.0 : 0.0);
+    }
+    // The band applies in mode full only: the other modes stay on/off.
+    LodRule smooth;
+    smooth.mode = LodMode::filter_small;
+    EXPECT_EQ(lod_weight(smooth, 1, 1.9, 5.0, 10.0), 0.0);
+}
+
+TEST(LodWeight, RampsInLogCoverageCentredOnEachSwitch) {
+    LodRule rule;  // band 1 octave
+    rule.transition_band = 1.0;
+    // Too large: switch at S = S_max·rel_max = 15; ½ there, 1 from 15/√2 down, 0 from 15·√2 up.
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 2, 15.0, -1.0, 10.0), 0.5);
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 2, 15.0 / std::sqrt(2.0), -1.0, 10.0), 1.0);
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 2, 15.0 * std::sqrt(2.0), -1.0, 10.0), 0.0);
+    EXPECT_NEAR(lod_weight(rule, 2, 15.0 * std::pow(2.0, 0.25), -1.0, 10.0), 0.25, 1e-12);
+    // Too small: switch at max(S/S_T, S/(S_min·rel_min)) = 1, here S = 1 (S_min 2, below S_T).
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 1.0, 2.0, -1.0), 0.5);
+    EXPECT_NEAR(lod_weight(rule, 1, std::pow(2.0, -0.25), 2.0, -1.0), 0.25, 1e-12);
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 1.0 / std::sqrt(2.0), 2.0, -1.0), 0.0);
+    // Where S_T decides (S / S_T above S / (S_min·rel_min)), the switch is at S = S_T.
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 2.0, 100.0, -1.0), 0.5);
+    // Exemptions: the finest is never too large, the coarsest never too small, unset bounds filter nothing.
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 1000.0, -1.0, 10.0), 1.0);
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 4, 0.001, 5.0, -1.0), 1.0);
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 3, 0.001, -1.0, -1.0), 1.0);
+    // A wider band fades over more octaves.
+    rule.transition_band = 2.0;
+    EXPECT_NEAR(lod_weight(rule, 2, 15.0 * std::sqrt(2.0), -1.0, 10.0), 0.25, 1e-12);
+}
+
+// A Gaussian fading out where its replacement fades in: on a dolly both coverages scale by the same
+// factor, so when the fine one's "too small" switch and the coarse one's "too large" switch fall at the
+// same distance the weights are ramp(y) and ramp(−y) of one log distance y: they sum to 1 everywhere,
+// equal the hard rule outside the band and change continuously (by at most |Δlog2 S| / band).
+TEST(LodWeight, FineAndCoarseWeightsSumToOneAcrossTheBand) {
+    for (const double band : {0.5, 1.0, 2.0}) {
+        LodRule rule;
+        rule.transition_band = band;
+        LodRule hard = rule;
+        hard.transition_band = 0.0;
+        // Fine: S = t, S_min = 2, switch where t / (2·rel_min) = 1 (t = 1, below S_T). Coarse: S = 16·t,
+        // S_max = 16 / rel_max, switch at t = 1 too.
+        const double fine_min = 2.0, coarse_max = 16.0 / 1.5;
+        double previous_fine = -1.0;
+        for (int i = 0; i <= 4000; ++i) {
+            const double t = std::pow(2.0, -4.0 + 8.0 * i / 4000.0);  // the dolly: coverage ∝ t
+            const double fine = lod_weight(rule, 1, t, fine_min, -1.0);
+            const double coarse = lod_weight(rule, 2, 16.0 * t, -1.0, coarse_max);
+            ASSERT_NEAR(fine + coarse, 1.0, 1e-9) << "band " << band << " t " << t;
+            const double y = std::log2(t);
+            if (std::abs(y) > 0.5 * band + 1e-9) {
+                EXPECT_EQ(fine, lod_selected(hard, 1, t, fine_min, -1.0) ? 1.0 : 0.0);
+                EXPECT_EQ(coarse, lod_selected(hard, 2, 16.0 * t, -1.0, coarse_max) ? 1.0 : 0.0);
+            }
+            if (previous_fine >= 0.0) {
+                EXPECT_LE(std::abs(fine - previous_fine), 8.0 / 4000.0 / band + 1e-9);
+            }
+            previous_fine = fine;
+        }
+    }
 }

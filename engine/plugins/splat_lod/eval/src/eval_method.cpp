@@ -22,8 +22,13 @@ const std::vector<Method>& method_registry() {
          [](SplatPassSettings& settings) { settings.lod.mode = plugin_msgs::LodMode::filter_small; }},
         {"insert_large", "every level, no filtering",
          [](SplatPassSettings& settings) { settings.lod.mode = plugin_msgs::LodMode::insert_large; }},
-        {"full", "every level, selected by pixel coverage (the multi-scale method)",
+        {"full", "every level, selected by pixel coverage (the multi-scale method), smooth transitions",
          [](SplatPassSettings& settings) { settings.lod.mode = plugin_msgs::LodMode::full; }},
+        {"full_hard", "every level, selected by pixel coverage, each Gaussian switched on or off at once",
+         [](SplatPassSettings& settings) {
+             settings.lod.mode = plugin_msgs::LodMode::full;
+             settings.lod.transition_band = 0.0;
+         }},
     };
     return methods;
 }

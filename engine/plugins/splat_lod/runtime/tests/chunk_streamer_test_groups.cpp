@@ -1,7 +1,8 @@
 // The chunk streamer (splat_lod/stream/chunk_streamer.h) with chunk groups: the small synthetic world
 // of chunk_streamer_test_helpers.h under a quadtree of groups, drawn as a cut without holes or overlap
 // while the camera flies in and out, with a missing group, groups off, the memory budget, and a
-// binding splat budget that coarsens the cut.
+// binding splat budget that coarsens the cut; nodes and levels that fade in and out.
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <string>
@@ -59,16 +60,32 @@ sw::WorldManifest make_grouped_world() {
     return world;
 }
 
-// Over every chunk, how many nodes on its path to the root are drawn: exactly one means no hole and
-// nothing drawn twice over the same ground.
-std::vector<std::string> coverage_problems(const Harness& h, const sw::WorldManifest& world) {
+// Over every chunk, the opacities of the nodes on its path to the root (chunk_streamer.h, "fades"):
+// never above 1 (nothing drawn twice over the same ground), above 0 (no hole), and exactly 1 when at
+// most two of them are on screen (a cross-fade, or one node alone). With `settled`, exactly one node is
+// drawn, at opacity 1.
+std::vector<std::string> coverage_problems(const Harness& h, const sw::WorldManifest& world, bool settled = false) {
     std::vector<std::string> problems;
     const int count = sw::chunks_per_side(world);
     for (const sw::ChunkEntry& c : world.chunks) {
-        int drawn = h.sink.drawn(c.id) ? 1 : 0;
+        std::vector<std::string> path{c.id};
         for (int depth = 1; depth <= 2; ++depth)
-            drawn += h.sink.drawn(sw::group_id(depth, sw::group_of_chunk(c.cell, count, depth))) ? 1 : 0;
-        if (drawn != 1) problems.push_back(c.id + " is drawn " + std::to_string(drawn) + " times");
+            path.push_back(sw::group_id(depth, sw::group_of_chunk(c.cell, count, depth)));
+        float sum = 0.0f;
+        int on_screen = 0;
+        for (const std::string& id : path) {
+            const float o = h.sink.drawn_opacity(id);
+            sum += o;
+            on_screen += o > 0.0f ? 1 : 0;
+        }
+        const std::string what =
+            c.id + ": opacities sum to " + std::to_string(sum) + " over " + std::to_string(on_screen) + " nodes";
+        if (sum > 1.0f + 1e-5f || !(sum > 0.0f))
+            problems.push_back(what);
+        else if (on_screen <= 2 && std::abs(sum - 1.0f) > 1e-5f)
+            problems.push_back(what);
+        else if (settled && (on_screen != 1 || sum != 1.0f))
+            problems.push_back(what + " (settled)");
     }
     return problems;
 }
@@ -77,7 +94,7 @@ std::vector<std::string> coverage_problems(const Harness& h, const sw::WorldMani
 
 TEST(ChunkStreamerGroups, FarViewLoadsTheRootOnly) {
     Harness h(sync_settings(), nullptr, make_grouped_world());
-    h.steps({20.0f, 400.0f, 20.0f}, 4);
+    h.steps({20.0f, 400.0f, 20.0f}, 12);  // loaded, then faded in over fade_frames (8) updates
     EXPECT_TRUE(h.sink.drawn("group_2_+000_+000"));
     EXPECT_EQ(h.sink.total, 30u * kPerGaussian) << "only the root is resident";
     EXPECT_EQ(h.streamer.residency().drawn_groups, 1u);
@@ -85,7 +102,7 @@ TEST(ChunkStreamerGroups, FarViewLoadsTheRootOnly) {
     EXPECT_TRUE(h.status("group_2_+000_+000").in_cut);
     EXPECT_FALSE(h.status("chunk_0_0").in_cut);
     EXPECT_TRUE(h.sink.violations.empty());
-    EXPECT_TRUE(coverage_problems(h, make_grouped_world()).empty());
+    EXPECT_TRUE(coverage_problems(h, make_grouped_world(), true).empty());
 }
 
 TEST(ChunkStreamerGroups, FlyingInAndOutNeverLeavesAHoleOrDrawsTwice) {
@@ -95,7 +112,7 @@ TEST(ChunkStreamerGroups, FlyingInAndOutNeverLeavesAHoleOrDrawsTwice) {
     const sw::WorldManifest world = make_grouped_world();
     Harness h(settings, nullptr, world);
     glm::vec3 eye{20.0f, 400.0f, 20.0f};
-    h.steps(eye, 3);
+    h.steps(eye, 12);  // the root loaded and faded in
     std::set<std::string> seen_drawn;
     for (int k = 0; k < 160; ++k) {  // down to the ground in the corner chunk and back up
         const float t = k < 80 ? static_cast<float>(k) / 79.0f : static_cast<float>(159 - k) / 79.0f;
@@ -128,13 +145,13 @@ TEST(ChunkStreamerGroups, NearViewDrawsChunksAndReleasesGroups) {
 TEST(ChunkStreamerGroups, AMissingGroupIsReportedAndItsChunksDrawn) {
     Harness h(sync_settings(), nullptr, make_grouped_world());
     h.source.missing.insert("group_2_+000_+000.ply");
-    h.steps({20.0f, 400.0f, 20.0f}, 6);
+    h.steps({20.0f, 400.0f, 20.0f}, 14);  // loaded, then faded in
     const auto failed = h.of(StreamEventType::failed, "group_2_+000_+000");
     ASSERT_EQ(failed.size(), 1u);
     EXPECT_NE(failed[0].second.message.find("group_2_+000_+000.ply"), std::string::npos);
     EXPECT_FALSE(h.sink.drawn("group_2_+000_+000"));
     EXPECT_EQ(h.streamer.residency().drawn_groups, 4u) << "the depth-1 groups stand in for the root";
-    EXPECT_TRUE(coverage_problems(h, make_grouped_world()).empty());
+    for (const std::string& problem : coverage_problems(h, make_grouped_world(), true)) ADD_FAILURE() << problem;
 }
 
 TEST(ChunkStreamerGroups, GroupsOffStreamsChunksOnly) {
@@ -189,4 +206,58 @@ TEST(ChunkStreamerGroups, ABindingSplatBudgetMakesTheCutCoarser) {
     EXPECT_TRUE(h.status("group_2_+000_+000").in_cut);
     EXPECT_TRUE(h.sink.drawn("group_2_+000_+000"));
     EXPECT_EQ(h.streamer.residency().drawn_groups, 1u);
+}
+
+// Fades (chunk_streamer.h): when the depth-1 groups replace the root, the root fades out while they
+// fade in, one step of 1/8 per update, the opacities summing to 1; the root stays resident and shown
+// until its opacity reaches 0. With fade_frames = 0 the swap happens in one update.
+TEST(ChunkStreamerFades, ANodeThatReplacesAnotherCrossFadesAndStaysUntilGone) {
+    for (const int fade_frames : {8, 0}) {
+        SCOPED_TRACE("fade_frames " + std::to_string(fade_frames));
+        sw::StreamerSettings settings = sync_settings();
+        settings.fade_frames = fade_frames;
+        Harness h(settings, nullptr, make_grouped_world());
+        h.steps({20.0f, 400.0f, 20.0f}, 12);
+        ASSERT_EQ(h.sink.drawn_opacity("group_2_+000_+000"), 1.0f);
+        std::vector<float> root, group;
+        for (int k = 0; k < 14; ++k) {
+            h.step({20.0f, 62.0f, 20.0f});
+            root.push_back(h.sink.drawn_opacity("group_2_+000_+000"));
+            group.push_back(h.sink.drawn_opacity("group_1_+000_+000"));
+            EXPECT_NEAR(root.back() + group.back(), 1.0f, 1e-6f) << "update " << k;
+            if (root.back() > 0.0f) {
+                EXPECT_GT(h.sink.level_bytes.count({"group_2_+000_+000", 4}), 0u) << "kept while on screen";
+            }
+        }
+        // The swap starts once the groups are complete; from then on one step per update.
+        const auto start = std::find_if(group.begin(), group.end(), [](float o) { return o > 0.0f; });
+        ASSERT_NE(start, group.end());
+        const int steps = std::max(fade_frames, 1);
+        for (int i = 0; i < steps && start + i != group.end(); ++i)
+            EXPECT_NEAR(*(start + i), static_cast<float>(i + 1) / static_cast<float>(steps), 1e-6f);
+        EXPECT_EQ(group.back(), 1.0f);
+        EXPECT_EQ(root.back(), 0.0f);
+        EXPECT_FALSE(h.sink.shown["group_2_+000_+000"]) << "hidden once faded out";
+        EXPECT_TRUE(h.sink.violations.empty()) << h.sink.violations.front();
+    }
+}
+
+// A finer stream level that arrives while its chunk is on screen fades in by itself: its opacity
+// climbs 1/8, 2/8, … 1 over the updates after its upload, while the chunk's level 4 stays at 1.
+TEST(ChunkStreamerFades, ALevelThatArrivesOnScreenFadesIn) {
+    Harness h(sync_settings());
+    h.steps(before_chunk_0_0(100.0f), 12);  // level 4 only, faded in
+    ASSERT_EQ(h.sink.drawn_opacity("chunk_0_0"), 1.0f);
+    ASSERT_EQ(h.sink.level_bytes.count({"chunk_0_0", 3}), 0u);
+    std::vector<float> level3;
+    for (int k = 0; k < 12; ++k) {
+        h.step(before_chunk_0_0(50.0f));  // within level 3's 60 m
+        const auto it = h.sink.opacity.find({"chunk_0_0", 3});
+        if (it != h.sink.opacity.end()) level3.push_back(it->second);
+        EXPECT_EQ(h.sink.drawn_opacity("chunk_0_0"), 1.0f);
+    }
+    ASSERT_GE(level3.size(), 8u);  // from the update of its upload on
+    for (std::size_t i = 0; i < 8; ++i) EXPECT_NEAR(level3[i], static_cast<float>(i + 1) / 8.0f, 1e-6f) << i;
+    EXPECT_EQ(level3.back(), 1.0f);
+    EXPECT_TRUE(h.sink.violations.empty()) << h.sink.violations.front();
 }

@@ -103,6 +103,10 @@ void RecordingSink::upload(const sw::LevelPart& p) {
     if (sw::gpu_bytes(p.gaussians->size(), 3, pages) != p.bytes)
         violations.push_back(p.chunk_id + ": bytes disagree with the cloud");
     if (p.first + p.gaussians->size() > p.level_gaussians) violations.push_back(p.chunk_id + ": part beyond its level");
+    if (opacity.count(key) && opacity[key] != p.opacity)
+        violations.push_back(p.chunk_id + ": a part uploaded with another opacity than its level's");
+    if (!(p.opacity >= 0.0f && p.opacity <= 1.0f)) violations.push_back(p.chunk_id + ": opacity outside [0, 1]");
+    opacity[key] = p.opacity;
     level_bytes[key] += p.bytes;
     total += p.bytes;
     frame_bytes += p.bytes;
@@ -118,7 +122,15 @@ void RecordingSink::release(const std::string& chunk, int level) {
     if (!level_bytes.count(key)) violations.push_back(chunk + ": released a level that was never uploaded");
     total -= level_bytes[key];
     level_bytes.erase(key);
+    opacity.erase(key);
     complete.erase(key);
+}
+
+void RecordingSink::fade(const std::string& chunk, int level, float value) {
+    const auto key = std::make_pair(chunk, level);
+    if (!level_bytes.count(key)) violations.push_back(chunk + ": faded a level that is not uploaded");
+    if (!(value >= 0.0f && value <= 1.0f)) violations.push_back(chunk + ": opacity outside [0, 1]");
+    opacity[key] = value;
 }
 
 sw::StreamerSettings sync_settings() {
@@ -129,6 +141,7 @@ sw::StreamerSettings sync_settings() {
     s.memory_budget_bytes = 1ull << 30;
     s.max_requests_in_flight = 64;
     s.unload_delay_frames = 0;
+    s.lod.transition_band = 0.0f;  // the load distances above are those of the hard rule
     s.group_cell_px = 1.0f;  // the grouped world's switch distances (chunk_streamer_test_groups.cpp) assume 1 px
     return s;
 }

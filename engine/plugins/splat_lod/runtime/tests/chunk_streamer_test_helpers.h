@@ -83,13 +83,20 @@ public:
     void upload(const sw::LevelPart& p) override;
     void release(const std::string& chunk, int level) override;
     void show(const std::string& chunk, bool visible) override { shown[chunk] = visible; }
+    void fade(const std::string& chunk, int level, float value) override;
     std::uint64_t take_frame_bytes() { return std::exchange(frame_bytes, 0); }
     // Drawn: something of it uploaded and shown (parts arrive with the visibility last shown).
     bool drawn(const std::string& id) const {
         const auto it = shown.find(id);
         return it != shown.end() && it->second && level_bytes.count({id, 4}) > 0;
     }
+    // The opacity a node is drawn with: its level 4's last fade when drawn, else 0.
+    float drawn_opacity(const std::string& id) const {
+        const auto it = opacity.find({id, 4});
+        return drawn(id) && it != opacity.end() ? it->second : 0.0f;
+    }
     std::map<std::string, bool> shown;
+    std::map<std::pair<std::string, int>, float> opacity;  // per uploaded level: the last fade
 };
 
 sw::StreamerSettings sync_settings();

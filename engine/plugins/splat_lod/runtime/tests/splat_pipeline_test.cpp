@@ -299,6 +299,7 @@ TEST_F(SplatPipelineTest, LodSelectionMatchesTheCpuRule) {
         SCOPED_TRACE(std::string(plugin_msgs::to_string(mode)));
         plugin_msgs::LodSettings lod;
         lod.mode = mode;
+        lod.transition_band = 0.0f;           // hard switching: the rule itself
         harness.engine().bus().publish(lod);  // the plugin takes settings from the bus
         ASSERT_EQ(pass.settings().lod.mode, mode);
         splat_lod::LodRule rule = pass.settings().lod;
@@ -345,4 +346,63 @@ TEST_F(SplatPipelineTest, LevelColouringTintsEachLevel) {
     EXPECT_GT(int(grey[0]), 100);
     EXPECT_GT(int(green[1]), int(green[0]) + 60);
     EXPECT_GT(int(green[1]), int(green[2]) + 60);
+}
+
+// Smooth transitions (the default): the GPU scales each selected Gaussian's opacity by
+// splat_lod::lod_weight, so the image equals the reference render of the cloud with opacities scaled
+// by the CPU's weights, and the same frame drawn twice is the same bytes (a pure function of the view).
+TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
+    std::vector<GaussianSpec> specs;
+    for (int i = 0; i < 400; ++i) {
+        const float t = static_cast<float>(i);
+        specs.push_back({{1.6f * std::sin(t * 1.3f), 1.2f * std::cos(t * 0.7f), -1.5f * std::sin(t * 0.23f)},
+                         glm::vec3(-3.5f + 0.8f * std::sin(t * 0.5f)),
+                         {1, 0, 0, 0},
+                         1.5f,
+                         {0.5f + 0.5f * std::sin(t), 0.4f, 0.5f + 0.5f * std::cos(t)}});
+    }
+    auto cloud = engine::test::make_cloud(specs);
+    const auto camera =
+        engine::make_look_at_camera({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 160, 120, 0.1f, 100.0f);
+    const auto ref_camera = ref::make_reference_camera(camera);
+    const ref::ReferenceSettings settings;
+    splat_lod::SplatRenderer pass(harness.engine().renderer());
+    harness.engine().bus().publish(plugin_msgs::LodSettings{});  // full, band 1 octave
+    splat_lod::LodRule rule = pass.settings().lod;
+    ASSERT_EQ(rule.transition_band, 1.0);
+    rule.coarsest_level = 4;
+    auto weighted = cloud;
+    std::vector<std::uint8_t> keep(cloud.size());
+    int partial = 0;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        const auto p = ref::project_gaussian(cloud, i, glm::dmat4(1.0), ref_camera, settings);
+        const glm::dvec3 c = p.cov2d - glm::dvec3(settings.dilation, 0.0, settings.dilation);
+        const double coverage = splat_lod::pixel_coverage(c.x, c.y, c.z, p.opacity);
+        cloud.lod_level[i] = static_cast<std::uint8_t>(1 + i % 4);
+        // Switches spread over ±0.9 octave around this view's coverage: most inside the band.
+        const double octaves = 0.9 * std::sin(0.37 * static_cast<double>(i));
+        cloud.coverage_max[i] = static_cast<float>(coverage / (rule.rel_max * std::exp2(octaves)));
+        cloud.coverage_min[i] =
+            (i % 2 == 0) ? -1.0f : static_cast<float>(coverage / (rule.rel_min * std::exp2(octaves)));
+        const double w =
+            splat_lod::lod_weight(rule, cloud.lod_level[i], coverage, cloud.coverage_min[i], cloud.coverage_max[i]);
+        if (w > 0.0 && w < 1.0) ++partial;
+        const double opacity = p.opacity * w;
+        keep[i] = p.drawn() && opacity > 1.0 / 255.0;
+        if (keep[i]) weighted.opacity_logits[i] = static_cast<float>(std::log(opacity / (1.0 - opacity)));
+    }
+    weighted.lod_level = cloud.lod_level;
+    weighted.keep_only(keep);
+    EXPECT_GT(partial, 100) << "the case is not vacuous: many Gaussians are inside the band";
+    const auto shared_cloud = shared(cloud);
+    const auto gpu = harness.render({shared_cloud}, camera);
+    EXPECT_GE(engine::compare_images(gpu, reference(weighted, camera)).psnr_db, 40.0);
+    // Float on the GPU, double here: a weight at the 1/255 edge may fall either way.
+    EXPECT_NEAR(static_cast<double>(pass.latest_statistics()->visible), static_cast<double>(weighted.size()), 2.0);
+    EXPECT_EQ(harness.render({shared_cloud}, camera).rgba, gpu.rgba) << "the same frame twice";
+    // Hard switching draws another image from the same cloud.
+    plugin_msgs::LodSettings hard;
+    hard.transition_band = 0.0f;
+    harness.engine().bus().publish(hard);
+    EXPECT_LT(engine::compare_images(harness.render({shared_cloud}, camera), gpu).psnr_db, 40.0);
 }

@@ -25,6 +25,9 @@ struct SplatComponent : engine::Component {
     // False: kept on the GPU but not drawn (its clusters are dropped before any per-Gaussian work),
     // so that a streamer can switch between coarse and fine parts of a world without re-uploading.
     bool visible = true;
+    // Multiplies the opacity of every Gaussian, clamped to [0, 1]: a streamer fades a part in as it
+    // arrives and out as what replaces it takes over (chunk_streamer.h, "fades").
+    float opacity = 1.0f;
 };
 
 // Registers the "splat" type (asset path resolved against the scene file, loads cached).

@@ -20,6 +20,30 @@ bool lod_selected(uint level, float coverage, float coverage_min, float coverage
     return not_too_large && not_too_small;
 }
 
+bool smooth_transitions() {
+    return frame.lod_mode == SPLAT_LOD_MODE_FULL && frame.transition_band > 0.0;
+}
+
+// The rule's two tests as log2 distances from their switches (> 0: the test fails by that many
+// octaves for "large", holds by that many for "small"); ±1e30 where a test does not apply.
+vec2 lod_switch_octaves(uint level, float coverage, float coverage_min, float coverage_max) {
+    float x = -1e30, y = 1e30;
+    if (level != frame.finest_level && coverage_max >= 0.0) x = log2(coverage / (coverage_max * frame.rel_max));
+    if (level != frame.coarsest_level && coverage_min >= 0.0)
+        y = log2(max(coverage / frame.size_threshold, coverage / (coverage_min * frame.rel_min)));
+    return vec2(x, y);
+}
+
+// The opacity weight of lod_weight in splat_lod/core/lod_selection.h: linear ramps in log2 coverage,
+// transition_band octaves wide and centred on each switch; 0/1 by lod_selected when transitions are hard.
+float lod_weight(uint level, float coverage, float coverage_min, float coverage_max) {
+    if (!smooth_transitions() || !(coverage > 0.0))
+        return lod_selected(level, coverage, coverage_min, coverage_max) ? 1.0 : 0.0;
+    vec2 o = lod_switch_octaves(level, coverage, coverage_min, coverage_max);
+    float band = frame.transition_band;
+    return clamp(0.5 - o.x / band, 0.0, 1.0) * clamp(0.5 + o.y / band, 0.0, 1.0);
+}
+
 // Debug view: each level tinted (1 grey, 2 green, 3 blue, 4 red), keeping the shading's brightness.
 vec3 level_colour(uint level, vec3 colour) {
     const vec3 tint[4] = vec3[](vec3(0.8), vec3(0.2, 0.9, 0.2), vec3(0.25, 0.45, 1.0), vec3(1.0, 0.25, 0.2));
@@ -27,31 +51,26 @@ vec3 level_colour(uint level, vec3 colour) {
     return tint[level - 1u] * (0.35 + 0.65 * clamp(brightness, 0.0, 1.0));
 }
 
-// The splat budget (splat_lod_shared.h): the β bins [x, y] in which the Gaussian is selected with its
-// coverage divided by β = 2^(b/8); empty when y < x. Bin 0 (β = 1) agrees with lod_selected exactly,
-// so a budget that does not bind changes nothing. "Not too large" holds from β ≥ S / (S_max·S_rel_max)
-// on, "not too small" up to β ≤ max(S / S_T, S / (S_min·S_rel_min)).
+// The splat budget (splat_lod_shared.h): the β bins [x, y] in which the Gaussian is selected (a weight
+// above 0) with its coverage divided by β = 2^(b/8); empty when y < x. Bin 0 (β = 1) agrees with
+// lod_weight > 0, so a budget that does not bind changes nothing. "Not too large" holds from
+// log2 β > x − h on, "not too small" up to log2 β < y + h, with x, y of lod_switch_octaves and h half
+// the transition band (0 when transitions are hard: then the bounds are inclusive, as in lod_selected).
 ivec2 budget_bins(uint level, float coverage, float coverage_min, float coverage_max) {
     const ivec2 none = ivec2(1, 0);
-    uint mode = frame.lod_mode, finest = frame.finest_level, coarsest = frame.coarsest_level;
+    uint mode = frame.lod_mode, finest = frame.finest_level;
     bool all_levels = mode == SPLAT_LOD_MODE_INSERT_LARGE || mode == SPLAT_LOD_MODE_FULL;
     if (!all_levels && level != finest) return none;
     if (mode == SPLAT_LOD_MODE_BASELINE || mode == SPLAT_LOD_MODE_INSERT_LARGE) return ivec2(0, SPLAT_BUDGET_BINS - 1);
-    if (!(coverage >= 0.0)) return none;
-    bool large_ok = level == finest || coverage_max < 0.0 || coverage / coverage_max <= frame.rel_max;
-    bool small_ok = level == coarsest || coverage_min < 0.0 || coverage >= frame.size_threshold ||
-                    coverage / coverage_min >= frame.rel_min;
-    if (!small_ok) return none;
-    int lo = 0;
-    if (!large_ok) {
-        float beta = coverage / (coverage_max * frame.rel_max);
-        lo = int(clamp(ceil(SPLAT_BUDGET_BINS_PER_OCTAVE * log2(beta)), 1.0, float(SPLAT_BUDGET_BINS)));
-    }
-    int hi = SPLAT_BUDGET_BINS - 1;
-    if (!(level == coarsest || coverage_min < 0.0)) {
-        float beta = max(coverage / frame.size_threshold, coverage / (coverage_min * frame.rel_min));
-        hi = int(clamp(floor(SPLAT_BUDGET_BINS_PER_OCTAVE * log2(beta)), 0.0, float(SPLAT_BUDGET_BINS - 1)));
-    }
+    if (!(coverage > 0.0)) return lod_selected(level, coverage, coverage_min, coverage_max) ? ivec2(0) : none;
+    vec2 o = lod_switch_octaves(level, coverage, coverage_min, coverage_max);
+    bool smooth_fade = smooth_transitions();
+    float h = smooth_fade ? 0.5 * frame.transition_band : 0.0;
+    // With a ramp the weight is 0 exactly at ±h, so those bounds are exclusive: nudged by a hair.
+    float lo_octaves = o.x - h + (smooth_fade ? 1e-6 : 0.0), hi_octaves = o.y + h - (smooth_fade ? 1e-6 : 0.0);
+    if (hi_octaves < 0.0) return none;
+    int lo = lo_octaves <= 0.0 ? 0 : int(clamp(ceil(SPLAT_BUDGET_BINS_PER_OCTAVE * lo_octaves), 1.0, float(SPLAT_BUDGET_BINS)));
+    int hi = int(clamp(floor(SPLAT_BUDGET_BINS_PER_OCTAVE * hi_octaves), 0.0, float(SPLAT_BUDGET_BINS - 1)));
     return ivec2(lo, hi);
 }
 

@@ -1,15 +1,20 @@
 // Step 1d, the splat budget's trim: one invocation per Gaussian of the clusters step 1a kept (the
 // same indirect dispatch as step 1b). A splat that step 1b projected stays only if it is selected
 // at the β bin step 1c chose and its coverage is not below the cut; the others get 0 tiles, so no
-// later pass sees them. Counts the drawn Gaussians per level (step 1b does not, under a budget).
+// later pass sees them. A kept splat's opacity is scaled by its LOD weight at coverage/β (smooth
+// transitions; step 1b's extent, from the unscaled opacity, stays a conservative bound). Counts the
+// drawn Gaussians per level (step 1b does not, under a budget).
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = SPLAT_PROJECT_WORKGROUP_SIZE) in;
-layout(std430, binding = SPLAT_BINDING_PROJECTED) readonly buffer Projected { ProjectedSplat projected[]; };
+layout(std430, binding = SPLAT_BINDING_GAUSSIANS) readonly buffer Gaussians { GpuGaussian gaussians[]; };
+layout(std430, binding = SPLAT_BINDING_PROJECTED) buffer Projected { ProjectedSplat projected[]; };
 layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) buffer TileCounts { uint tile_counts[]; };
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
 layout(std430, binding = SPLAT_BINDING_BUDGET) readonly buffer Budget { SplatBudgetState budget; };
+
+#include "common_splat_lod.glsl"
 
 void main() {
     uint cluster = cluster_list.ids[gl_WorkGroupID.x];
@@ -20,6 +25,16 @@ void main() {
     uint level = ((bits >> 24) & 0x3u) + 1u;
     uint chosen = budget.choice.x, cut = budget.choice.y;
     if (lo <= chosen && chosen <= hi && cbin >= cut) {
+        if (smooth_transitions()) {
+            vec4 lod = gaussians[index].lod;
+            float beta = chosen == 0u ? 1.0 : exp2(float(chosen) / SPLAT_BUDGET_BINS_PER_OCTAVE);
+            float opacity = projected[index].mean_depth.w * lod_weight(level, projected[index].color.w / beta, lod.x, lod.y);
+            if (!(opacity > 1.0 / 255.0)) {
+                tile_counts[index] = 0u;
+                return;
+            }
+            projected[index].mean_depth.w = opacity;
+        }
         atomicAdd(stats.visible, 1u);
         atomicAdd(stats.per_level[level - 1u], 1u);
     } else {

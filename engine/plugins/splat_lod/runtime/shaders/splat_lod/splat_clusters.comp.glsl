@@ -21,7 +21,8 @@ const mat3 VIEW_TO_CAMERA = mat3(1, 0, 0, 0, -1, 0, 0, 0, -1);
 // with lx, ly the Jacobian's clamp of x/z, y/z; z is at least the sphere's nearest depth. If for
 // every member that bound is below S_T and its ratio to S_min below S_rel_min, none is drawn.
 // Members of the coarsest level, members without S_min, and clusters reaching the near plane are
-// never skipped.
+// never skipped. With smooth transitions a member still fades out down to half the band below the
+// switch, so both thresholds are lowered by 2^(−band/2).
 // True when no member of the cluster can touch the image (exact: step 1b would cull every one).
 // A member at camera-space (x, y, z), z > 0, has its mean at u = cx + fx·x/z and reaches at most
 // r = √L·‖J‖₂·‖M‖₂·σ_max + √(L·dilation) pixels from it, with ‖J‖₂ ≤ j/z (the Jacobian's clamp, as in
@@ -67,7 +68,9 @@ bool skip_cluster(uint cluster) {
     float jacobian = sqrt(fx * fx * (1.0 + lx * lx) + fy * fy * (1.0 + ly * ly)) / z_min;
     // × the coverage scale: selection uses the coverage at the output resolution (splat_project).
     float scale = 2.0 * stretch * jacobian * frame.coverage_scale * 1.001;  // margin for float rounding
-    return c.bounds.x * scale < frame.size_threshold && c.bounds.y * scale < frame.rel_min;
+    bool smooth_fade = mode == SPLAT_LOD_MODE_FULL && frame.transition_band > 0.0;
+    float fade = smooth_fade ? exp2(-0.5 * frame.transition_band) : 1.0;
+    return c.bounds.x * scale < frame.size_threshold * fade && c.bounds.y * scale < frame.rel_min * fade;
 }
 
 void main() {

@@ -158,7 +158,7 @@ SPLAT_LOD_STRUCT(GpuGaussian) {
 SPLAT_LOD_STRUCT(GpuInstance) {
     mat4 model;             // local → world
     mat4 rotation_inverse;  // world → local directions (for SH)
-    uvec4 info;             // x first slot of its first page, y count, z SH degree used (bits 0-7) and
+    uvec4 info;             // x floatBitsToUint(opacity factor, SplatComponent::opacity), y count, z SH degree used (bits 0-7) and
                             // SPLAT_INSTANCE_HIDDEN, w floatBitsToUint(‖M‖₂), M = mat3(model)
 };
 
@@ -183,7 +183,7 @@ SPLAT_LOD_STRUCT(GpuCluster) {
 SPLAT_LOD_STRUCT(ProjectedSplat) {
     vec4 mean_depth;  // x, y image position (top-left origin), z view depth, w opacity
     vec4 conic;       // inverse of the dilated 2D covariance: xx, xy, yy; w unused
-    vec4 color;       // rgb (SH + 0.5, clamped at 0), w unused
+    vec4 color;       // rgb (SH + 0.5, clamped at 0), w the coverage S (output px) of the selection
     uvec4 tile_rect;  // tiles [x0, x1) × [y0, y1)
 };
 
@@ -221,7 +221,7 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     float render_scale;          // s (1 natively)
     float inverse_render_scale;  // 1/s
     uint splat_budget;           // at most this many Gaussians drawn (0: no budget)
-    uint reserved0;
+    float transition_band;       // octaves of coverage over which a Gaussian fades (0: hard switching)
     uint reserved1;
     uint reserved2;
 };

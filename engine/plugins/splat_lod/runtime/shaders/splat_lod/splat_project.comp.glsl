@@ -25,6 +25,18 @@ mat3 local_covariance(GpuGaussian g) {
     return mat3(a.x, a.y, a.z, a.y, a.w, b.x, a.z, b.x, b.y);
 }
 
+// Extent: the ellipse where α reaches 1/255 (docs/algorithms.md §1), as pixel-centre bounds [lo, hi];
+// false when it misses the raster (or is not a number).
+bool extent_on_raster(vec2 mean, mat2 cov, float opacity, out vec2 lo, out vec2 hi) {
+    float level_set = 2.0 * log(255.0 * opacity);
+    vec2 radius = sqrt(level_set * vec2(cov[0][0], cov[1][1]));
+    lo = ceil(mean - radius - 0.5);
+    hi = floor(mean + radius - 0.5);
+    vec2 size = frame.raster_size;
+    return !(any(isnan(lo)) || any(isnan(hi)) || hi.x < 0.0 || hi.y < 0.0 || lo.x > size.x - 1.0 ||
+             lo.y > size.y - 1.0 || any(greaterThan(lo, hi)));
+}
+
 // Returns the tile count; 0 means culled.
 uint project(uint index) {
     GpuGaussian g = gaussians[index];
@@ -48,33 +60,45 @@ uint project(uint index) {
     // splats are rasterised smaller for upscaling (docs/algorithms.md §5).
     float coverage = pixel_coverage(cov, det_undilated, opacity) * frame.coverage_scale;
     // Under a splat budget every Gaussian selected at some β is projected; the budget pass then
-    // picks β and the trim pass keeps those selected at it.
+    // picks β and the trim pass keeps those selected at it and applies their weight at β. Otherwise
+    // the opacity is scaled by the LOD weight here (smooth transitions; 1 with hard switching). Both
+    // scale after the mip filter, so that a budget that does not bind draws the same bytes.
     bool budgeted = frame.splat_budget != 0u;
+    uint level = clamp(uint(g.lod.z), 1u, 4u);
     ivec2 bins = budgeted ? budget_bins(uint(g.lod.z), coverage, g.lod.x, g.lod.y) : ivec2(0);
-    if (budgeted ? bins.y < bins.x : !lod_selected(uint(g.lod.z), coverage, g.lod.x, g.lod.y)) return 0u;
+    float weight = budgeted ? 1.0 : lod_weight(uint(g.lod.z), coverage, g.lod.x, g.lod.y);
+    if (bins.y < bins.x || !(weight > 0.0)) return 0u;
     float dilation = frame.dilation;
     cov[0][0] += dilation;
     cov[1][1] += dilation;
     float det = cov[0][0] * cov[1][1] - cov[0][1] * cov[0][1];
     if (!(det > 0.0)) return 0u;
     if (frame.mip_filter != 0u) opacity *= sqrt(max(det_undilated, 0.0) / det);  // optional 2D mip filter
+    opacity *= uintBitsToFloat(inst.info.x);  // the component's opacity (a streamed part fading in or out)
+    opacity *= weight;
     if (!(opacity > 1.0 / 255.0)) return 0u;
 
-    // Extent: the ellipse where α reaches 1/255 (docs/algorithms.md §1), as pixel-centre bounds.
     vec2 mean = vec2(frame.principal.x + fx * cam.x / z, frame.principal.y + fy * cam.y / z);
-    float level_set = 2.0 * log(255.0 * opacity);
-    vec2 radius = sqrt(level_set * vec2(cov[0][0], cov[1][1]));
-    vec2 lo = ceil(mean - radius - 0.5), hi = floor(mean + radius - 0.5);
+    vec2 lo, hi;
+    if (!extent_on_raster(mean, cov, opacity, lo, hi)) return 0u;
+    // Bin 0 (β = 1) counts exactly what the frame without a budget draws: not a splat whose opacity
+    // weighted at β = 1 is below 1/255 or whose extent with it misses the raster (the trim pass drops
+    // the first kind at any β; the extent kept is the unweighted one, which holds every weight's).
+    if (budgeted && bins.x == 0) {
+        float weighted = opacity * lod_weight(uint(g.lod.z), coverage, g.lod.x, g.lod.y);
+        vec2 lo0, hi0;
+        if (!(weighted > 1.0 / 255.0) || !extent_on_raster(mean, cov, weighted, lo0, hi0)) {
+            bins.x = 1;
+            if (bins.y < 1) return 0u;
+        }
+    }
     vec2 size = frame.raster_size;
-    if (any(isnan(lo)) || any(isnan(hi)) || hi.x < 0.0 || hi.y < 0.0 || lo.x > size.x - 1.0 || lo.y > size.y - 1.0 || any(greaterThan(lo, hi)))
-        return 0u;
     uvec2 pmin = uvec2(max(lo, vec2(0.0))), pmax = uvec2(min(hi, size - 1.0));
     uvec4 rect = uvec4(pmin / frame.tile_size, pmax / frame.tile_size + 1u);
 
     uint sh_base = index * frame.sh_stride;
     vec3 direction = normalize(mat3(inst.rotation_inverse) * (world - frame.camera_position));
     vec3 color = evaluate_sh(sh_base, inst.info.z & SPLAT_INSTANCE_SH_DEGREE_MASK, direction);
-    uint level = clamp(uint(g.lod.z), 1u, 4u);
     if (frame.level_colouring != 0u) color = level_colour(level, color);  // debug view
 
     vec4 conic = vec4(vec3(cov[1][1], -cov[0][1], cov[0][0]) / det, 0.0);
@@ -89,7 +113,8 @@ uint project(uint index) {
         atomicAdd(stats.visible, 1u);
         atomicAdd(stats.per_level[level - 1u], 1u);
     }
-    projected[index] = ProjectedSplat(vec4(mean, z, opacity), conic, vec4(color, 0.0), rect);
+    // color.w: the coverage, from which the budget's trim computes the weight at its β.
+    projected[index] = ProjectedSplat(vec4(mean, z, opacity), conic, vec4(color, coverage), rect);
     return (rect.z - rect.x) * (rect.w - rect.y);
 }
 

@@ -32,6 +32,7 @@ static_assert(offsetof(FrameUniforms, lod_mode) == 176);
 static_assert(offsetof(FrameUniforms, output_size) == 192);
 static_assert(offsetof(FrameUniforms, render_scale) == 200);
 static_assert(offsetof(FrameUniforms, splat_budget) == 208);
+static_assert(offsetof(FrameUniforms, transition_band) == 212);
 static_assert(sizeof(FrameCounters) == 64);
 static_assert(offsetof(FrameCounters, budget) == 48);
 static_assert(sizeof(SplatBudgetState) == 16 + 4 * (SPLAT_BUDGET_BINS + SPLAT_COVERAGE_BINS));

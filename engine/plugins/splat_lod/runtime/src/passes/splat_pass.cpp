@@ -44,6 +44,7 @@ void SplatPass::apply(const plugin_msgs::LodSettings& lod) {
     settings.lod.size_threshold_px = lod.size_threshold_px;
     settings.lod.rel_min = lod.rel_min;
     settings.lod.rel_max = lod.rel_max;
+    settings.lod.transition_band = lod.transition_band;
     settings.mip_filter = lod.mip_filter;
     settings.level_colouring = lod.level_colouring;
     settings.render_scale = lod.render_scale;
@@ -129,6 +130,7 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, const R
     u.render_scale = s;
     u.inverse_render_scale = 1.0f / s;
     u.splat_budget = settings.splat_budget;
+    u.transition_band = static_cast<float>(lod.transition_band);
     uniforms_.upload(0, sizeof(u), &u);
     const std::uint32_t count = scene_.gaussian_count();
     count_.upload(0, sizeof(count), &count);

@@ -18,10 +18,6 @@ namespace {
 using plugin_msgs::StreamEvent;
 using plugin_msgs::StreamEventType;
 
-[[noreturn]] void settings_error(const std::string& message) {
-    engine::fail("splat_lod::world::ChunkStreamer: " + message);
-}
-
 std::string part_label(std::uint32_t part, std::size_t count) {
     return count > 1 ? "part " + std::to_string(part + 1) + "/" + std::to_string(count) : std::string();
 }
@@ -45,31 +41,6 @@ std::string check_part(const SplatCloud& cloud, const ReadRequest& request, cons
 }
 
 }  // namespace
-
-void validate(const StreamerSettings& s) {
-    if (s.gpu_sh_degree < 0 || s.gpu_sh_degree > kMaxShDegree)
-        settings_error("gpu_sh_degree must be 0..3, got " + std::to_string(s.gpu_sh_degree));
-    if (s.gpu_pages.page_gaussians < 1) settings_error("gpu_pages.page_gaussians must be at least 1");
-    const std::uint64_t one = gpu_bytes(1, s.gpu_sh_degree, s.gpu_pages);
-    if (s.upload_budget_bytes_per_frame < one)
-        settings_error("upload_budget_bytes_per_frame (" + std::to_string(s.upload_budget_bytes_per_frame) +
-                       ") is below one GPU page (" + std::to_string(one) + " bytes at SH degree " +
-                       std::to_string(s.gpu_sh_degree) + ")");
-    if (s.memory_budget_bytes == 0) settings_error("memory_budget_bytes must be positive");
-    if (s.max_requests_in_flight < 1) settings_error("max_requests_in_flight must be at least 1");
-    if (!(s.lod.size_threshold_px > 0.0f) || !std::isfinite(s.lod.size_threshold_px))
-        settings_error("lod.size_threshold_px must be positive and finite");
-    if (!(s.lod.rel_min > 0.0f) || !std::isfinite(s.lod.rel_min))
-        settings_error("lod.rel_min must be positive and finite");
-    if (!(s.load_distance_scale > 0.0f) || !std::isfinite(s.load_distance_scale))
-        settings_error("load_distance_scale must be positive and finite");
-    if (!(s.unload_distance_factor >= 1.0f) || !std::isfinite(s.unload_distance_factor))
-        settings_error("unload_distance_factor must be finite and at least 1");
-    if (s.unload_delay_frames < 0) settings_error("unload_delay_frames must not be negative");
-    if (s.retry_failed_after_frames < 0) settings_error("retry_failed_after_frames must not be negative");
-    if (!(s.group_cell_px >= 0.0f) || !std::isfinite(s.group_cell_px))
-        settings_error("group_cell_px must be 0 (no groups) or positive, and finite");
-}
 
 std::string_view to_string(DropReason reason) {
     switch (reason) {
@@ -293,7 +264,8 @@ void ChunkStreamer::State::upload_loaded() {
                                    s.end - s.begin,
                                    part.gaussians,
                                    part.bytes,
-                                   slot.shown};
+                                   slot.shown,
+                                   part_opacity(slot, p.level)};
             try {
                 sink.upload(upload);
             } catch (const std::exception& e) {
@@ -402,6 +374,7 @@ void ChunkStreamer::update(const StreamView& view) {
     s.enforce_memory_budget();
     s.upload_loaded();
     s.decide_drawn();
+    s.advance_fades();
     s.request_reads();
     ++s.stats.updates;
     s.stats.uploaded_bytes_last_update = s.frame_uploaded;
@@ -417,7 +390,10 @@ void ChunkStreamer::release_all() {
     State& s = *state_;
     s.events.clear();
     for (std::size_t c = 0; c < s.chunks.size(); ++c) s.drop_levels(c, kLevels, DropReason::release_all);
-    for (ChunkSlot& slot : s.chunks) slot.drawn = slot.shown = false;
+    for (ChunkSlot& slot : s.chunks) {
+        slot.drawn = slot.shown = false;
+        slot.fade = 0.0f;
+    }
 }
 
 void ChunkStreamer::set_settings(const StreamerSettings& settings) {

@@ -112,11 +112,6 @@ void ChunkStreamer::State::decide_drawn() {
     };
     for (std::size_t k = 0; k < chunks.size(); ++k)
         if (chunks[k].parent == ChunkSlot::kNoSlot) draw(k);
-    for (ChunkSlot& slot : chunks) {
-        if (slot.drawn == slot.shown) continue;
-        slot.shown = slot.drawn;
-        sink.show(slot.entry->id, slot.drawn);
-    }
 }
 
 }  // namespace splat_lod::world

@@ -55,10 +55,10 @@ void ChunkStreamer::State::plan(const StreamView& view) {
             finer = std::max(finer, margin(load, slot.distance));
             slot.level(l).margin = finer;
         }
-        slot.level(kLevels).margin = slot.in_cut || slot.drawn ? kInfinity : 0.0;
+        slot.level(kLevels).margin = slot.in_cut || slot.on_screen() ? kInfinity : 0.0;
         // Outside the cut and beyond its hysteresis band nothing is held: the band is the hysteresis.
         // Within the band level 4 is kept (not loaded) like a finer level within its unload distance.
-        const bool may_hold = slot.in_cut || slot.drawn || slot.near_cut;
+        const bool may_hold = slot.in_cut || slot.on_screen() || slot.near_cut;
         slot.finest_needed = kLevels;
         for (int l = kLevels - 1; l >= 1; --l)
             if (slot.level(l).margin >= 1.0) slot.finest_needed = l;

@@ -20,6 +20,7 @@ void SceneResidencySink::upload(const LevelPart& part) {
     component->cloud = part.gaussians;
     component->sh_degree_cap = sh_degree_cap_;
     component->visible = part.visible;
+    component->opacity = part.opacity;
     node.attach(std::move(component));
     nodes_[{part.chunk_id, part.level}].push_back(&node);
 }
@@ -35,6 +36,13 @@ void SceneResidencySink::show(const std::string& chunk_id, bool visible) {
     for (auto it = nodes_.lower_bound({chunk_id, 0}); it != nodes_.end() && it->first.first == chunk_id; ++it)
         for (engine::Node* node : it->second)
             if (auto* component = node->find_component<SplatComponent>()) component->visible = visible;
+}
+
+void SceneResidencySink::fade(const std::string& chunk_id, int level, float opacity) {
+    const auto it = nodes_.find({chunk_id, level});
+    if (it == nodes_.end()) return;
+    for (engine::Node* node : it->second)
+        if (auto* component = node->find_component<SplatComponent>()) component->opacity = opacity;
 }
 
 std::size_t SceneResidencySink::resident_parts() const {

@@ -38,6 +38,8 @@ struct LevelSlot {
     int frames_outside_keep = 0;       // consecutive updates beyond the unload distance while active
     bool wanted = false;               // needed, or loaded and held by hysteresis
     bool target = false;               // wanted and within the memory budget's plan
+    float fade = 0.0f;                 // the level's own fade-in while its node is on screen (stream_fade.cpp)
+    float told = -1.0f;                // the opacity the sink was last given (ResidencySink::fade); −1: none
 
     bool active() const;    // some part requested, loaded or uploaded
     bool complete() const;  // every part uploaded (an empty level always is)
@@ -64,7 +66,10 @@ struct ChunkSlot {
     bool in_cut = true;
     bool near_cut = false;  // in the cut of a camera unload_distance_factor times nearer or farther
     bool drawn = false;     // decided after this update's uploads
-    bool shown = false;     // what the sink was last told (ResidencySink::show)
+    bool shown = false;     // what the sink was last told (ResidencySink::show): on screen
+    float fade = 0.0f;      // the node's opacity: toward 1 while drawn, toward 0 after (stream_fade.cpp)
+
+    bool on_screen() const { return drawn || fade > 0.0f; }
 
     static constexpr std::size_t kNoSlot = static_cast<std::size_t>(-1);
     LevelSlot& level(int l) { return levels[static_cast<std::size_t>(l - 1)]; }
@@ -124,7 +129,11 @@ struct ChunkStreamer::State {
 
     void link_groups();                       // parents and children of the quadtree
     void choose_cut(const StreamView& view);  // ChunkSlot::in_cut
-    void decide_drawn();                      // ChunkSlot::drawn, then ResidencySink::show for changes
+    void decide_drawn();                      // ChunkSlot::drawn
+
+    // stream_fade.cpp
+    void advance_fades();  // ChunkSlot::fade, LevelSlot::fade; ResidencySink::show and fade
+    float part_opacity(const ChunkSlot& slot, int level) const;  // LevelPart::opacity of a new part
 
     // chunk_streamer.cpp
     void layout_levels(ChunkSlot& slot) const;

@@ -13,6 +13,9 @@ struct LodRule {
     double rel_max = 1.5;            // S_rel_max
     int finest_level = 1;
     int coarsest_level = 4;  // the coarsest level present in the scene
+    // Octaves of coverage over which a Gaussian fades at each switch of the rule (0: hard switching);
+    // see lod_weight. Applies in mode full only.
+    double transition_band = plugin_msgs::LodSettings::kDefaultTransitionBand;
 };
 
 // S = 2·min(sqrt(L / Σ⁻¹ₓₓ), sqrt(L / Σ⁻¹ᵧᵧ)), L = 2·ln(255·opacity), from the UNdilated 2D
@@ -23,5 +26,16 @@ double pixel_coverage(double cov_xx, double cov_xy, double cov_yy, double opacit
 // unset (no filtering on that side). Modes: baseline = finest level only, no filter;
 // filter_small = finest level only, rule applied; insert_large = every level, no filter; full.
 bool lod_selected(const LodRule& rule, int level, double coverage, double coverage_min, double coverage_max);
+
+// The weight in [0, 1] by which a Gaussian's opacity is scaled this frame; 0 means not drawn. With a
+// band b > 0 in mode full, each of the rule's two tests becomes a ramp linear in log2 coverage,
+// centred on its switch and b octaves wide:
+//   not too large: x = log2(S / (S_max·S_rel_max)),             w_large = clamp(½ − x/b, 0, 1);
+//   not too small: y = log2(max(S / S_T, S / (S_min·S_rel_min))), w_small = clamp(½ + y/b, 0, 1);
+// the weight is w_large·w_small (the exemptions of the finest and coarsest level and of unset bounds
+// give 1). Outside the band it equals the hard rule; ramp(t) + ramp(−t) = 1, so a Gaussian fading out
+// at a coverage where its replacement fades in hands its opacity over continuously. With b = 0 or
+// in the other modes it is 1 where lod_selected holds and 0 elsewhere.
+double lod_weight(const LodRule& rule, int level, double coverage, double coverage_min, double coverage_max);
 
 }  // namespace splat_lod

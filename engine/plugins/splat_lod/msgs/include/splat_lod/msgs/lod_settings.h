@@ -61,6 +61,13 @@ struct LodSettings {
     // At most this many Gaussians drawn per frame (0: no budget): above it the frame's LOD cut moves
     // to coarser levels (as if its size threshold and coverage ranges were larger), chosen on the GPU.
     std::uint32_t splat_budget = 0;
+    // Smooth level transitions (docs/lod.md, "Transitions"): a Gaussian near a switching coverage of
+    // the selection rule is drawn with its opacity scaled by a weight that ramps linearly in log2
+    // coverage over this many octaves centred on the switch, so it fades out while its coarser
+    // replacement fades in. 0: the rule's hard on/off switching. Only in mode full.
+    float transition_band = kDefaultTransitionBand;
+    static constexpr float kDefaultTransitionBand = 1.0f;
+    static constexpr float kMaxTransitionBand = 4.0f;
 
     // Empty when the settings are usable, otherwise "lod_settings.<key>: <why>".
     std::string validate() const;
@@ -92,6 +99,9 @@ inline std::string LodSettings::validate() const {
                          "must be in (0, rel_max = " + number_text(rel_max) + "], got " + number_text(rel_min));
     if (!(render_scale > 0.0f && render_scale <= 1.0f))
         return lod_error("render_scale", "must be in (0, 1], got " + number_text(render_scale));
+    if (!(transition_band >= 0.0f && transition_band <= kMaxTransitionBand))
+        return lod_error("transition_band", "must be in [0, " + number_text(kMaxTransitionBand) +
+                                                "] octaves of coverage, got " + number_text(transition_band));
     return {};
 }
 
@@ -104,7 +114,8 @@ inline void to_json(nlohmann::json& json, const LodSettings& s) {
                           {"upscaler", s.upscaler},
                           {"mip_filter", s.mip_filter},
                           {"level_colouring", s.level_colouring},
-                          {"splat_budget", s.splat_budget}};
+                          {"splat_budget", s.splat_budget},
+                          {"transition_band", s.transition_band}};
 }
 
 // Missing keys keep their defaults; unknown keys, wrong types, unknown enum names and values
@@ -114,7 +125,7 @@ inline void from_json(const nlohmann::json& json, LodSettings& s) {
     detail::require_object(json, kind);
     detail::only_keys(json, kind,
                       {"mode", "size_threshold_px", "rel_min", "rel_max", "render_scale", "upscaler", "mip_filter",
-                       "level_colouring", "splat_budget"});
+                       "level_colouring", "splat_budget", "transition_band"});
     LodSettings read;
     detail::read(json, kind, "mode", read.mode);
     detail::read(json, kind, "size_threshold_px", read.size_threshold_px);
@@ -125,6 +136,7 @@ inline void from_json(const nlohmann::json& json, LodSettings& s) {
     detail::read(json, kind, "mip_filter", read.mip_filter);
     detail::read(json, kind, "level_colouring", read.level_colouring);
     detail::read(json, kind, "splat_budget", read.splat_budget);
+    detail::read(json, kind, "transition_band", read.transition_band);
     if (const std::string error = read.validate(); !error.empty()) throw std::invalid_argument(error);
     s = read;
 }

@@ -40,7 +40,8 @@
 // group above it is. Only nodes in the cut are needed (a group as its single level 4, a chunk as
 // before). Hysteresis: a loaded node that would be in the cut if the camera were
 // unload_distance_factor times nearer or farther (the cuts for group_cell_px × and ÷ that factor) is
-// kept, not drawn; any other node outside the cut is released at once, unless drawn (below): with
+// kept, not drawn; any other node outside the cut is released at once, unless on screen (drawn or
+// fading out, below): with
 // the band, the frame delay would only hold memory that the view does not use. Level 4 of nodes
 // outside the cut ranks after every finer level (evicted first).
 //   After the uploads (step 5b) the streamer decides what is drawn, through ResidencySink::show():
@@ -54,6 +55,15 @@
 // and, while a budget binds, scales group_cell_px for the cut by next_group_cell_scale()
 // (stream_policy.h), so that coarser groups replace more chunks; group_cell_scale() says by how much. group_cell_px = 0
 // or a manifest without groups: every chunk is always in the cut (the behaviour without groups).
+//
+// Fades (smooth transitions): what is drawn does not switch at once. A node (chunk or group) that
+// becomes drawn fades in over fade_frames updates (its opacity 1/n, 2/n, … 1 through
+// ResidencySink::fade), and a node that stops being drawn fades out over as many, staying shown and
+// resident until its opacity reaches 0. Since decide_drawn swaps a coarse node for the finer ones
+// that replace it in one update (only once they are complete), the two cross-fade with opacities that
+// sum to 1. A finer stream level that arrives while its node is on screen fades in by itself over
+// fade_frames updates (its opacity is the node's times its own); one that arrives while the node is
+// not shown takes the node's. fade_frames = 0: every change at once.
 //
 // Oversized levels: a level is read and uploaded in parts of at most
 // floor(upload_budget / bytes per Gaussian) Gaussians, so no frame ever uploads more than the
@@ -104,6 +114,8 @@ struct StreamerSettings {
     // keeps the overview at 1.2 Gaussians per pixel and 31–32 dB against the reference; 1 px draws
     // 3–4 per pixel there, 3 px loses 5 dB.
     float group_cell_px = 2.0f;
+    // Updates over which a node or a newly arrived level fades in or out (see "fades"); 0: at once.
+    int fade_frames = 8;
 };
 
 // What update() needs from the camera. The focal length is in pixels of the output image (LOD

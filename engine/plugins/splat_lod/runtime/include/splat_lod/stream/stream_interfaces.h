@@ -43,7 +43,8 @@ struct LevelPart {
     std::uint64_t level_gaussians = 0;            // Gaussians in the whole level
     std::shared_ptr<const SplatCloud> gaussians;  // the sink may keep it
     std::uint64_t bytes = 0;                      // gpu_bytes(gaussians->size(), settings.gpu_sh_degree)
-    bool visible = true;  // whether the renderer draws it now (the last show() of its chunk or group)
+    bool visible = true;   // whether the renderer draws it now (the last show() of its chunk or group)
+    float opacity = 1.0f;  // the opacity factor to draw it with now (the last fade() of its level, 0 before any)
 
     bool completes_level() const { return part + 1 == part_count; }
 };
@@ -67,6 +68,15 @@ public:
     virtual void show(const std::string& chunk_id, bool visible) {
         (void)chunk_id;
         (void)visible;
+    }
+    // The opacity factor in [0, 1] of every uploaded part of one level of a chunk or group
+    // (chunk_streamer.h, "fades"): a part that arrives fades in over a few frames, and a node that
+    // replaces another fades in while the other fades out. Parts uploaded later carry it in
+    // LevelPart::opacity. A sink that cannot fade may ignore it (parts then switch at once).
+    virtual void fade(const std::string& chunk_id, int level, float opacity) {
+        (void)chunk_id;
+        (void)level;
+        (void)opacity;
     }
 };
 

@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 
 #include "splat_lod/core/world_manifest.h"
+#include "splat_lod/msgs/lod_settings.h"
 
 namespace splat_lod::world {
 
@@ -17,6 +18,9 @@ namespace splat_lod::world {
 struct LodThresholds {
     float size_threshold_px = 2.0f;  // S_T
     float rel_min = 0.5f;            // S_rel_min
+    // Smooth transitions (plugin_msgs::LodSettings::transition_band): a Gaussian fades out down to
+    // 2^(−band/2) times the thresholds, so a level is needed that much farther away.
+    float transition_band = plugin_msgs::LodSettings::kDefaultTransitionBand;
 };
 
 // Bytes the GPU scene stores per Gaussian slot: one 64-byte GpuGaussian (splat_lod_shared.h) plus
@@ -55,7 +59,7 @@ float nearest_distance(const ChunkEntry& chunk, const glm::vec3& point);
 
 // The largest distance at which some Gaussian of stream level `level` (1..3) of a chunk could be
 // selected, from the manifest's per-level bounds (world_manifest.h):
-//   f · max(2·extent_max / S_T, 2·extent_per_min_coverage_max / S_rel_min),
+//   f · max(2·extent_max / S_T, 2·extent_per_min_coverage_max / S_rel_min) · 2^(band/2),
 // +∞ when extent_per_min_coverage_max < 0 (a Gaussian of the level has no coverage_min, so the
 // "not too small" test never rejects it), 0 for an empty level. Level 4 is not decided by distance
 // (every chunk keeps its coarse prefix), so asking for it is a programming error.

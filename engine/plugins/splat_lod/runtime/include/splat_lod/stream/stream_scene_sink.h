@@ -21,6 +21,8 @@ public:
     void release(const std::string& chunk_id, int level) override;
     // Sets SplatComponent::visible of every node of the chunk or group.
     void show(const std::string& chunk_id, bool visible) override;
+    // Sets SplatComponent::opacity of every node of that level.
+    void fade(const std::string& chunk_id, int level, float opacity) override;
 
     std::size_t resident_parts() const;
 
