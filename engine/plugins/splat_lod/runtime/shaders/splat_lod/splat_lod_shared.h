@@ -158,8 +158,8 @@ SPLAT_LOD_STRUCT(GpuGaussian) {
 SPLAT_LOD_STRUCT(GpuInstance) {
     mat4 model;             // local → world
     mat4 rotation_inverse;  // world → local directions (for SH)
-    uvec4 info;             // x floatBitsToUint(opacity factor, SplatComponent::opacity), y count, z SH degree used (bits 0-7) and
-                            // SPLAT_INSTANCE_HIDDEN, w floatBitsToUint(‖M‖₂), M = mat3(model)
+    uvec4 info;  // x floatBitsToUint(opacity factor, SplatComponent::opacity), y count, z SH degree used (bits 0-7) and
+                 // SPLAT_INSTANCE_HIDDEN, w floatBitsToUint(‖M‖₂), M = mat3(model)
 };
 
 // What the project pass knows about the Gaussians one of its workgroups handles (cluster c holds
