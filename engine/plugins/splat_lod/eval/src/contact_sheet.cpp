@@ -16,22 +16,6 @@ namespace {
 constexpr int kLabelWidth = 96;
 constexpr int kGap = 2;
 
-// Area average when shrinking (a scale-1 tile should look like its reference), nearest neighbour
-// when enlarging (a scale-64 tile should show its few pixels).
-void draw_tile(engine::Image& sheet, const engine::Image& tile, int x0, int y0, int tw, int th) {
-    for (int y = 0; y < th; ++y)
-        for (int x = 0; x < tw; ++x) {
-            const int sx0 = x * tile.width / tw, sy0 = y * tile.height / th;
-            const int sx1 = std::max(sx0 + 1, (x + 1) * tile.width / tw),
-                      sy1 = std::max(sy0 + 1, (y + 1) * tile.height / th);
-            int sum[3] = {0, 0, 0}, n = 0;
-            for (int sy = sy0; sy < sy1; ++sy)
-                for (int sx = sx0; sx < sx1; ++sx, ++n)
-                    for (int c = 0; c < 3; ++c) sum[c] += tile.pixel(sx, sy)[c];
-            for (int c = 0; c < 3; ++c) sheet.pixel(x0 + x, y0 + y)[c] = static_cast<std::uint8_t>(sum[c] / n);
-        }
-}
-
 const engine::Image* find_tile(const std::vector<ContactTile>& tiles, const std::string& row, int scale) {
     for (const auto& tile : tiles)
         if (tile.method == row && tile.factor == scale) return &tile.image;
@@ -54,7 +38,7 @@ engine::Image compose(const EvalOptions& o, const std::vector<ContactTile>& tile
         draw_text(sheet, 4, y0 + th / 2 - 4, rows[r]);
         for (int c = 0; c < columns; ++c)
             if (const engine::Image* tile = find_tile(tiles, rows[r], scales[static_cast<std::size_t>(c)]))
-                draw_tile(sheet, *tile, kLabelWidth + c * (tw + kGap), y0, tw, th);
+                draw_scaled(sheet, *tile, kLabelWidth + c * (tw + kGap), y0, tw, th);
     }
     return sheet;
 }

@@ -41,4 +41,18 @@ void fill_rect(engine::Image& image, int x0, int y0, int w, int h, const std::ar
             std::copy_n(colour.begin(), 3, image.pixel(x, y));
 }
 
+void draw_scaled(engine::Image& sheet, const engine::Image& tile, int x0, int y0, int tw, int th) {
+    for (int y = 0; y < th; ++y)
+        for (int x = 0; x < tw; ++x) {
+            const int sx0 = x * tile.width / tw, sy0 = y * tile.height / th;
+            const int sx1 = std::max(sx0 + 1, (x + 1) * tile.width / tw),
+                      sy1 = std::max(sy0 + 1, (y + 1) * tile.height / th);
+            int sum[3] = {0, 0, 0}, n = 0;
+            for (int sy = sy0; sy < sy1; ++sy)
+                for (int sx = sx0; sx < sx1; ++sx, ++n)
+                    for (int c = 0; c < 3; ++c) sum[c] += tile.pixel(sx, sy)[c];
+            for (int c = 0; c < 3; ++c) sheet.pixel(x0 + x, y0 + y)[c] = static_cast<std::uint8_t>(sum[c] / n);
+        }
+}
+
 }  // namespace splat_lod::eval

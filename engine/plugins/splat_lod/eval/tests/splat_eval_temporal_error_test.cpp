@@ -1,0 +1,129 @@
+// The temporal sweep without GL: the pair error on synthetic frames with closed-form answers, the
+// supersampling factor, the dolly and orbit paths, path names and the checks of the options.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "splat_eval_report_test_helpers.h"
+#include "splat_lod/eval/temporal_sweep.h"
+
+namespace eval = splat_lod::eval;
+using splat_eval_report_test::expect_error;
+
+namespace {
+
+// A 4×2 frame of one value, with pixel (0, 0) set to `corner` on every channel.
+eval::FloatImage frame(float value, float corner) {
+    eval::FloatImage image = eval::make_float_image(4, 2, value);
+    for (int c = 0; c < 3; ++c) image.at(0, 0, c) = corner;
+    return image;
+}
+
+TEST(TemporalError, AConstantOffsetFromTheReferenceCostsNothing) {
+    const eval::FloatImage r0 = frame(0.2f, 0.5f), r1 = frame(0.4f, 0.1f);
+    const eval::FloatImage m0 = frame(0.25f, 0.55f), m1 = frame(0.45f, 0.15f);  // reference + 0.05
+    EXPECT_NEAR(eval::temporal_pair_error(m0, m1, r0, r1), 0.0, 1e-4);
+    EXPECT_NEAR(eval::temporal_pair_error(r0, r1, r0, r1), 0.0, 1e-12) << "the reference against itself";
+}
+
+TEST(TemporalError, AStaticMethodAgainstAChangingReferenceCostsTheChangeIn8BitUnits) {
+    const eval::FloatImage still = frame(0.3f, 0.3f);
+    const eval::FloatImage r0 = frame(0.3f, 0.3f), r1 = frame(0.4f, 0.4f);  // every channel +0.1
+    EXPECT_NEAR(eval::temporal_pair_error(still, still, r0, r1), 0.1 * 255.0, 1e-3);
+    // The other way round: the method changes by 0.1 while the reference stays: the same error.
+    EXPECT_NEAR(eval::temporal_pair_error(r0, r1, still, still), 0.1 * 255.0, 1e-3);
+}
+
+TEST(TemporalError, OppositeChangesInOnePixelAreAveragedOverPixelsAndChannels) {
+    // One of 8 pixels: the method brightens by 0.2 where the reference darkens by 0.2, |0.2 + 0.2|;
+    // the other pixels change alike (error 0).
+    const eval::FloatImage m0 = frame(0.5f, 0.5f), m1 = frame(0.6f, 0.7f);
+    const eval::FloatImage r0 = frame(0.5f, 0.5f), r1 = frame(0.6f, 0.3f);
+    EXPECT_NEAR(eval::temporal_pair_error(m0, m1, r0, r1), 0.4 * 255.0 / 8.0, 1e-3);
+    // Only one channel of that pixel: a third of it.
+    eval::FloatImage m1_red = r1;
+    m1_red.at(0, 0, 0) = 0.7f;
+    EXPECT_NEAR(eval::temporal_pair_error(m0, m1_red, r0, r1), 0.4 * 255.0 / 24.0, 1e-3);
+    const engine::Image picture = eval::temporal_difference_image(m0, m1, r0, r1, 2.0f);
+    EXPECT_EQ(picture.pixel(0, 0)[0], 204) << "|0.4| x 2 = 0.8";
+    EXPECT_EQ(picture.pixel(1, 0)[0], 0);
+}
+
+TEST(TemporalError, PairErrorsOfASequenceAndSizeChecks) {
+    const std::vector<eval::FloatImage> reference{frame(0.1f, 0.1f), frame(0.2f, 0.2f), frame(0.2f, 0.2f)};
+    const std::vector<eval::FloatImage> method{frame(0.1f, 0.1f), frame(0.1f, 0.1f), frame(0.3f, 0.3f)};
+    const std::vector<double> errors = eval::temporal_pair_errors(method, reference);
+    ASSERT_EQ(errors.size(), 2u);
+    EXPECT_NEAR(errors[0], 0.1 * 255.0, 1e-3);  // the reference moved, the method did not
+    EXPECT_NEAR(errors[1], 0.2 * 255.0, 1e-3);  // the method moved, the reference did not
+    expect_error([&] { eval::temporal_pair_errors({frame(0, 0)}, reference); }, {"1 method frames against 3"});
+    expect_error(
+        [&] { eval::temporal_pair_error(frame(0, 0), eval::make_float_image(2, 2), frame(0, 0), frame(0, 0)); },
+        {"sizes differ", "4x2 vs 2x2"});
+}
+
+TEST(TemporalSweepSetup, SupersamplingIsTheLargestFactorUpTo4ThatFits) {
+    EXPECT_EQ(eval::temporal_supersampling(64, 48, 2048), 4);
+    EXPECT_EQ(eval::temporal_supersampling(512, 384, 2048), 4);
+    EXPECT_EQ(eval::temporal_supersampling(600, 400, 2048), 3);
+    EXPECT_EQ(eval::temporal_supersampling(1920, 1080, 2048), 1);
+    EXPECT_EQ(eval::temporal_supersampling(256, 192, 600), 2);
+    EXPECT_EQ(eval::temporal_supersampling(4000, 100, 2048), 0);
+}
+
+TEST(TemporalSweepSetup, DollyGoesOutTo64GeometricallyAndBack) {
+    eval::CameraPose start;
+    start.eye = {0, 0, 2};
+    start.forward = {0, 0, -1};
+    start.focus_distance = 2.0f;
+    const auto poses = eval::dolly_path(start, 8);
+    ASSERT_EQ(poses.size(), 8u);
+    const double out_step = std::pow(64.0, 1.0 / 3.0), back_step = std::pow(64.0, 1.0 / 4.0);
+    const double expected[] = {
+        1, out_step, out_step * out_step, 64, 64 / back_step, 64 / std::pow(back_step, 2), 64 / std::pow(back_step, 3),
+        1};
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+        EXPECT_NEAR(poses[i].focus_distance / 2.0, expected[i], 1e-3 * expected[i]) << i;
+        EXPECT_NEAR(glm::length(poses[i].target() - glm::vec3(0.0f)), 0.0f, 1e-3f) << "the target stays";
+    }
+    EXPECT_EQ(poses[3].name, "dolly 3 (64.00x)");
+    EXPECT_EQ(eval::dolly_path(start, 5).size(), 5u);
+    EXPECT_NEAR(eval::dolly_path(start, 5)[2].focus_distance, 128.0f, 1e-2f) << "odd: the middle frame is at 64x";
+    expect_error([&] { eval::dolly_path(start, 3); }, {"--temporal-frames: 3 frames are too few"});
+}
+
+TEST(TemporalSweepSetup, OrbitIsALevelCircleInEqualSteps) {
+    const eval::SceneExtent extent{{1, 2, 3}, 2.0f};
+    const auto poses = eval::orbit_path(extent, {0, 1, 0}, 24);
+    ASSERT_EQ(poses.size(), 24u);
+    const float distance = glm::length(poses[0].eye - extent.centre);
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+        const auto& pose = poses[i];
+        EXPECT_NEAR(glm::length(pose.eye - extent.centre), distance, 1e-4f) << i;
+        EXPECT_NEAR(pose.eye.y, poses[0].eye.y, 1e-4f) << "level, not alternating elevations";
+        EXPECT_NEAR(glm::length(pose.target() - extent.centre), 0.0f, 1e-3f) << "looks at the centre";
+        const auto& next = poses[(i + 1) % poses.size()];
+        EXPECT_NEAR(glm::length(next.eye - pose.eye), glm::length(poses[1].eye - poses[0].eye), 1e-4f);
+    }
+}
+
+TEST(TemporalSweepSetup, PathNamesAndOptionChecks) {
+    EXPECT_EQ(eval::temporal_path_name("some/dir/walk path.json"), "walk_path");
+    EXPECT_EQ(eval::temporal_path_name("cameras.json"), "cameras");
+    EXPECT_EQ(eval::temporal_path_name("orbit.json"), "orbit_file");
+
+    eval::TemporalOptions o;
+    expect_error([&] { eval::validate_temporal_options(o); }, {"--methods: no method given"});
+    o.methods = eval::select_methods("baseline,full");
+    eval::validate_temporal_options(o);
+    o.dolly_frames = 2;
+    expect_error([&] { eval::validate_temporal_options(o); }, {"--temporal-frames: 2 frames are too few"});
+    o.dolly_frames = 8;
+    o.path_file = "/nonexistent/walk.json";
+    expect_error([&] { eval::validate_temporal_options(o); }, {"--temporal-path /nonexistent/walk.json: no such file"});
+    o.path_file.clear();
+    o.max_reference_side = 300;
+    expect_error([&] { eval::validate_temporal_options(o); }, {"--max-reference-side: 300", "512\u00d7384"});
+}
+
+}  // namespace
