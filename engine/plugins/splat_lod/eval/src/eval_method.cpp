@@ -1,6 +1,7 @@
 #include "splat_lod/eval/eval_method.h"
 
 #include <algorithm>
+#include <optional>
 #include <sstream>
 
 #include "engine/core/error.h"
@@ -105,6 +106,32 @@ Method native_method(const Method& mode) {
             }};
 }
 
+namespace {
+
+// "full@B": `full` with a transition band of B octaves (to choose the band by measurement); none
+// when `name` has another form. Throws naming the method when B is not a band the settings accept.
+std::optional<Method> banded_full(const std::string& name) {
+    const std::string prefix = "full@";
+    if (name.rfind(prefix, 0) != 0) return std::nullopt;
+    const std::string text = name.substr(prefix.size());
+    std::size_t used = 0;
+    double band = -1.0;
+    try {
+        band = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != text.size() || !(band >= 0.0 && band <= plugin_msgs::LodSettings::kMaxTransitionBand))
+        engine::fail("--methods: \"" + name + "\": expected full@B with a transition band B in [0, 4] octaves");
+    return Method{name, "every level, selected by pixel coverage, transition band " + text + " octaves",
+                  [band](SplatPassSettings& settings) {
+                      settings.lod.mode = plugin_msgs::LodMode::full;
+                      settings.lod.transition_band = band;
+                  }};
+}
+
+}  // namespace
+
 std::vector<Method> select_methods(const std::string& list) {
     std::vector<Method> selected;
     std::stringstream stream(list);
@@ -112,14 +139,15 @@ std::vector<Method> select_methods(const std::string& list) {
     while (std::getline(stream, name, ',')) {
         const auto& all = method_registry();
         const auto it = std::find_if(all.begin(), all.end(), [&](const Method& m) { return m.name == name; });
-        if (it == all.end()) {
+        const std::optional<Method> banded = banded_full(name);
+        if (it == all.end() && !banded) {
             std::string known;
             for (const auto& m : all) known += (known.empty() ? "" : ", ") + m.name;
-            engine::fail("--methods: unknown method \"" + name + "\" (known: " + known + ")");
+            engine::fail("--methods: unknown method \"" + name + "\" (known: " + known + ", full@B)");
         }
         if (std::any_of(selected.begin(), selected.end(), [&](const Method& m) { return m.name == name; }))
             engine::fail("--methods: \"" + name + "\" is listed twice");
-        selected.push_back(*it);
+        selected.push_back(banded ? *banded : *it);
     }
     if (selected.empty()) engine::fail("--methods: no method given");
     return selected;

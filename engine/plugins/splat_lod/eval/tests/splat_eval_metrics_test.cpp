@@ -7,6 +7,7 @@
 #include "splat_lod/eval/eval_method.h"
 #include "splat_lod/eval/eval_run.h"
 #include "splat_lod/eval/image_metrics.h"
+#include "splat_lod/splat_renderer.h"
 #include "test_support.h"
 
 namespace eval = splat_lod::eval;
@@ -120,6 +121,22 @@ TEST(SplatEvalMetrics, ImpossibleScalesAreRefused) {
 TEST(SplatEvalMetrics, UnknownMethodIsRefused) {
     expect_error([] { eval::select_methods("baseline,fancy"); }, {"fancy", "baseline_mip"});
     EXPECT_EQ(eval::select_methods("baseline_mip,baseline").front().name, "baseline_mip");
+}
+
+TEST(SplatEvalMetrics, FullWithABandIsAMethod) {
+    const auto methods = eval::select_methods("full,full_hard,full@0.5");
+    ASSERT_EQ(methods.size(), 3u);
+    std::vector<double> bands;
+    for (const auto& method : methods) {
+        splat_lod::SplatPassSettings settings;
+        method.configure(settings);
+        EXPECT_EQ(settings.lod.mode, plugin_msgs::LodMode::full);
+        bands.push_back(settings.lod.transition_band);
+    }
+    EXPECT_EQ(bands, (std::vector<double>{1.0, 0.0, 0.5}));
+    expect_error([] { eval::select_methods("full@-1"); }, {"full@-1", "[0, 4] octaves"});
+    expect_error([] { eval::select_methods("full@wide"); }, {"full@wide"});
+    expect_error([] { eval::select_methods("full@0.5,full@0.5"); }, {"listed twice"});
 }
 
 const char* kInriaCamera = R"([{"id": 0, "img_name": "frame0", "width": 640, "height": 480,
