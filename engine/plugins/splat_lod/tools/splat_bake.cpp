@@ -1,8 +1,13 @@
 // splat_bake: trained splat scene → LOD asset (INRIA PLY with lod_level, coverage_min, coverage_max;
 // coarse levels first). docs/algorithms.md §4.
-//   splat_bake --input scene.ply --output scene.lod.ply [--cameras auto|rings:RxA|orbit:N|cameras.json|path.json]
-//              [--up X,Y,Z] [--width 512 --height 384] [--levels 4] [--size-threshold 2]
-//              [--refine-iterations 200] [--refine-cameras 16] [--threads N] [--seed N]
+//   splat_bake --input scene.ply --output scene.lod.ply [--capture auto|orbit|forward|world]
+//              [--cameras auto|rings:RxA|grid:CxR[xD]|inside:RxA|orbit:N|cameras.json|path.json]
+//              [--up X,Y,Z] [--forward X,Y,Z] [--width 512 --height 384] [--levels 4] [--size-threshold 2]
+//              [--refine-iterations 200] [--refine-cameras 16] [--member-ranges|--no-member-ranges]
+//              [--min-axis-ratio F] [--view-margin F] [--threads N] [--seed N]
+// The capture shape (given, implied by a generated camera set or detected from a camera file) picks
+// the cameras for "auto" and the defaults of the options the command line does not give
+// (capture_defaults in splat_lod/bake/capture_shape.h); the log says which shape and why.
 // The output is written only when the whole bake succeeded, through a temporary file in the same
 // folder ("<output>.tmp-<pid>-<n>", synced to disk) and a rename (engine::write_file_atomic), so a
 // failed or killed bake leaves any previous output byte for byte. A bake killed during that write
@@ -10,6 +15,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <system_error>
 
 #include <unistd.h>
@@ -21,16 +27,25 @@
 #include "engine/core/file_io.h"
 #include "splat_lod/bake/bake.h"
 #include "splat_lod/bake/bake_cameras.h"
+#include "splat_lod/bake/capture_shape.h"
 #include "splat_lod/core/splat_io.h"
 
 namespace {
 
+// Which of the settings that a capture shape decides the command line gave.
+struct Given {
+    bool cells = false, enlargement = false, pooling = false, margin = false, axis_ratio = false, member = false,
+         refine_cameras = false;
+};
+
 struct Options {
-    std::string input, output, cameras = "auto", up = "0,1,0", cells = "auto", pooling = "mean";
+    std::string input, output, cameras = "auto", capture = "auto", up = "0,1,0", forward, cells = "auto",
+                               pooling = "mean";
     int width = 512;
     int height = 384;
-    bool keep_ranges = false;
+    bool keep_ranges = false, no_member_ranges = false;
     splat_lod::bake::BakeOptions bake;
+    Given given;
 };
 
 // Fails before the (long) bake when the output cannot be written: its folder must exist and
@@ -52,6 +67,88 @@ void check_output_writable(const std::filesystem::path& output, const std::files
     fs::remove(probe, ec);
 }
 
+// The bake cameras and the capture shape they stand for, with the reason printed in the log: told by
+// --capture, implied by a generated spec, or detected from the cameras of a file.
+struct CameraChoice {
+    std::vector<splat_lod::eval::CameraPose> poses;
+    splat_lod::bake::CaptureShape shape = splat_lod::bake::CaptureShape::orbit;
+    std::string spec, reason;
+};
+
+CameraChoice choose_cameras(const Options& o, const splat_lod::bake::CameraPlacement& placement) {
+    namespace bake = splat_lod::bake;
+    const std::optional<bake::CaptureShape> told = bake::parse_capture_shape(o.capture, "--capture");
+    CameraChoice choice;
+    choice.spec = o.cameras;
+    if (o.cameras == "auto") {
+        choice.shape = told.value_or(bake::CaptureShape::orbit);
+        choice.spec = bake::auto_camera_spec(choice.shape);
+        choice.reason = told ? "given by --capture"
+                             : "no cameras to detect it from (the Gaussians alone do not show where the capture "
+                               "stood), so the default; --capture forward or world chooses another";
+    } else if (const auto implied = bake::generated_capture_shape(o.cameras)) {
+        choice.shape = told.value_or(*implied);
+        choice.reason = told ? "given by --capture" : "implied by --cameras " + o.cameras;
+    }
+    choice.poses = bake::bake_camera_poses(choice.spec, placement);
+    if (o.cameras != "auto" && !bake::generated_capture_shape(o.cameras)) {
+        const bake::CaptureDetection detection = bake::detect_capture_shape(choice.poses, placement.extent);
+        choice.shape = told.value_or(detection.shape);
+        choice.reason = told ? "given by --capture; the cameras look like " + detection.reason
+                             : "detected from the cameras: " + detection.reason;
+    }
+    return choice;
+}
+
+// The capture shape's settings (capture_defaults) for every one the command line did not give.
+void apply_capture_defaults(Options& o, splat_lod::bake::CaptureShape shape, std::size_t cameras) {
+    const splat_lod::bake::BakeOptions d = splat_lod::bake::capture_defaults(o.bake, shape);
+    if (!o.given.cells && !o.given.enlargement) {
+        o.bake.cells = d.cells;
+        o.bake.choose_recipe = d.choose_recipe;
+    }
+    if (!o.given.pooling) o.bake.pooling = d.pooling;
+    if (!o.given.margin) o.bake.view_margin = d.view_margin;
+    if (!o.given.axis_ratio) o.bake.min_axis_ratio = d.min_axis_ratio;
+    if (!o.given.member) o.bake.member_ranges = d.member_ranges;
+    if (!o.given.refine_cameras) o.bake.refine_cameras = d.refine_cameras;
+    if (shape != splat_lod::bake::CaptureShape::forward) return;
+    std::fprintf(
+        stderr,
+        "splat_bake: forward settings: %s pooling, %s, view margin %g, axis ratio >= %g, member ranges %s, "
+        "%zu of %zu cameras in the refinement\n",
+        o.bake.pooling == splat_lod::bake::PoolingRule::moments ? "moments" : "mean",
+        o.bake.choose_recipe                              ? "both cell recipes"
+        : o.bake.cells == splat_lod::bake::CellRule::grid ? "grid cells"
+                                                          : "adaptive cells",
+        o.bake.view_margin, o.bake.min_axis_ratio, o.bake.member_ranges ? "on" : "off",
+        o.bake.refine_cameras > 0 ? std::min(cameras, static_cast<std::size_t>(o.bake.refine_cameras)) : cameras,
+        cameras);
+}
+
+// The bake cameras for the options and the scene; prints the capture shape and why, and applies its
+// settings (apply_capture_defaults).
+std::vector<splat_lod::reference::ReferenceCamera> prepare_cameras(Options& o, const splat_lod::SplatCloud& fine) {
+    namespace bake = splat_lod::bake;
+    bake::CameraPlacement placement;
+    placement.extent = splat_lod::eval::robust_extent(fine.positions);
+    placement.up = engine::parse_vec3(o.up, "--up");
+    placement.positions = fine.positions;
+    if (!o.forward.empty()) {
+        placement.forward = engine::parse_vec3(o.forward, "--forward");
+        if (!(glm::length(placement.forward) > 0.0f)) engine::fail("--forward: the direction must not be zero");
+    }
+    const CameraChoice choice = choose_cameras(o, placement);
+    const auto cameras = bake::bake_cameras(choice.poses, o.width, o.height);
+    std::fprintf(stderr, "splat_bake: capture %s (%s)\n", bake::capture_shape_name(choice.shape),
+                 choice.reason.c_str());
+    std::fprintf(stderr, "splat_bake: %zu cameras (%s) at %dx%d\n", cameras.size(), choice.spec.c_str(), o.width,
+                 o.height);
+    apply_capture_defaults(o, choice.shape, cameras.size());
+    bake::validate(o.bake);
+    return cameras;
+}
+
 int run(Options& o) {
     namespace bake = splat_lod::bake;
     check_output_writable(o.output, o.input);
@@ -66,11 +163,7 @@ int run(Options& o) {
     std::fprintf(stderr, "\n");
     if (fine.empty()) engine::fail(o.input + ": the scene has no Gaussians to bake");
 
-    const auto extent = splat_lod::eval::robust_extent(fine.positions);
-    const auto poses = bake::bake_camera_poses(o.cameras, extent, engine::parse_vec3(o.up, "--up"));
-    const auto cameras = bake::bake_cameras(poses, o.width, o.height);
-    std::fprintf(stderr, "splat_bake: %zu cameras (%s) at %dx%d\n", cameras.size(), o.cameras.c_str(), o.width,
-                 o.height);
+    const auto cameras = prepare_cameras(o, fine);
 
     std::string last_stage;
     int last_percent = -1;
@@ -99,6 +192,92 @@ int run(Options& o) {
     return 0;
 }
 
+// The options that a capture shape decides, recorded as given or not after parsing.
+struct ShapeOptions {
+    CLI::Option *cells, *enlargement, *pooling, *margin, *axis_ratio, *member, *no_member, *refine_cameras;
+};
+
+void add_camera_options(CLI::App& app, Options& o) {
+    app.add_option(
+        "--cameras", o.cameras,
+        "auto (the capture shape's set: rings:3x8 for orbit, grid:8x6x3 for forward, inside:2x8 for world), "
+        "rings:RxA (R elevations x A azimuths around the scene), grid:CxR or grid:CxRxD (forward-facing: C x "
+        "R eyes on the capture side looking along --forward, on D depth planes, default 2), inside:RxA (R "
+        "rings of A eyes inside the scene looking out), orbit:N, an INRIA cameras.json or a camera-path "
+        "JSON");
+    app.add_option("--capture", o.capture,
+                   "auto (detected from the cameras of a file, implied by a generated set, orbit for --cameras auto), "
+                   "orbit (around an object), forward (a forward-facing sweep: moments pooling on adaptive cells, "
+                   "axis ratio 0.3, member ranges, every camera refined) or world (cameras inside the content)")
+        ->check(CLI::IsMember({"auto", "orbit", "forward", "world"}));
+    app.add_option("--up", o.up, "the scene's up direction for generated cameras X,Y,Z (Y-down captures: 0,-1,0)");
+    app.add_option("--forward", o.forward,
+                   "view direction X,Y,Z of generated grid cameras (default: up x +X, i.e. 0,0,-1 for Y up and "
+                   "0,0,1 for Y down)");
+    app.add_option("--width", o.width, "bake camera width in pixels (refinement needs a multiple of 64)")
+        ->check(CLI::Range(1, 16384));
+    app.add_option("--height", o.height, "bake camera height in pixels (refinement needs a multiple of 64)")
+        ->check(CLI::Range(1, 16384));
+}
+
+ShapeOptions add_bake_options(CLI::App& app, Options& o) {
+    ShapeOptions shape{};
+    app.add_option("--levels", o.bake.coarsest_level, "coarsest level to build (1..4)")->check(CLI::Range(1, 4));
+    app.add_option("--size-threshold", o.bake.size_threshold_px, "S_T in pixels");
+    app.add_option("--refine-iterations", o.bake.refine_iterations, "Adam iterations per coarse level (0: off)")
+        ->check(CLI::Range(0, 100000));
+    shape.refine_cameras =
+        app.add_option("--refine-cameras", o.bake.refine_cameras, "at most this many cameras for the refinement")
+            ->check(CLI::Range(1, 10000));
+    shape.enlargement = app.add_option("--max-enlargement", o.bake.max_enlargement,
+                                       "clamp of the pooled Gaussians' enlargement S_T / S_avg (fixes the recipe)")
+                            ->check(CLI::Range(1.0, 1000.0));
+    shape.pooling = app.add_option("--pooling", o.pooling,
+                                   "mean (docs/algorithms.md §4 steps 4-5) or moments (moment-matched cells)")
+                        ->check(CLI::IsMember({"mean", "moments"}));
+    shape.cells = app.add_option("--cells", o.cells,
+                                 "auto (bake both recipes, keep the better), adaptive (the larger of grid and "
+                                 "distance cells, enlargement <= 8) or grid (docs/algorithms.md §4 step 3, "
+                                 "enlargement <= 32)")
+                      ->check(CLI::IsMember({"auto", "adaptive", "grid"}));
+    app.add_flag("--keep-ranges", o.keep_ranges, "do not measure the coverage ranges again after the refinement");
+    shape.margin = app.add_option("--view-margin", o.bake.view_margin,
+                                  "a camera sees a Gaussian whose centre is inside its image widened by this fraction "
+                                  "of its size on every side (default 0)")
+                       ->check(CLI::Range(0.0, 4.0));
+    shape.axis_ratio = app.add_option("--min-axis-ratio", o.bake.min_axis_ratio,
+                                      "raise every scale of a pooled Gaussian to at least this fraction of its largest "
+                                      "(default 0; forward captures 0.3)")
+                           ->check(CLI::Range(0.0, 1.0));
+    shape.member = app.add_flag("--member-ranges", o.bake.member_ranges,
+                                "cap each coarse Gaussian's coverage_max where its members stop being drawn (the "
+                                "default for forward captures)");
+    shape.no_member = app.add_flag("--no-member-ranges", o.no_member_ranges, "do not cap coverage_max by the members");
+    app.add_option("--debug-images", o.bake.debug_image_dir,
+                   "folder (existing) for the refinement's target/before/after PNGs of its first camera");
+    app.add_option("--threads", o.bake.threads, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));
+    app.add_option("--seed", o.bake.seed, "seed of the refinement's camera order");
+    return shape;
+}
+
+// The parsed options into the bake's settings.
+void finish_options(Options& o, const ShapeOptions& shape) {
+    o.bake.ranges_after_refine = !o.keep_ranges;
+    o.bake.pooling =
+        o.pooling == "moments" ? splat_lod::bake::PoolingRule::moments : splat_lod::bake::PoolingRule::mean;
+    o.bake.cells = o.cells == "grid" ? splat_lod::bake::CellRule::grid : splat_lod::bake::CellRule::adaptive;
+    o.bake.choose_recipe = o.cells == "auto" && shape.enlargement->count() == 0;
+    if (shape.cells->count() > 0 && o.cells != "auto" && shape.enlargement->count() == 0)
+        o.bake.max_enlargement = o.cells == "grid" ? 32.0 : 8.0;
+    if (shape.member->count() > 0 && shape.no_member->count() > 0)
+        engine::fail("--member-ranges and --no-member-ranges contradict each other");
+    if (shape.no_member->count() > 0) o.bake.member_ranges = false;
+    o.given = {shape.cells->count() > 0,         shape.enlargement->count() > 0,
+               shape.pooling->count() > 0,       shape.margin->count() > 0,
+               shape.axis_ratio->count() > 0,    shape.member->count() + shape.no_member->count() > 0,
+               shape.refine_cameras->count() > 0};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -107,43 +286,11 @@ int main(int argc, char** argv) {
     app.add_option("--input", o.input, "trained scene (.ply, .compressed.ply, .splat, .spz, SOG meta.json)")
         ->required();
     app.add_option("--output", o.output, "LOD asset to write (INRIA PLY)")->required();
-    app.add_option("--cameras", o.cameras,
-                   "auto (rings:3x8), rings:RxA, orbit:N, an INRIA cameras.json or a camera-path JSON");
-    app.add_option("--up", o.up, "the scene's up direction for generated cameras X,Y,Z (Y-down captures: 0,-1,0)");
-    app.add_option("--width", o.width, "bake camera width in pixels (refinement needs a multiple of 64)")
-        ->check(CLI::Range(1, 16384));
-    app.add_option("--height", o.height, "bake camera height in pixels (refinement needs a multiple of 64)")
-        ->check(CLI::Range(1, 16384));
-    app.add_option("--levels", o.bake.coarsest_level, "coarsest level to build (1..4)")->check(CLI::Range(1, 4));
-    app.add_option("--size-threshold", o.bake.size_threshold_px, "S_T in pixels");
-    app.add_option("--refine-iterations", o.bake.refine_iterations, "Adam iterations per coarse level (0: off)")
-        ->check(CLI::Range(0, 100000));
-    app.add_option("--refine-cameras", o.bake.refine_cameras, "at most this many cameras for the refinement")
-        ->check(CLI::Range(1, 10000));
-    auto* enlargement = app.add_option("--max-enlargement", o.bake.max_enlargement,
-                                       "clamp of the pooled Gaussians' enlargement S_T / S_avg (fixes the recipe)")
-                            ->check(CLI::Range(1.0, 1000.0));
-    app.add_option("--pooling", o.pooling, "mean (docs/algorithms.md §4 steps 4-5) or moments (moment-matched cells)")
-        ->check(CLI::IsMember({"mean", "moments"}));
-    auto* cells = app.add_option("--cells", o.cells,
-                                 "auto (bake both recipes, keep the better), adaptive (the larger of grid and "
-                                 "distance cells, enlargement <= 8) or grid (docs/algorithms.md §4 step 3, "
-                                 "enlargement <= 32)")
-                      ->check(CLI::IsMember({"auto", "adaptive", "grid"}));
-    app.add_flag("--keep-ranges", o.keep_ranges, "do not measure the coverage ranges again after the refinement");
-    app.add_option("--debug-images", o.bake.debug_image_dir,
-                   "folder (existing) for the refinement's target/before/after PNGs of its first camera");
-    app.add_option("--threads", o.bake.threads, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));
-    app.add_option("--seed", o.bake.seed, "seed of the refinement's camera order");
+    add_camera_options(app, o);
+    const ShapeOptions shape = add_bake_options(app, o);
     CLI11_PARSE(app, argc, argv);
-    o.bake.ranges_after_refine = !o.keep_ranges;
-    o.bake.pooling =
-        o.pooling == "moments" ? splat_lod::bake::PoolingRule::moments : splat_lod::bake::PoolingRule::mean;
-    o.bake.cells = o.cells == "grid" ? splat_lod::bake::CellRule::grid : splat_lod::bake::CellRule::adaptive;
-    o.bake.choose_recipe = o.cells == "auto" && enlargement->count() == 0;
-    if (cells->count() > 0 && o.cells != "auto" && enlargement->count() == 0)
-        o.bake.max_enlargement = o.cells == "grid" ? 32.0 : 8.0;
     try {
+        finish_options(o, shape);
         return run(o);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "splat_bake: %s\n", e.what());

@@ -59,13 +59,10 @@ private:
     std::chrono::steady_clock::time_point begin_;
 };
 
+using CellMembers = detail::LevelMembers;
+
 // Steps 1–3 for one level: the Gaussians of finer levels that some camera sees smaller than S_T at
 // the level's scale, by cell. Cell g's members are members[starts[g] .. starts[g + 1]).
-struct CellMembers {
-    std::vector<std::uint32_t> members;
-    std::vector<std::size_t> starts;
-};
-
 CellMembers small_by_cell(const SplatCloud& cloud, const detail::CoverageTable& table, int level,
                           const detail::Normaliser& normaliser, const std::vector<reference::ReferenceCamera>& cameras,
                           const BakeOptions& options, LevelSummary& summary) {
@@ -102,18 +99,20 @@ CellMembers small_by_cell(const SplatCloud& cloud, const detail::CoverageTable& 
 
 // Steps 1–5 for one level: pools the Gaussians of finer levels that are small at its scale into
 // one new Gaussian per grid cell, enlarged towards S_T, and appends them (and their coverage).
-void build_level(SplatCloud& cloud, detail::CoverageTable& table, int level, const detail::Normaliser& normaliser,
-                 const std::vector<reference::ReferenceCamera>& cameras, const BakeOptions& options,
-                 LevelSummary& summary, const StageClock& clock) {
+// Returns the cells' members; the level's Gaussians start at its `first`.
+CellMembers build_level(SplatCloud& cloud, detail::CoverageTable& table, int level,
+                        const detail::Normaliser& normaliser, const std::vector<reference::ReferenceCamera>& cameras,
+                        const BakeOptions& options, LevelSummary& summary, const StageClock& clock) {
     const int scale = level_scale(level);
     summary.level = level;
     summary.scale = scale;
-    const CellMembers cells = small_by_cell(cloud, table, level, normaliser, cameras, options, summary);
+    CellMembers cells = small_by_cell(cloud, table, level, normaliser, cameras, options, summary);
     const std::vector<std::uint32_t>& members = cells.members;
     const std::vector<std::size_t>& starts = cells.starts;
     const std::size_t groups = starts.size() - 1;
     summary.added = groups;
-    if (groups == 0) return;
+    cells.first = cloud.size();
+    if (groups == 0) return cells;
     const std::size_t first_new = cloud.size();
     cloud.resize(first_new + groups);
     std::vector<double> factors(groups, 1.0);
@@ -124,9 +123,11 @@ void build_level(SplatCloud& cloud, detail::CoverageTable& table, int level, con
             cloud.lod_level[out] = static_cast<std::uint8_t>(level);
             if (options.pooling == PoolingRule::moments) {
                 detail::pool_moments(cloud, cell, cloud, out);
+                detail::thicken(cloud, out, options.min_axis_ratio);
                 return;
             }
             detail::pool(cloud, cell, cloud, out);
+            detail::thicken(cloud, out, options.min_axis_ratio);
             const double s_avg = detail::mean_median_coverage(table, cell, scale);
             factors[g] = detail::enlargement(options.size_threshold_px, s_avg, options.max_enlargement);
             cloud.log_scales[out] += glm::vec3(static_cast<float>(std::log(factors[g])));
@@ -139,6 +140,15 @@ void build_level(SplatCloud& cloud, detail::CoverageTable& table, int level, con
     summary.mean_enlargement = sum / static_cast<double>(groups);
     clock.report(0.5);
     table.append(cloud, first_new, cameras, options.znear, options.threads);
+    return cells;
+}
+
+// Step 6, and with BakeOptions::member_ranges the cap of each coarse Gaussian's coverage_max at
+// the coverage where its members stop being drawn.
+void set_ranges(SplatCloud& cloud, const detail::CoverageTable& table, const std::vector<CellMembers>& levels,
+                const BakeOptions& options) {
+    detail::set_coverage_ranges(cloud, table, options.range_low_percentile, options.range_high_percentile);
+    if (options.member_ranges) detail::cap_coverage_max(cloud, table, levels, options);
 }
 
 }  // namespace
@@ -161,6 +171,8 @@ void validate(const BakeOptions& o) {
         !std::isfinite(o.learning_rate_dc + o.learning_rate_opacity))
         bad("learning rates must be finite and not negative");
     if (!(o.logit_clamp > 0.0) || !std::isfinite(o.logit_clamp)) bad("the logit clamp must be positive");
+    if (!(o.view_margin >= 0.0 && o.view_margin <= 4.0)) bad("the view margin must be in [0, 4]");
+    if (!(o.min_axis_ratio >= 0.0 && o.min_axis_ratio <= 1.0)) bad("the axis ratio floor must be in [0, 1]");
 }
 
 double BakeSummary::added_fraction() const {
@@ -254,7 +266,7 @@ void check_input(const SplatCloud& fine, const std::vector<reference::ReferenceC
 // Step 1's table: the coverage of every Gaussian in every camera. Fails when no camera sees any.
 detail::CoverageTable measure_coverage(const SplatCloud& cloud, const std::vector<reference::ReferenceCamera>& cameras,
                                        const BakeOptions& options) {
-    detail::CoverageTable table(cameras.size());
+    detail::CoverageTable table(cameras.size(), options.view_margin);
     table.append(cloud, 0, cameras, options.znear, options.threads);
     std::size_t seen = 0;
     for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -307,15 +319,16 @@ SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::Refere
     summary.normalisation_radius = normaliser.radius;
     summary.radius_from_gaussians = normaliser.from_gaussians;
 
+    std::vector<CellMembers> members;
     for (int level = 2; level <= options.coarsest_level; ++level) {
         clock.start("level " + std::to_string(level));
         LevelSummary level_summary;
-        build_level(cloud, table, level, normaliser, cameras, options, level_summary, clock);
+        members.push_back(build_level(cloud, table, level, normaliser, cameras, options, level_summary, clock));
         summary.levels.push_back(level_summary);
     }
 
     clock.start("ranges");
-    detail::set_coverage_ranges(cloud, table, options.range_low_percentile, options.range_high_percentile);
+    set_ranges(cloud, table, members, options);
 
     std::optional<detail::Refiner> own_refiner;
     const detail::Refiner* refiner =
@@ -327,7 +340,7 @@ SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::Refere
         // Gaussians as they are drawn.
         clock.start("ranges after refinement");
         table.recompute(cloud, cameras, options.znear, options.threads);
-        detail::set_coverage_ranges(cloud, table, options.range_low_percentile, options.range_high_percentile);
+        set_ranges(cloud, table, members, options);
     }
     table = detail::CoverageTable();
     if (refined) {

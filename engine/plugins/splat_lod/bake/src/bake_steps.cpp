@@ -18,14 +18,17 @@ namespace {
 
 constexpr std::size_t kChunk = 4096;  // Gaussians per parallel task
 
-// The scale-1 coverage of a projected Gaussian, or −1 when the camera does not see it.
-double seen_coverage(const reference::ProjectedGaussian& g, const reference::ReferenceCamera& camera) {
-    if (!(g.mean.x >= 0.0 && g.mean.x < camera.width && g.mean.y >= 0.0 && g.mean.y < camera.height)) return -1.0;
+// The scale-1 coverage of a projected Gaussian, or −1 when the camera does not see it (its centre
+// outside the image widened by `margin` × its size on every side).
+double seen_coverage(const reference::ProjectedGaussian& g, const reference::ReferenceCamera& camera, double margin) {
+    const double mx = margin * camera.width, my = margin * camera.height;
+    if (!(g.mean.x >= -mx && g.mean.x < camera.width + mx && g.mean.y >= -my && g.mean.y < camera.height + my))
+        return -1.0;
     return projected_coverage(g);
 }
 
 void fill_rows(std::vector<float>& values, std::size_t row_offset, const SplatCloud& cloud, std::size_t begin,
-               const std::vector<reference::ReferenceCamera>& cameras, double znear, int threads) {
+               const std::vector<reference::ReferenceCamera>& cameras, double znear, double margin, int threads) {
     const auto settings = coverage_settings(znear);
     std::vector<reference::detail::InstanceFrame> frames;
     frames.reserve(cameras.size());
@@ -40,7 +43,8 @@ void fill_rows(std::vector<float>& values, std::size_t row_offset, const SplatCl
         for (std::size_t i = first; i < last; ++i)
             for (std::size_t c = 0; c < stride; ++c) {
                 const auto g = reference::detail::project_in_frame(cloud, i, frames[c], cameras[c], settings);
-                values[(row_offset + i - begin) * stride + c] = static_cast<float>(seen_coverage(g, cameras[c]));
+                values[(row_offset + i - begin) * stride + c] =
+                    static_cast<float>(seen_coverage(g, cameras[c], margin));
             }
     });
 }
@@ -71,20 +75,20 @@ void CoverageTable::append(const SplatCloud& cloud, std::size_t begin,
     if (begin != gaussians()) engine::fail("bake: coverage rows must be appended in order");
     const std::size_t old_rows = gaussians();
     values_.resize(cloud.size() * cameras_, -1.0f);
-    fill_rows(values_, old_rows, cloud, begin, cameras, znear, threads);
+    fill_rows(values_, old_rows, cloud, begin, cameras, znear, margin_, threads);
 }
 
 void CoverageTable::recompute(const SplatCloud& cloud, const std::vector<reference::ReferenceCamera>& cameras,
                               double znear, int threads) {
     values_.assign(cloud.size() * cameras_, -1.0f);
-    fill_rows(values_, 0, cloud, 0, cameras, znear, threads);
+    fill_rows(values_, 0, cloud, 0, cameras, znear, margin_, threads);
 }
 
 double coverage_in_camera(const SplatCloud& cloud, std::size_t index, const reference::ReferenceCamera& camera,
-                          double znear) {
+                          double znear, double margin) {
     const auto settings = coverage_settings(znear);
     const auto frame = reference::detail::make_instance_frame(cloud, glm::dmat4(1.0), camera, settings, 0);
-    return seen_coverage(reference::detail::project_in_frame(cloud, index, frame, camera, settings), camera);
+    return seen_coverage(reference::detail::project_in_frame(cloud, index, frame, camera, settings), camera, margin);
 }
 
 glm::dvec3 Normaliser::apply(const glm::dvec3& p) const {
@@ -261,6 +265,13 @@ void pool(const SplatCloud& source, std::span<const std::uint32_t> members, Spla
     }
 }
 
+void thicken(SplatCloud& cloud, std::size_t index, double ratio) {
+    if (!(ratio > 0.0)) return;
+    glm::vec3& s = cloud.log_scales[index];
+    const float floor = std::max({s.x, s.y, s.z}) + static_cast<float>(std::log(ratio));
+    s = glm::max(s, glm::vec3(floor));
+}
+
 double mean_median_coverage(const CoverageTable& table, std::span<const std::uint32_t> members, int scale) {
     double sum = 0.0;
     std::size_t counted = 0;
@@ -295,6 +306,45 @@ void set_coverage_ranges(SplatCloud& cloud, const CoverageTable& table, double l
         }
         cloud.coverage_min[i] = static_cast<float>(percentile(seen, low_percentile));
         cloud.coverage_max[i] = static_cast<float>(percentile(seen, high_percentile));
+    }
+}
+
+double member_cap(std::span<const float> coarse, const std::vector<std::span<const float>>& members,
+                  std::span<const float> member_min, const BakeOptions& options) {
+    std::vector<double> ratios, sizes;
+    for (std::size_t j = 0; j < coarse.size(); ++j) {
+        if (!(coarse[j] > 0.0f)) continue;
+        sizes.clear();
+        for (const auto& row : members)
+            if (row[j] > 0.0f) sizes.push_back(row[j]);
+        if (!sizes.empty()) ratios.push_back(coarse[j] / percentile(sizes, 50.0));
+    }
+    if (ratios.empty()) return -1.0;
+    std::vector<double> drop;
+    for (const float m : member_min)
+        drop.push_back(std::max(options.size_threshold_px, m > 0.0f ? options.rel_min * m : 0.0));
+    return percentile(ratios, 50.0) * percentile(drop, 50.0) / options.rel_max;
+}
+
+void cap_coverage_max(SplatCloud& cloud, const CoverageTable& table, const std::vector<LevelMembers>& levels,
+                      const BakeOptions& options) {
+    if (table.gaussians() != cloud.size()) engine::fail("bake: coverage table and scene differ in size");
+    for (const LevelMembers& level : levels) {
+        const std::size_t groups = level.starts.empty() ? 0 : level.starts.size() - 1;
+        reference::detail::parallel_for(
+            groups, reference::detail::resolve_thread_count(options.threads), [&](std::size_t g) {
+                const std::size_t coarse = level.first + g;
+                if (!(cloud.coverage_max[coarse] > 0.0f)) return;
+                std::vector<std::span<const float>> rows;
+                std::vector<float> minima;
+                for (std::size_t k = level.starts[g]; k < level.starts[g + 1]; ++k) {
+                    rows.push_back(table.row(level.members[k]));
+                    minima.push_back(cloud.coverage_min[level.members[k]]);
+                }
+                const double cap = member_cap(table.row(coarse), rows, minima, options);
+                if (cap > 0.0)
+                    cloud.coverage_max[coarse] = std::min(cloud.coverage_max[coarse], static_cast<float>(cap));
+            });
     }
 }
 

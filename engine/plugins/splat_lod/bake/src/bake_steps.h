@@ -14,12 +14,13 @@
 namespace splat_lod::bake::detail {
 
 // Pixel coverage at full resolution (scale 1) of every Gaussian in every camera, −1 where the
-// camera does not see it: seen means in front (z > znear), centre inside the image and opacity
-// > 1/255. Coverage at scale k is the scale-1 value / k exactly (Σ2D scales with f², the image
+// camera does not see it: seen means in front (z > znear), centre inside the image widened by
+// `margin` × its width and height on every side (BakeOptions::view_margin; 0: the image itself) and
+// opacity > 1/255. Coverage at scale k is the scale-1 value / k exactly (Σ2D scales with f², the image
 // and the Jacobian clamp with f), so one table serves every level.
 class CoverageTable {
 public:
-    explicit CoverageTable(std::size_t cameras = 0) : cameras_(cameras) {}
+    explicit CoverageTable(std::size_t cameras = 0, double margin = 0.0) : cameras_(cameras), margin_(margin) {}
     std::size_t cameras() const { return cameras_; }
     std::size_t gaussians() const { return cameras_ == 0 ? 0 : values_.size() / cameras_; }
     float at(std::size_t gaussian, std::size_t camera) const { return values_[gaussian * cameras_ + camera]; }
@@ -35,6 +36,7 @@ public:
 
 private:
     std::size_t cameras_ = 0;
+    double margin_ = 0.0;
     std::vector<float> values_;
 };
 
@@ -47,7 +49,7 @@ double projected_coverage(const reference::ProjectedGaussian& g);
 
 // Scale-1 coverage of one Gaussian in one camera, or −1 when the camera does not see it.
 double coverage_in_camera(const SplatCloud& cloud, std::size_t index, const reference::ReferenceCamera& camera,
-                          double znear);
+                          double znear, double margin = 0.0);
 
 // Step 2: x' = (p − c)/B inside the unit cube, (2 − 1/‖x'‖∞)·x'/‖x'‖∞ outside; everything lands in
 // [−2, 2]³ continuously (also for points at 1e6 units or beyond).
@@ -96,6 +98,10 @@ void pool(const SplatCloud& source, std::span<const std::uint32_t> members, Spla
 void pool_moments(const SplatCloud& source, std::span<const std::uint32_t> members, SplatCloud& target,
                   std::size_t out);
 
+// Raises every scale of the Gaussian at `index` to at least `ratio` × its largest (0: unchanged), so
+// that a coarse Gaussian is not a thin disc or needle whose coverage collapses when seen edge-on.
+void thicken(SplatCloud& cloud, std::size_t index, double ratio);
+
 // Step 5: S_avg = mean over members of each member's median coverage at `scale` over the
 // cameras that see it; members seen by no camera are left out; 0 when none is seen.
 double mean_median_coverage(const CoverageTable& table, std::span<const std::uint32_t> members, int scale);
@@ -104,6 +110,26 @@ double enlargement(double size_threshold, double mean_coverage, double max_enlar
 
 // Step 6: coverage_min/max of every Gaussian at its own level's scale from the table.
 void set_coverage_ranges(SplatCloud& cloud, const CoverageTable& table, double low_percentile, double high_percentile);
+
+// The members of one coarse level's Gaussians: Gaussian first + g pooled
+// members[starts[g] .. starts[g + 1]) (indices into the cloud).
+struct LevelMembers {
+    std::size_t first = 0;
+    std::vector<std::uint32_t> members;
+    std::vector<std::size_t> starts;
+};
+
+// Caps coverage_max of every coarse Gaussian that has one at the coverage where its members stop
+// being drawn, so that it is not selected in views its members serve: a member m is drawn while
+// its coverage is at least D_m = max(S_T, S_rel_min · coverage_min_m) (S_T alone when unset); in
+// bake camera j the coarse Gaussian is r_j times the median member's coverage; with r and D the
+// medians over cameras and members, the cap is r · D / S_rel_max (selected when S ≤ r · D).
+void cap_coverage_max(SplatCloud& cloud, const CoverageTable& table, const std::vector<LevelMembers>& levels,
+                      const BakeOptions& options);
+// The cap for one coarse Gaussian from its coverage per camera (≤ 0: not seen), its members' and their
+// coverage_min (≤ 0: unset); −1 when no camera sees it together with a member.
+double member_cap(std::span<const float> coarse, const std::vector<std::span<const float>>& members,
+                  std::span<const float> member_min, const BakeOptions& options);
 
 // Output order: coarsest level first; within a level by size class (a factor of 2 in the extent
 // that bounds coverage; Gaussians no camera saw last), then along a Morton curve of the normalised

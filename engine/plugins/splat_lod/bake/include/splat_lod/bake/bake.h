@@ -49,7 +49,15 @@ struct BakeOptions {
     double rel_min = 0.5;            // S_rel_min, used by the refinement's selection
     double rel_max = 1.5;            // S_rel_max
     double znear = 0.2;              // cameras see Gaussians with z > znear
-    int grid_cells = 400;            // level l uses ceil(grid_cells / l)³ cells over [−2, 2]³
+    // A camera sees a Gaussian whose centre lies inside its image widened by this fraction of the
+    // width and height on every side (0: the image itself). Content just outside every bake view
+    // still reaches the border pixels of nearby views; with a margin it gets ranges and coarse levels.
+    double view_margin = 0.0;
+    // Every scale of a pooled Gaussian is raised to at least this fraction of its largest (0: as
+    // pooled). A thin coarse Gaussian seen edge-on has a tiny coverage and passes "not too large"
+    // in views where its finer members are drawn.
+    double min_axis_ratio = 0.0;
+    int grid_cells = 400;  // level l uses ceil(grid_cells / l)³ cells over [−2, 2]³
     CellRule cells = CellRule::adaptive;
     PoolingRule pooling = PoolingRule::mean;
     // Bake twice, with (adaptive cells, enlargement ≤ 8) and (grid cells, enlargement ≤ 32), and
@@ -59,12 +67,16 @@ struct BakeOptions {
     // are ignored while it is on.
     bool choose_recipe = true;
     double max_enlargement = 8.0;  // clamp of S_T / S_avg
+    // Cap each coarse Gaussian's coverage_max at the coverage where its members stop being drawn
+    // (cap_coverage_max in bake_steps.h): the percentiles alone let a coarse Gaussian seen closer or
+    // more face-on by a bake camera than by a view be drawn on top of the members that view draws.
+    bool member_ranges = false;
     double range_low_percentile = 10.0;
     double range_high_percentile = 90.0;
 
     // Refinement (step 7): Adam on SH DC and opacity logit of each coarse level.
     int refine_iterations = 200;  // per level; 0 switches the refinement off
-    int refine_cameras = 16;      // at most this many bake cameras (evenly spread)
+    int refine_cameras = 16;      // at most this many bake cameras (evenly spread); 0: all of them
     double learning_rate_dc = 0.02;
     double learning_rate_opacity = 0.1;
     double logit_clamp = 9.2;
