@@ -42,6 +42,10 @@ void FrameSheet::add(const engine::Image& frame, const std::string& label) {
     tiles_.push_back({shrink(frame, thumbnail_width_), label});
 }
 
+void FrameSheet::add_blank(const std::string& label) {
+    tiles_.push_back({engine::Image{}, label});
+}
+
 void FrameSheet::write(const std::filesystem::path& path) const {
     if (tiles_.empty()) return;
     int tile_w = 0, tile_h = 0;
@@ -56,7 +60,9 @@ void FrameSheet::write(const std::filesystem::path& path) const {
     for (std::size_t i = 0; i < tiles_.size(); ++i) {
         const int x0 = static_cast<int>(i) % columns * (tile_w + kGap);
         const int y0 = static_cast<int>(i) / columns * (cell_h + kGap);
-        splat_lod::eval::draw_text(sheet, x0 + 4, y0 + 4, tiles_[i].label);
+        // Cut to the tile (about 6 px per character), so that a long label does not run into the next.
+        splat_lod::eval::draw_text(sheet, x0 + 4, y0 + 4,
+                                   tiles_[i].label.substr(0, static_cast<std::size_t>(std::max(0, (tile_w - 4) / 6))));
         const engine::Image& image = tiles_[i].image;
         for (int y = 0; y < image.height; ++y)
             std::copy_n(image.pixel(0, y), static_cast<std::size_t>(image.width) * 4,

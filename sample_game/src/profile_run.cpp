@@ -1,5 +1,6 @@
 #include "sample_game/profile_run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -16,6 +17,7 @@
 #include "sample_game/chunk_borders.h"
 #include "sample_game/frame_probe.h"
 #include "sample_game/frame_sheet.h"
+#include "sample_game/frame_strip.h"
 #include "sample_game/game_world.h"
 #include "sample_game/profile_plots.h"
 #include "sample_game/reference_cache.h"
@@ -59,6 +61,19 @@ std::string frame_name(const std::string& run, const FrameRecord& r) {
     return formatted("%s_%04d_%s.png", run.c_str(), r.frame, std::string(to_string(r.segment)).c_str());
 }
 
+// A run's image of its last frame with a reference, for the temporal error of the frame after it.
+struct PreviousImage {
+    int frame = -1;
+    splat_lod::eval::FloatImage image;
+};
+
+// The first frame of the overview: the strip's frames when there is no reference to choose them.
+std::size_t overview_start(const std::vector<PathPose>& poses) {
+    for (std::size_t i = 0; i < poses.size(); ++i)
+        if (poses[i].segment == Segment::overview) return i;
+    return 0;
+}
+
 struct Run {
     const ProfileOptions& options;
     engine::Engine& engine;
@@ -70,6 +85,9 @@ struct Run {
     // The cached reference of this run's key (none: no reference columns) and what seam_ratio needs.
     const CachedReference* cached_reference = nullptr;
     std::unique_ptr<HeightGrid> ground;
+    // The LOD run's consecutive frames around its largest temporal error (frames_strip.png).
+    StripRecorder strip;
+    PreviousImage previous_lod, previous_baseline;
     std::vector<std::size_t> reference_frames() const {
         std::vector<std::size_t> frames;
         if (cached_reference)
@@ -82,12 +100,14 @@ struct Run {
         const auto it = cached_reference->frames.find(frame);
         return it == cached_reference->frames.end() ? nullptr : &it->second;
     }
-    // This row's image against the reference and its seam_ratio, when it has one (the baseline's
-    // seam_ratio tells how much of the LOD's comes from what the borders happen to cross).
-    void compare_with_reference(const engine::RenderTarget& target, const engine::CameraView& camera, FrameRecord& r) {
+    // This row's image against the reference, its seam_ratio (the baseline's tells how much of the
+    // LOD's comes from what the borders happen to cross) and its temporal error against the run's
+    // image of the frame before, when these frames have a reference.
+    void compare_with_reference(const engine::Image& picture, const engine::CameraView& camera, FrameRecord& r,
+                                PreviousImage& previous) {
         const splat_lod::eval::FloatImage* truth = reference_of(r.frame);
         if (!truth) return;
-        const auto image = splat_lod::eval::to_float(target.read_color());
+        auto image = splat_lod::eval::to_float(picture);
         r.psnr_vs_reference = splat_lod::eval::psnr(image, *truth);
         r.ssim_vs_reference = splat_lod::eval::ssim(image, *truth);
         if (!ground)
@@ -96,11 +116,14 @@ struct Run {
         const ChunkMap map =
             chunk_map(*ground, ChunkGrid{world.manifest().size_m, world.manifest().chunk_size_m}, camera);
         r.seam_ratio = seam_ratio(image, *truth, map).value_or(-1.0);
+        const splat_lod::eval::FloatImage* truth_before = reference_of(r.frame - 1);
+        if (truth_before && previous.frame == r.frame - 1)
+            r.temporal_error = temporal_error(previous.image, image, *truth_before, *truth);
+        previous = {r.frame, std::move(image)};
     }
 
-    void keep_picture(const engine::RenderTarget& target, const FrameRecord& r) {
+    void keep_picture(const engine::Image& image, const FrameRecord& r) {
         if (options.frames_png_every <= 0 || r.frame % options.frames_png_every != 0) return;
-        const engine::Image image = target.read_color();
         const auto path = options.out / "frames" / frame_name(r.run, r);
         engine::write_png(path, image);
         frame_pictures.push_back(path);
@@ -157,9 +180,11 @@ struct Run {
             const engine::CameraView camera = world.camera(poses[i], options.width, options.height, &r);
             r.stream_update_ms = world.update_streaming(camera, first_update + i);
             draw_and_measure(world, engine, camera, target, r);
-            keep_picture(target, r);
-            if (compared.count(i)) lod_images[r.frame] = target.read_color();
-            compare_with_reference(target, camera, r);
+            const engine::Image image = target.read_color();
+            keep_picture(image, r);
+            if (compared.count(i)) lod_images[r.frame] = image;
+            compare_with_reference(image, camera, r, previous_lod);
+            strip.add(r.frame, r.segment, image, r.temporal_error);
             records.push_back(r);
             report.step(i + 1, formatted(" (%s, %.0f ms, %.1f MiB resident)", std::string(to_string(r.segment)).c_str(),
                                          r.frame_ms, mib(r.resident_bytes)));
@@ -191,10 +216,11 @@ struct Run {
             r.frame = static_cast<int>(chosen[k]);
             const engine::CameraView camera = world.camera(poses[chosen[k]], options.width, options.height, &r);
             draw_and_measure(world, engine, camera, target, r);
-            keep_picture(target, r);
-            compare_with_reference(target, camera, r);
+            const engine::Image image = target.read_color();
+            keep_picture(image, r);
+            compare_with_reference(image, camera, r, previous_baseline);
             if (const auto it = lod_images.find(r.frame); it != lod_images.end()) {
-                const auto reference = splat_lod::eval::to_float(target.read_color());
+                const auto reference = splat_lod::eval::to_float(image);
                 const auto lod_image = splat_lod::eval::to_float(it->second);
                 r.psnr_lod_vs_baseline = splat_lod::eval::psnr(lod_image, reference);
                 r.ssim_lod_vs_baseline = splat_lod::eval::ssim(lod_image, reference);
@@ -219,19 +245,22 @@ std::string describe_world(const ProfileOptions& o, const GameWorld& world) {
 std::string describe_settings(const ProfileOptions& o) {
     const GameSettings& s = o.settings;
     return formatted(
-        "%dx%d, %d path frames, LOD mode %s (S_T %.2f px, rel %.2f/%.2f), render scale %.3f (%s), "
+        "%dx%d, %d path frames, LOD mode %s (S_T %.2f px, rel %.2f/%.2f, transition band %.2f octaves), "
+        "streamer fades over %d updates, render scale %.3f (%s), "
         "memory budget %.0f MiB, upload budget %.2f MiB/frame, load distance x%.2f, streaming %s, fov %.0f deg",
         o.width, o.height, o.frames, std::string(plugin_msgs::to_string(s.lod.mode)).c_str(), s.lod.size_threshold_px,
-        s.lod.rel_min, s.lod.rel_max, s.lod.render_scale, std::string(plugin_msgs::to_string(s.lod.upscaler)).c_str(),
-        mib(s.memory_budget_bytes), mib(s.upload_budget_bytes), s.load_distance_scale,
+        s.lod.rel_min, s.lod.rel_max, s.lod.transition_band, s.fade_frames, s.lod.render_scale,
+        std::string(plugin_msgs::to_string(s.lod.upscaler)).c_str(), mib(s.memory_budget_bytes),
+        mib(s.upload_budget_bytes), s.load_distance_scale,
         s.sync_streaming ? "synchronous (--sync-streaming)" : "on the background thread", s.fov_y_deg);
 }
 
 // What an earlier run left in the output folder is removed first, so that nothing stale (a plot
 // gnuplot could not redraw, frames of a longer path) is mistaken for this run's.
 void remove_previous_outputs(const std::filesystem::path& out) {
-    for (const char* name : {"profile.csv", "baseline.csv", "summary.txt", "frame_time.png", "memory.png",
-                             "gaussians.png", "frames_sheet.png", "lod.dat", "baseline.dat", "plots.gp", "plots.log"})
+    for (const char* name :
+         {"profile.csv", "baseline.csv", "summary.txt", "frame_time.png", "memory.png", "gaussians.png",
+          "frames_sheet.png", kStripFileName, "lod.dat", "baseline.dat", "plots.gp", "plots.log"})
         std::filesystem::remove(out / name);
     if (!std::filesystem::is_directory(out / "frames")) return;
     for (const auto& entry : std::filesystem::directory_iterator(out / "frames")) {
@@ -254,18 +283,34 @@ std::vector<FrameRecord> baseline_run(const ProfileOptions& options, Run& run, d
     return baseline;
 }
 
-// The plots and the frame sheet; the files made go into outcome.pictures.
+// The plots, the frame sheet and the frame strip; the files made go into outcome.pictures.
 PlotResult write_pictures(const ProfileOptions& options, const std::vector<FrameRecord>& lod,
-                          const std::vector<FrameRecord>& baseline, const FrameSheet& sheet, ProfileOutcome& outcome) {
+                          const std::vector<FrameRecord>& baseline, const Run& run, ProfileOutcome& outcome) {
     const PlotResult plots = write_profile_plots(options.out, lod, baseline, options.settings.memory_budget_bytes,
                                                  options.settings.upload_budget_bytes);
     outcome.plot_problem = plots.problem;
     outcome.pictures = plots.pictures;
-    if (!sheet.empty()) {
-        sheet.write(options.out / "frames_sheet.png");
+    if (!run.sheet.empty()) {
+        run.sheet.write(options.out / "frames_sheet.png");
         outcome.pictures.push_back(options.out / "frames_sheet.png");
     }
+    static const std::map<int, splat_lod::eval::FloatImage> no_reference;
+    if (run.strip.write(options.out / kStripFileName,
+                        run.cached_reference ? run.cached_reference->frames : no_reference))
+        outcome.pictures.push_back(options.out / kStripFileName);
     return plots;
+}
+
+// What the strip shows, for the summary's list of outputs.
+std::string strip_note(const StripRecorder& strip) {
+    const auto& frames = strip.window();
+    if (frames.empty()) return "";
+    std::string note = formatted("LOD frames %d..%d", frames.front().frame, frames.back().frame);
+    if (!strip.measured()) return note + " (the overview's first; no reference, so no temporal_error to choose by)";
+    const auto worst = std::max_element(
+        frames.begin(), frames.end(), [](const auto& a, const auto& b) { return a.temporal_error < b.temporal_error; });
+    return note + formatted(" around the largest temporal_error (frame %d: %.2f), the reference above", worst->frame,
+                            worst->temporal_error);
 }
 
 std::string preload_note(const ProfileOptions& options, const PreloadStats& preload) {
@@ -278,12 +323,13 @@ std::string preload_note(const ProfileOptions& options, const PreloadStats& prel
 // The summary's list of what the run wrote, and why the plots are missing if they are.
 std::vector<std::string> listed_outputs(const ProfileOptions& options,
                                         const std::vector<std::filesystem::path>& pictures, std::size_t frame_pictures,
-                                        const std::string& plot_problem) {
+                                        const std::string& plot_problem, const std::string& strip) {
     std::vector<std::string> outputs;
     const std::string folder = options.out.string();
     outputs.push_back(folder + "/profile.csv: one row per frame of the LOD run (columns in its # header)");
     if (options.baseline) outputs.push_back(folder + "/baseline.csv: the baseline's frames, same columns");
-    for (const auto& picture : pictures) outputs.push_back(picture.string());
+    for (const auto& picture : pictures)
+        outputs.push_back(picture.filename() == kStripFileName ? picture.string() + ": " + strip : picture.string());
     if (frame_pictures > 0)
         outputs.push_back(formatted("%s/frames/: %zu frames (every %d-th)", folder.c_str(), frame_pictures,
                                     options.frames_png_every));
@@ -341,8 +387,13 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
                                            options.settings.fov_y_deg, options.reference_supersample);
     const std::optional<CachedReference> reference = read_reference(options.world, key);  // throws when broken
 
-    Run run{options, engine, world, poses, progress, FrameSheet(240, 5), {}, reference ? &*reference : nullptr,
-            nullptr, {}};
+    Run run{options,  engine,
+            world,    poses,
+            progress, FrameSheet(240, 5),
+            {},       reference ? &*reference : nullptr,
+            nullptr,  StripRecorder(poses.size(), overview_start(poses)),
+            {},       {},
+            {}};
     const auto lod_start = Clock::now();
     PreloadStats preload;
     const std::vector<FrameRecord> lod = run.lod_frames(preload);
@@ -354,7 +405,7 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
     if (options.baseline) baseline = baseline_run(options, run, load_seconds, baseline_seconds);
 
     ProfileOutcome outcome;
-    const PlotResult plots = write_pictures(options, lod, baseline, run.sheet, outcome);
+    const PlotResult plots = write_pictures(options, lod, baseline, run, outcome);
     outcome.summary =
         summarize(lod, baseline, options.settings.memory_budget_bytes, options.settings.upload_budget_bytes,
                   WorldScale{std::uint64_t(options.width) * std::uint64_t(options.height),
@@ -367,7 +418,8 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
         formatted("LOD run %.0f s including the preload, loading every chunk %.0f s, baseline frames %.0f s",
                   lod_seconds, load_seconds, baseline_seconds);
     context.settings += preload_note(options, preload);
-    context.outputs = listed_outputs(options, outcome.pictures, run.frame_pictures.size(), plots.problem);
+    context.outputs =
+        listed_outputs(options, outcome.pictures, run.frame_pictures.size(), plots.problem, strip_note(run.strip));
     context.reference = reference_note(options, reference, key);
     outcome.summary_text = format_summary(outcome.summary, context);
     engine::write_text_file_atomic(options.out / "summary.txt", outcome.summary_text);

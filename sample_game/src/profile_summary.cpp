@@ -119,12 +119,14 @@ std::vector<ReferenceFrameResult> reference_frames(const std::vector<FrameRecord
             f.lod_psnr = r.psnr_vs_reference;
             f.lod_ssim = r.ssim_vs_reference;
             f.seam_ratio = r.seam_ratio;
+            f.lod_temporal_error = r.temporal_error;
         }
     for (const auto& r : baseline)
         if (const auto it = frames.find(r.frame); it != frames.end() && r.psnr_vs_reference >= 0.0) {
             it->second.baseline_psnr = r.psnr_vs_reference;
             it->second.baseline_ssim = r.ssim_vs_reference;
             it->second.baseline_seam_ratio = r.seam_ratio;
+            it->second.baseline_temporal_error = r.temporal_error;
         }
     std::vector<ReferenceFrameResult> out;
     for (const auto& [frame, result] : frames) out.push_back(result);
@@ -272,16 +274,37 @@ void scale_checks(const std::vector<FrameRecord>& lod, const WorldScale& w, Prof
     splat_budget_check(lod, w, s);
 }
 
+// The runs' mean temporal error over their consecutive reference pairs.
+std::string temporal_line(const ProfileSummary& s) {
+    const auto& lod = s.lod_temporal;
+    const auto& base = s.baseline_temporal;
+    if (lod.pairs == 0) return "temporal_error: no consecutive reference frames in this run\n";
+    std::string out = formatted(
+        "temporal_error (mean |change - the reference's change| per pixel and channel, 0..255): LOD %.3f over %d "
+        "pairs (largest %.2f, frame %d)",
+        lod.mean, lod.pairs, lod.largest, lod.largest_frame);
+    out += base.pairs > 0 ? formatted(", baseline %.3f over %d pairs (largest %.2f, frame %d)\n", base.mean, base.pairs,
+                                      base.largest, base.largest_frame)
+                          : std::string(", no baseline pairs\n");
+    return out;
+}
+
 std::string reference_table(const ProfileSummary& s) {
     if (s.reference_frames.empty()) return "";
     const auto cell = [](double v, int digits) { return v < 0.0 ? std::string("-") : formatted("%.*f", digits, v); };
-    std::string out = "\nagainst the reference (PSNR dB / SSIM; seam_ratio of the LOD image, and of the baseline's)\n";
-    out += "  frame  segment    LOD psnr    ssim | baseline psnr    ssim | seam_ratio (baseline)\n";
+    std::string out =
+        "\nagainst the reference (PSNR dB / SSIM; seam_ratio and temporal_error of the LOD image, and of the "
+        "baseline's)\n";
+    out +=
+        "  frame  segment    LOD psnr    ssim | baseline psnr    ssim | seam_ratio (baseline) | temporal (baseline)\n";
     for (const auto& f : s.reference_frames)
-        out += formatted(
-            "  %5d  %-9s %9s %7s | %13s %7s | %10s (%s)\n", f.frame, std::string(to_string(f.segment)).c_str(),
-            cell(f.lod_psnr, 2).c_str(), cell(f.lod_ssim, 4).c_str(), cell(f.baseline_psnr, 2).c_str(),
-            cell(f.baseline_ssim, 4).c_str(), cell(f.seam_ratio, 3).c_str(), cell(f.baseline_seam_ratio, 3).c_str());
+        out +=
+            formatted("  %5d  %-9s %9s %7s | %13s %7s | %10s (%s) | %8s (%s)\n", f.frame,
+                      std::string(to_string(f.segment)).c_str(), cell(f.lod_psnr, 2).c_str(),
+                      cell(f.lod_ssim, 4).c_str(), cell(f.baseline_psnr, 2).c_str(), cell(f.baseline_ssim, 4).c_str(),
+                      cell(f.seam_ratio, 3).c_str(), cell(f.baseline_seam_ratio, 3).c_str(),
+                      cell(f.lod_temporal_error, 2).c_str(), cell(f.baseline_temporal_error, 2).c_str());
+    out += temporal_line(s);
     return out;
 }
 
@@ -290,6 +313,20 @@ std::string verdict(const Check& check) {
 }
 
 }  // namespace
+
+TemporalErrors temporal_errors(const std::vector<FrameRecord>& rows) {
+    TemporalErrors t;
+    double sum = 0.0;
+    for (const auto& r : rows) {
+        if (r.temporal_error < 0.0) continue;
+        ++t.pairs;
+        sum += r.temporal_error;
+        if (t.largest_frame < 0 || r.temporal_error > t.largest)
+            t.largest = r.temporal_error, t.largest_frame = r.frame;
+    }
+    t.mean = t.pairs > 0 ? sum / t.pairs : 0.0;
+    return t;
+}
 
 double median_of(std::vector<double> values) {
     if (values.empty()) return 0.0;
@@ -309,6 +346,8 @@ ProfileSummary summarize(const std::vector<FrameRecord>& lod, const std::vector<
     budget_checks(lod, s);
     overview_check(lod, baseline, s);
     s.reference_frames = reference_frames(lod, baseline);
+    s.lod_temporal = temporal_errors(lod);
+    s.baseline_temporal = temporal_errors(baseline);
     reference_checks(s);
     scale_checks(lod, scale, s);
     return s;

@@ -58,8 +58,11 @@ std::vector<std::size_t> reference_frame_indices(const std::vector<PathPose>& po
                 ++count;
             }
         const auto wanted = static_cast<std::size_t>(kReferenceFramesPerSegment[k]);
-        for (std::size_t i = 0; i < wanted && count > 0; ++i)
-            chosen.insert(first + std::min(count - 1, (2 * i + 1) * count / (2 * wanted)));
+        for (std::size_t i = 0; i < wanted && count > 0; ++i) {
+            const std::size_t frame = first + std::min(count - 1, (2 * i + 1) * count / (2 * wanted));
+            chosen.insert(frame);
+            if (frame + 1 < poses.size()) chosen.insert(frame + 1);  // its successor: a consecutive pair
+        }
     }
     return {chosen.begin(), chosen.end()};
 }

@@ -111,6 +111,10 @@ void add_streaming_options(CLI::App& app, CommandLine& c) {
                    "Draw a chunk group instead of its chunks where its cell is at most this many pixels (0: never)")
         ->check(CLI::Range(0.0, 1000.0))
         ->capture_default_str();
+    app.add_option("--fade-frames", c.settings.fade_frames,
+                   "Updates over which a chunk, group or arriving level fades in or out (0: at once)")
+        ->check(CLI::Range(0, 1000))
+        ->capture_default_str();
     app.add_option("--sh-degree", c.settings.sh_degree, "SH degree stored on the GPU (the generated world has 0)")
         ->check(CLI::Range(0, 3))
         ->capture_default_str();

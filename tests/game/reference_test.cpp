@@ -2,7 +2,8 @@
 // a tiled render equals the untiled one (the tiles are off-centre windows of one camera), the
 // reference is made, cached and found again without drawing, another size gets another folder, a
 // damaged cached frame is an error naming it (and --force makes it again), and the profile reads
-// the reference into psnr_vs_reference, ssim_vs_reference and seam_ratio.
+// the reference into psnr_vs_reference, ssim_vs_reference, seam_ratio and, on frames whose
+// predecessor has a reference too, temporal_error, and draws its frame strip around the largest.
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -17,6 +18,7 @@
 #include "sample_game/profile_run.h"
 #include "sample_game/reference_run.h"
 #include "sample_game/world_path.h"
+#include "splat_lod/eval/sheet_drawing.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_lod/worldgen/world_generator.h"
 #include "test_support.h"
@@ -95,7 +97,10 @@ TEST_F(ReferenceTest, IsMadeCachedAndFoundAgain) {
         return sample_world_path(sw::WorldTerrain(m.seed, m.size_m), 20);
     }();
     std::set<Segment> segments;
+    const std::set<std::size_t> made_frames(made.frames.begin(), made.frames.end());
     for (const std::size_t f : made.frames) {
+        EXPECT_TRUE(made_frames.count(f + 1) || (f > 0 && made_frames.count(f - 1)))
+            << "frame " << f << " comes with its successor";
         segments.insert(poses.at(f).segment);
         const engine::Image image = engine::read_png(reference_frame_file(made.folder, f));
         EXPECT_EQ(image.width, 64);
@@ -170,11 +175,17 @@ TEST_F(ReferenceTest, TheProfileComparesItsFramesWithTheReference) {
 
     const CsvTable lod = read_csv(o.out / "profile.csv");
     ASSERT_EQ(lod.rows.size(), 20u);
-    int seams = 0;
+    int seams = 0, pairs = 0;
     for (std::size_t row = 0; row < lod.rows.size(); ++row) {
         SCOPED_TRACE("profile.csv row " + std::to_string(row));
         const double psnr = lod.number(row, "psnr_vs_reference"), ssim = lod.number(row, "ssim_vs_reference");
-        const double seam = lod.number(row, "seam_ratio");
+        const double seam = lod.number(row, "seam_ratio"), temporal = lod.number(row, "temporal_error");
+        if (frames.count(row) && row > 0 && frames.count(row - 1)) {
+            ++pairs;
+            EXPECT_TRUE(temporal >= 0.0 && temporal < 64.0) << temporal;
+        } else {
+            EXPECT_EQ(temporal, -1.0) << "no reference for this frame or the one before";
+        }
         if (frames.count(row)) {
             EXPECT_GT(psnr, 10.0);
             EXPECT_TRUE(ssim > 0.0 && ssim <= 1.0) << ssim;
@@ -197,13 +208,29 @@ TEST_F(ReferenceTest, TheProfileComparesItsFramesWithTheReference) {
             continue;
         }
         EXPECT_TRUE(seam == -1.0 || seam > 0.0) << "the baseline's seam_ratio, for comparison: " << seam;
+        const double temporal = baseline.number(row, "temporal_error");
+        EXPECT_EQ(temporal >= 0.0, frame > 0 && frames.count(frame - 1) > 0) << "frame " << frame << ": " << temporal;
         compared.insert(frame);
         EXPECT_GT(baseline.number(row, "psnr_vs_reference"), 10.0);
         EXPECT_GT(baseline.number(row, "ssim_vs_reference"), 0.0);
     }
     EXPECT_EQ(compared, frames) << "the baseline draws every reference frame";
     EXPECT_EQ(outcome.summary.reference_frames.size(), frames.size());
+    EXPECT_GE(pairs, 6) << "each chosen frame with its successor";
+    EXPECT_EQ(outcome.summary.lod_temporal.pairs, pairs);
+    EXPECT_EQ(outcome.summary.baseline_temporal.pairs, pairs);
+    // The strip: six consecutive LOD frames around the largest temporal error, the reference above
+    // where it exists, the change between frames below.
+    const engine::Image strip = engine::read_png(o.out / "frames_strip.png");
+    EXPECT_EQ(strip.width, 6 * (r.width + 2));
+    EXPECT_EQ(strip.height, 3 * (r.height + splat_lod::eval::kLabelHeight + 2));
     const std::string& summary = outcome.summary_text;
+    EXPECT_NE(summary.find("frames_strip.png: LOD frames"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("around the largest temporal_error (frame " +
+                           std::to_string(outcome.summary.lod_temporal.largest_frame)),
+              std::string::npos)
+        << summary;
+    EXPECT_NE(summary.find("temporal_error (mean"), std::string::npos) << summary;
     EXPECT_NE(summary.find("reference: found, " + reference.folder.string()), std::string::npos) << summary;
     EXPECT_NE(summary.find("against the reference"), std::string::npos) << summary;
     EXPECT_NE(summary.find("reference, LOD vs baseline"), std::string::npos) << summary;

@@ -29,6 +29,7 @@ expect_failure missing_world_window "splat_world --out" --world "$dir/nowhere"
 expect_failure too_few_frames "--frames must be at least 10" --profile --world "$dir/nowhere" --frames 5
 expect_failure rel_min_above_rel_max "lod_settings.rel_min" --profile --world "$dir/nowhere" --lod-rel-min 3
 expect_failure upload_below_a_page "upload_budget_bytes_per_frame" --profile --world "$dir/nowhere" --upload-budget-mib 0.01
+expect_failure fade_frames_out_of_range "--fade-frames" --profile --world "$dir/nowhere" --fade-frames 2000
 expect_failure unknown_upscaler "upscaler" --profile --upscaler sharpest
 expect_failure unknown_option "--teleport" --profile --teleport
 expect_failure screenshot_without_frames "need --frames" --world "$dir/nowhere" --screenshot "$dir/shot.png"

@@ -17,6 +17,7 @@
 #include "sample_game/frame_record.h"
 #include "sample_game/game_world.h"
 #include "sample_game/profile_run.h"
+#include "splat_lod/eval/sheet_drawing.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_lod/splat_renderer.h"
 #include "splat_lod/stream/stream_policy.h"
@@ -128,12 +129,17 @@ TEST_F(SampleGameTest, ProfileWalksThePathWithinItsBudgetsAndWritesEveryOutput) 
     EXPECT_EQ(lod_pictures, 3) << "frames 0, 8 and 16 of 24";
     const engine::Image sheet = engine::read_png(o.out / "frames_sheet.png");
     EXPECT_GT(sheet.width, 160);
+    // Without a reference the strip shows the overview's first six frames, and their change.
+    const engine::Image strip = engine::read_png(o.out / "frames_strip.png");
+    EXPECT_EQ(strip.width, 6 * (160 + 2));
+    EXPECT_EQ(strip.height, 2 * (90 + splat_lod::eval::kLabelHeight + 2));
     const std::string summary = engine::read_text_file(o.out / "summary.txt");
     EXPECT_EQ(summary, outcome.summary_text);
     EXPECT_NE(summary.find("PASS  memory"), std::string::npos) << summary;
     EXPECT_NE(summary.find("PASS  upload"), std::string::npos) << summary;
     EXPECT_NE(summary.find("overview: LOD+streaming"), std::string::npos) << summary;
     EXPECT_NE(summary.find("first view preloaded in"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("(the overview's first; no reference"), std::string::npos) << summary;
 }
 
 TEST_F(SampleGameTest, WorldPutsPropsAndTerrainInTheSceneAndCanHoldAllOfIt) {

@@ -33,6 +33,9 @@ struct GameSettings {
     // A chunk whose file could not be read (missing, cut short, replaced by a patcher or a running
     // regeneration) is tried again after this many frames, so that it comes back once its file does.
     int retry_failed_after_frames = 120;
+    // Updates over which a chunk or group that starts or stops being drawn, or a level that arrives on
+    // screen, fades in or out (StreamerSettings::fade_frames; 0: at once, as before fades existed).
+    int fade_frames = 8;
     bool sync_streaming = false;  // reads inside update() instead of on the background thread
     float fov_y_deg = 60.0f;
 };

@@ -8,8 +8,12 @@
 //   <out>/summary.txt       per-segment frame times and the three checks (profile_summary.h)
 //   <out>/frame_time.png memory.png gaussians.png   (profile_plots.h; needs gnuplot)
 //   <out>/frames/*.png      every K-th frame (LOD and baseline), and frames_sheet.png of them
+//   <out>/frames_strip.png  kStripFrames consecutive LOD frames around the largest temporal_error, the
+//                           reference above and the change from frame to frame below (frame_strip.h);
+//                           without a reference, the overview's first frames
 // When the world has a reference for the run's key (reference_cache.h), its frames are compared
-// with it (a broken cached reference is an error naming its file).
+// with it (a broken cached reference is an error naming its file), and so is the change between
+// consecutive reference frames (temporal_error).
 // The first view is streamed completely before the walk starts (preload, like a loading screen;
 // its updates are drawn at a quarter of the size and not recorded), unless `preload` is off.
 // Needs a current GL context. Budget checks that fail are results, not errors.

@@ -13,6 +13,8 @@
 //   5. on the overview's reference frames the LOD image is at least kReferenceOverviewGainDb better
 //      than the baseline's and at least kReferenceOverviewMinDb;
 //   6. seam_ratio (chunk_borders.h) is at most kMaxSeamRatio on every reference frame;
+// with the mean temporal_error (frame_strip.h) of each run over its consecutive reference pairs (a
+// measurement, no check);
 // and, given the image size and the world's size (WorldScale), how the LOD scales with the world:
 //   7. the overview's median frame time is at most the ground's;
 //   8. no overview frame draws more than kMaxOverviewGaussiansPerPixel Gaussians per output pixel,
@@ -68,6 +70,15 @@ struct ReferenceFrameResult {
     Segment segment = Segment::ground;
     double lod_psnr = -1.0, lod_ssim = -1.0, baseline_psnr = -1.0, baseline_ssim = -1.0, seam_ratio = -1.0;
     double baseline_seam_ratio = -1.0;  // the same measure of the baseline image, for comparison
+    // temporal_error of the frame against its predecessor (−1: the predecessor has no reference).
+    double lod_temporal_error = -1.0, baseline_temporal_error = -1.0;
+};
+
+// The mean temporal_error of a run's rows that have one, and the largest.
+struct TemporalErrors {
+    int pairs = 0;
+    double mean = 0.0, largest = 0.0;
+    int largest_frame = -1;
 };
 
 struct ProfileSummary {
@@ -88,6 +99,7 @@ struct ProfileSummary {
     std::optional<double> overview_psnr, overview_ssim;
     Check memory, upload, overview;
     std::vector<ReferenceFrameResult> reference_frames;  // empty: no reference
+    TemporalErrors lod_temporal, baseline_temporal;      // pairs 0: not measured
     Check reference_loss, reference_overview, reference_seams;
     Check scale_time, scale_density, scale_culling, scale_memory, splat_budget;
 };
@@ -107,6 +119,9 @@ struct SummaryContext {
 };
 
 std::string format_summary(const ProfileSummary& summary, const SummaryContext& context);
+
+// The temporal errors of `rows` (those ≥ 0).
+TemporalErrors temporal_errors(const std::vector<FrameRecord>& rows);
 
 // Median of a list (0 for none).
 double median_of(std::vector<double> values);

@@ -25,7 +25,8 @@
 
 namespace sample_game {
 
-inline constexpr int kReferenceFormatVersion = 2;  // 2: the world by chunks_checksum
+// 2: the world by chunks_checksum; 3: each chosen frame with its successor
+inline constexpr int kReferenceFormatVersion = 3;
 inline constexpr int kDefaultReferenceSupersample = 3;
 // The largest side of one render; a larger supersampled frame is drawn in tiles of at most this.
 inline constexpr int kReferenceMaxRenderSide = 2048;
@@ -34,7 +35,10 @@ inline constexpr const char* kReferenceFolderName = "reference";
 inline constexpr std::array<int, kSegmentCount> kReferenceFramesPerSegment{2, 2, 2, 4, 2};
 
 // The path frames with a reference: per segment kReferenceFramesPerSegment[k] of its frames at
-// (i + 0.5) / n of the way through it (fewer when the segment has fewer frames), ascending.
+// (i + 0.5) / n of the way through it (fewer when the segment has fewer frames), each with its
+// successor f + 1 where the path has one (which may lie in the next segment), so that the profile
+// can measure the change between consecutive frames against the reference's (temporal_error,
+// frame_strip.h); ascending, without repeats.
 std::vector<std::size_t> reference_frame_indices(const std::vector<PathPose>& poses);
 
 struct ReferenceKey {
