@@ -21,6 +21,29 @@ std::string frame_label(const StripRecorder::Frame& f, bool largest) {
     return largest ? label + " (largest)" : label;
 }
 
+// |(M_f − M_{f−1}) − (R_f − R_{f−1})| per channel, × kStripErrorGain and clamped: what temporal_error
+// averages, as a picture.
+engine::Image temporal_error_picture(const engine::Image& previous, const engine::Image& current,
+                                     const splat_lod::eval::FloatImage& reference_previous,
+                                     const splat_lod::eval::FloatImage& reference_current) {
+    const int w = current.width, h = current.height;
+    for (const auto* image : {&reference_previous, &reference_current})
+        if (previous.width != w || previous.height != h || image->width != w || image->height != h)
+            engine::fail(formatted("sample_game: frame strip: a frame of %dx%d against a reference of %dx%d", w, h,
+                                   image->width, image->height));
+    engine::Image out{w, h, std::vector<std::uint8_t>(current.rgba.size(), 255)};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const double change = double(current.pixel(x, y)[c]) - double(previous.pixel(x, y)[c]);
+                const double reference_change =
+                    255.0 * (double(reference_current.at(x, y, c)) - double(reference_previous.at(x, y, c)));
+                const double error = std::abs(change - reference_change) * kStripErrorGain;
+                out.pixel(x, y)[c] = static_cast<std::uint8_t>(std::min(255.0, std::round(error)));
+            }
+    return out;
+}
+
 }  // namespace
 
 double temporal_error(const splat_lod::eval::FloatImage& previous, const splat_lod::eval::FloatImage& current,
@@ -81,13 +104,23 @@ bool StripRecorder::write(const std::filesystem::path& path,
                 sheet.add(splat_lod::eval::to_rgba8(it->second), formatted("reference f%d", f.frame));
         }
     for (const Frame& f : window_) sheet.add(f.image, frame_label(f, measured() && f.temporal_error == best_error_));
-    for (std::size_t k = 0; k < window_.size(); ++k) {
-        if (k == 0) {
-            sheet.add_blank(formatted("change into f%d: -", window_[k].frame));
-            continue;
-        }
-        const engine::ImageDifference change = engine::compare_images(window_[k - 1].image, window_[k].image);
-        sheet.add(change.visual, formatted("|f%d - f%d| x4", window_[k].frame, window_[k - 1].frame));
+    // Where a frame and the one before both have a reference: the temporal error's picture.
+    const auto pair_reference = [&](std::size_t k) {
+        const auto now = reference.find(window_[k].frame), before = reference.find(window_[k].frame - 1);
+        return k > 0 && now != reference.end() && before != reference.end() &&
+                       window_[k - 1].frame + 1 == window_[k].frame
+                   ? std::make_pair(&before->second, &now->second)
+                   : std::make_pair(nullptr, nullptr);
+    };
+    bool any_pair = false;
+    for (std::size_t k = 0; k < window_.size(); ++k) any_pair = any_pair || pair_reference(k).first != nullptr;
+    for (std::size_t k = 0; any_pair && k < window_.size(); ++k) {
+        const auto [before, now] = pair_reference(k);
+        if (!before)
+            sheet.add_blank(formatted("f%d: no reference pair", window_[k].frame));
+        else
+            sheet.add(temporal_error_picture(window_[k - 1].image, window_[k].image, *before, *now),
+                      formatted("|dLOD - dref| f%d-%d x%d", window_[k].frame, window_[k - 1].frame, kStripErrorGain));
     }
     sheet.write(path);
     return true;

@@ -122,7 +122,7 @@ TEST(FrameStrip, KeepsTheFramesAroundTheLargestTemporalError) {
     EXPECT_EQ(window_frames(fallback), (std::vector<int>{14, 15, 16, 17, 18, 19}));
 }
 
-TEST(FrameStrip, WritesTheReferenceRowWhereItExistsTheFramesAndTheirChange) {
+TEST(FrameStrip, WritesTheReferenceRowWhereItExistsTheFramesAndTheTemporalErrorsPicture) {
     const auto folder = engine::test::output_dir("sample_game");
     const int w = 40, h = 20, thumbnail = 20;
     StripRecorder strip(10, 0);
@@ -133,15 +133,24 @@ TEST(FrameStrip, WritesTheReferenceRowWhereItExistsTheFramesAndTheirChange) {
     const auto path = folder / "frames_strip.png";
     std::filesystem::remove(path);
     ASSERT_TRUE(strip.write(path, reference, thumbnail));
-    const engine::Image with_reference = engine::read_png(path);
-    EXPECT_EQ(with_reference.width, 6 * (thumbnail + 2));
-    const int row = h * thumbnail / w + splat_lod::eval::kLabelHeight + 2;  // thumbnail, label, gap
-    EXPECT_EQ(with_reference.height, 3 * row) << "reference, frames, change";
-    ASSERT_TRUE(strip.write(path, {}, thumbnail));
-    EXPECT_EQ(engine::read_png(path).height, 2 * row) << "no reference row without a reference";
-    // The change row: frames 20 grey levels apart, × 4 = 80 (below the label, in the second column).
     const engine::Image picture = engine::read_png(path);
-    EXPECT_EQ(picture.pixel(thumbnail + 2 + thumbnail / 2, row + splat_lod::eval::kLabelHeight + 5)[0], 80);
+    EXPECT_EQ(picture.width, 6 * (thumbnail + 2)) << "frames 2..7";
+    const int row = h * thumbnail / w + splat_lod::eval::kLabelHeight + 2;  // thumbnail, label, gap
+    ASSERT_EQ(picture.height, 3 * row) << "reference, frames, temporal error";
+    // Frame 5 (fourth column) against 4: the run's change 20, the reference's 0.1 · 255 = 25.5; |20 − 25.5|
+    // × 4 = 22. Frame 4 (third column) has no reference pair: black.
+    const int y = 2 * row + splat_lod::eval::kLabelHeight + 5;
+    EXPECT_EQ(picture.pixel(3 * (thumbnail + 2) + thumbnail / 2, y)[0], 22);
+    EXPECT_EQ(picture.pixel(2 * (thumbnail + 2) + thumbnail / 2, y)[0], 0);
+    // A reference without its predecessor: no error row; no reference at all: the frames alone.
+    reference.erase(4);
+    ASSERT_TRUE(strip.write(path, reference, thumbnail));
+    EXPECT_EQ(engine::read_png(path).height, 2 * row);
+    ASSERT_TRUE(strip.write(path, {}, thumbnail));
+    EXPECT_EQ(engine::read_png(path).height, row);
+    reference[4] = make_float_image(w + 1, h);
+    reference[5] = make_float_image(w, h);
+    EXPECT_THROW(strip.write(path, reference, thumbnail), engine::Error) << "a reference of another size";
     EXPECT_FALSE(StripRecorder(10, 0).write(folder / "empty_strip.png", {}, thumbnail)) << "nothing kept";
     EXPECT_FALSE(std::filesystem::exists(folder / "empty_strip.png"));
 }

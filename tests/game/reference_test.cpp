@@ -220,7 +220,7 @@ TEST_F(ReferenceTest, TheProfileComparesItsFramesWithTheReference) {
     EXPECT_EQ(outcome.summary.lod_temporal.pairs, pairs);
     EXPECT_EQ(outcome.summary.baseline_temporal.pairs, pairs);
     // The strip: six consecutive LOD frames around the largest temporal error, the reference above
-    // where it exists, the change between frames below.
+    // where it exists, the temporal error's picture below.
     const engine::Image strip = engine::read_png(o.out / "frames_strip.png");
     EXPECT_EQ(strip.width, 6 * (r.width + 2));
     EXPECT_EQ(strip.height, 3 * (r.height + splat_lod::eval::kLabelHeight + 2));

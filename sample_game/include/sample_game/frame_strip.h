@@ -25,6 +25,9 @@ namespace sample_game {
 inline constexpr std::size_t kStripFrames = 6;
 inline constexpr std::size_t kStripFramesBefore = 3;  // f−3 .. f+2 around the pair (f−1, f)
 inline constexpr int kStripThumbnailWidth = 320;
+// The strip's error row shows |(M_f − M_{f−1}) − (R_f − R_{f−1})| times this (temporal_error's mean
+// of 2–6 is then dark grey, and a pop of 64 or more white).
+inline constexpr int kStripErrorGain = 4;
 inline constexpr const char* kStripFileName = "frames_strip.png";
 
 // Images in [0, 1] (FloatImage); throws engine::Error naming the mismatch when the sizes differ.
@@ -60,8 +63,11 @@ public:
 
     // Writes the strip (atomically) as PNG: the reference row (tiles of the window's frames that
     // have a reference, black elsewhere; left out when none has), the run's frames labelled with
-    // their index, segment and temporal error, and their change from the frame before, |M_k − M_{k−1}|
-    // × 4 (engine::compare_images' picture), where a pop shows as a patch its neighbours lack.
+    // their index, segment and temporal error, and the error row: for a frame whose predecessor has
+    // a reference too, |(M_f − M_{f−1}) − (R_f − R_{f−1})| × kStripErrorGain, the change the reference
+    // does not have (a pop shows as a bright patch; the camera's motion cancels), black elsewhere and
+    // left out when no frame has one. A frame's change from the one before alone (|M_f − M_{f−1}|)
+    // would not do: the path moves the camera far between frames, and that change fills the picture.
     // Returns false (and writes nothing) when no frame was kept. Throws engine::Error naming the file.
     bool write(const std::filesystem::path& path, const std::map<int, splat_lod::eval::FloatImage>& reference,
                int thumbnail_width = kStripThumbnailWidth) const;
