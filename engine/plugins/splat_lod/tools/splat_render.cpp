@@ -2,7 +2,7 @@
 //   splat_render --in FILE --width W --height H --fov-y DEG --eye X,Y,Z --target X,Y,Z --up X,Y,Z
 //                --out OUT.png [--background R,G,B] [--sh-degree N] [--frames N] [--mip-filter]
 //                [--render-scale S --upscaler spline|bicubic|bilinear|lanczos3] [--tile 4|8|16]
-//                [--low-res-tile 4|8|16]
+//                [--low-res-tile 4|8|16] [--raster-fetch automatic|texel|shared] [--bbox-tiles] [--wide-sort-keys]
 // Prints the Gaussians drawn and the per-pass GPU times (median over the frames after the first 2).
 #include <algorithm>
 #include <cstdio>
@@ -32,7 +32,23 @@ struct Options {
     float render_scale = 1.0f;
     std::string upscaler = "spline";
     unsigned tile = 16, low_res_tile = 8;
+    std::string raster_fetch = "automatic";
+    bool bbox_tiles = false, wide_sort_keys = false;
 };
+
+void apply_settings(splat_lod::SplatPassSettings& settings, const Options& o) {
+    settings.mip_filter = o.mip_filter;
+    settings.render_scale = o.render_scale;
+    settings.tile_size = o.tile;
+    settings.low_res_tile_size = o.low_res_tile;
+    settings.upscaler =
+        plugin_msgs::detail::enum_from_json<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, o.upscaler);
+    settings.raster_fetch = o.raster_fetch == "texel"    ? splat_lod::RasterFetch::texel
+                            : o.raster_fetch == "shared" ? splat_lod::RasterFetch::shared
+                                                         : splat_lod::RasterFetch::automatic;
+    settings.exact_tiles = !o.bbox_tiles;
+    settings.compact_sort_keys = !o.wide_sort_keys;
+}
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -58,12 +74,7 @@ int run(const Options& o) {
     const auto camera = engine::make_look_at_camera(eye, target, engine::parse_vec3(o.up, "--up"),
                                                     glm::radians(o.fov_y_deg), o.width, o.height, 0.01f, 1e6f);
     splat_lod::SplatRenderer pass(engine.renderer());
-    pass.settings().mip_filter = o.mip_filter;
-    pass.settings().render_scale = o.render_scale;
-    pass.settings().tile_size = o.tile;
-    pass.settings().low_res_tile_size = o.low_res_tile;
-    pass.settings().upscaler =
-        plugin_msgs::detail::enum_from_json<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, o.upscaler);
+    apply_settings(pass.settings(), o);
     engine::RenderTarget target_image(o.width, o.height);
 
     // Warm-up: the first frame compiles shaders and sizes the key buffer; the second is a plain one.
@@ -83,9 +94,10 @@ int run(const Options& o) {
     std::printf("%s: %zu Gaussians (%s, SH degree %d, %zu dropped) -> %s %dx%d on %s\n", o.in.c_str(), cloud->size(),
                 report.format.c_str(), cloud->sh_degree, report.dropped(), o.out.c_str(), o.width, o.height,
                 context->info().renderer.c_str());
-    std::printf("  visible %llu, tile-splat pairs %llu (capacity %llu), GPU memory %.1f MiB\n",
+    std::printf("  visible %llu, tile-splat pairs %llu (capacity %llu), GPU memory %.1f MiB, raster fetch %s\n",
                 static_cast<unsigned long long>(s.visible), static_cast<unsigned long long>(s.tile_splat_pairs),
-                static_cast<unsigned long long>(s.key_capacity), static_cast<double>(s.resident_bytes) / (1 << 20));
+                static_cast<unsigned long long>(s.key_capacity), static_cast<double>(s.resident_bytes) / (1 << 20),
+                splat_lod::to_string(pass.raster_fetch_in_use()));
     for (const auto& [name, times] : gpu_ms) std::printf("  gpu %-16s %9.2f ms\n", name.c_str(), median(times));
     return 0;
 }
@@ -114,6 +126,10 @@ int main(int argc, char** argv) {
     app.add_option("--tile", o.tile, "raster tile side at render scale 1")->check(CLI::IsMember({4u, 8u, 16u}));
     app.add_option("--low-res-tile", o.low_res_tile, "raster tile side below render scale 1")
         ->check(CLI::IsMember({4u, 8u, 16u}));
+    app.add_option("--raster-fetch", o.raster_fetch, "how the raster reads splats: automatic, texel or shared")
+        ->check(CLI::IsMember({"automatic", "texel", "shared"}));
+    app.add_flag("--bbox-tiles", o.bbox_tiles, "bin splats into every tile of their bounding box (to measure)");
+    app.add_flag("--wide-sort-keys", o.wide_sort_keys, "sort (depth bits, tile) key pairs (to measure)");
     CLI11_PARSE(app, argc, argv);
     try {
         return run(o);

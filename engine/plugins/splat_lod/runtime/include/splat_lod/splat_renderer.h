@@ -24,6 +24,14 @@ namespace splat_lod {
 
 class SplatPass;
 
+// How the tile raster reads the splats it blends (docs/algorithms.md §1, "Raster").
+enum class RasterFetch {
+    automatic,  // texel on CPU drivers (Mesa llvmpipe, softpipe), shared elsewhere
+    texel,      // every pixel fetches each splat through buffer textures
+    shared,     // the tile stages batches of splats in shared memory, one read per splat and tile
+};
+const char* to_string(RasterFetch fetch);
+
 struct SplatPassSettings {
     float znear = 0.2f;            // docs/algorithms.md §1
     float dilation = 0.3f;         // the EWA low-pass, in px²
@@ -55,6 +63,15 @@ struct SplatPassSettings {
     // render scale 1/3, where splats are a third as wide, 16 → 8 cut the frame 726 → 409 ms.
     std::uint32_t tile_size = SPLAT_TILE_SIZE;
     std::uint32_t low_res_tile_size = 8;  // raster tile side below render scale 1 (8 or 16)
+    // Bin each splat into the tiles its α ≥ 1/255 ellipse touches rather than every tile of its bounding
+    // box (docs/algorithms.md §1, "Tile footprint"): fewer tile-splat pairs, the same image; off only to
+    // measure what it saves.
+    bool exact_tiles = true;
+    // One-word sort keys, (tile, depth quantised to the frame's depth range), whenever the tile index
+    // leaves at least 16 bits for depth: 4 radix passes instead of 6 or 7 (docs/algorithms.md §1,
+    // "Sort keys"); off only to measure what it saves.
+    bool compact_sort_keys = true;
+    RasterFetch raster_fetch = RasterFetch::automatic;
 };
 
 // The GPU memory of the pass's scene: Gaussians live in fixed-size pages (docs/world_lod.md).
@@ -83,6 +100,8 @@ public:
     void wait_for_statistics(engine::MessageBus& bus);
     // Tile-splat pairs the key buffer holds now (it grows after a frame that needed more).
     std::uint32_t key_capacity() const;
+    // The raster fetch the latest frame used (settings().raster_fetch resolved for this driver).
+    RasterFetch raster_fetch_in_use() const;
 
     SplatMemory memory() const;
     // Allocates pages for `gaussians` Gaussians of SH degree `sh_degree` up front, so that streaming

@@ -15,6 +15,7 @@ layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList
 layout(std430, binding = SPLAT_BINDING_BUDGET) readonly buffer Budget { SplatBudgetState budget; };
 
 #include "common_splat_lod.glsl"
+#include "common_splat_tiles.glsl"
 
 void main() {
     uint cluster = cluster_list.ids[gl_WorkGroupID.x];
@@ -34,6 +35,14 @@ void main() {
                 return;
             }
             projected[index].mean_depth.w = opacity;
+            // The footprint shrinks with the opacity; step 3 writes the keys of the new one, and one
+            // that holds no pixel centre any more draws nothing.
+            if (frame.exact_tiles != 0u) {
+                vec2 mean = projected[index].mean_depth.xy;
+                uint tiles = tile_footprint_count(tile_footprint(mean, projected[index].conic, opacity));
+                tile_counts[index] = tiles;
+                if (tiles == 0u) return;
+            }
         }
         atomicAdd(stats.visible, 1u);
         atomicAdd(stats.per_level[level - 1u], 1u);

@@ -110,6 +110,10 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 #define SPLAT_UNIFORM_FRAME 0       // FrameUniforms (uniform block binding)
 #define SPLAT_IMAGE_COLOR 0         // the frame's display-space colour (rgba8), read and written
 #define SPLAT_TEXTURE_VIEW_DEPTH 1  // the mesh pass's view depth (r32f), +inf where no mesh
+// Buffer textures over the projected splats (rgba32f, 4 texels a splat) and the sorted values (r32ui),
+// read by the raster with SplatPassSettings::raster_fetch = texel.
+#define SPLAT_TEXTURE_PROJECTED 2
+#define SPLAT_TEXTURE_VALUES 3
 // Below render scale 1 (docs/algorithms.md §5) the raster writes these low-resolution images (rgba32f:
 // premultiplied colour C and alpha A, and their ∂/∂x, ∂/∂y, ∂²/∂x∂y per low-res pixel; r32f: the
 // view depth where the transmittance first falls below ½, else the depth the texel was cut at),
@@ -222,23 +226,25 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     float inverse_render_scale;  // 1/s
     uint splat_budget;           // at most this many Gaussians drawn (0: no budget)
     float transition_band;       // octaves of coverage over which a Gaussian fades (0: hard switching)
-    uint reserved1;
-    uint reserved2;
+    uint exact_tiles;            // 1: a splat's keys are the tiles its ellipse touches, 0: its bounding box
+    uint key_depth_bits;         // D > 0: one-word sort keys (tile << D | depth_q), 0: (depth bits, tile)
 };
 
 // Written by the GPU each frame and read back asynchronously by the CPU.
 SPLAT_LOD_STRUCT(FrameCounters) {
     uint considered;
     uint visible;
-    uint keys_needed;  // tile-splat pairs this frame asked for
-    uint overflowed;   // 1 when keys_needed > key capacity (the frame dropped pairs)
-    uvec4 per_level;   // visible Gaussians per LOD level 1..4
-    uvec4 skipping;    // x: Gaussians in project workgroups skipped as too small (GpuCluster),
-                       // y: Gaussians in clusters culled by the view frustum, z: in clusters of hidden
-                       // instances (SPLAT_INSTANCE_HIDDEN); w unused
-    uvec4 budget;      // x: β bin chosen (0: the budget did not bind), y: coverage bin below which the
-                       // last cut's Gaussians were dropped (0: none), z: Gaussians the selection
-                       // would have drawn without the budget, w unused
+    uint keys_needed;   // tile-splat pairs this frame asked for
+    uint overflowed;    // 1 when keys_needed > key capacity (the frame dropped pairs)
+    uvec4 per_level;    // visible Gaussians per LOD level 1..4
+    uvec4 skipping;     // x: Gaussians in project workgroups skipped as too small (GpuCluster),
+                        // y: Gaussians in clusters culled by the view frustum, z: in clusters of hidden
+                        // instances (SPLAT_INSTANCE_HIDDEN); w unused
+    uvec4 budget;       // x: β bin chosen (0: the budget did not bind), y: coverage bin below which the
+                        // last cut's Gaussians were dropped (0: none), z: Gaussians the selection
+                        // would have drawn without the budget, w unused
+    uvec4 depth_range;  // x: the float bits of the largest view depth projected, y: ~(those of the
+                        // smallest), both by atomicMax from 0; z, w unused
 };
 
 // The splat budget's per-frame state (SPLAT_BINDING_BUDGET), cleared by the CPU each frame.

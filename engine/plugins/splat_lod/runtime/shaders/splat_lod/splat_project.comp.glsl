@@ -1,6 +1,8 @@
 // Step 1b, cull + project + colour (docs/algorithms.md §1): one invocation per Gaussian of the clusters
 // step 1a kept. Survivors get their projected form at their own index and the number of raster tiles
-// (frame.tile_size px a side) their extent touches; culled ones get 0 tiles. A scan of the counts then gives every splat its key range.
+// (frame.tile_size px a side) their footprint touches (common_splat_tiles.glsl); culled ones get 0
+// tiles. A scan of the counts then gives every splat its key range. The frame's depth range
+// (FrameCounters::depth_range) sizes the sort keys' depth bits in step 3.
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = SPLAT_PROJECT_WORKGROUP_SIZE) in;
@@ -15,6 +17,7 @@ layout(std430, binding = SPLAT_BINDING_BUDGET) buffer Budget { SplatBudgetState 
 
 #include "common_splat_sh.glsl"
 #include "common_splat_lod.glsl"
+#include "common_splat_tiles.glsl"
 
 // The view transform into a camera frame whose y points down the image and z forward (so that
 // the 3DGS Jacobian applies as written); F = diag(1, −1, −1).
@@ -81,27 +84,35 @@ uint project(uint index) {
     vec2 mean = vec2(frame.principal.x + fx * cam.x / z, frame.principal.y + fy * cam.y / z);
     vec2 lo, hi;
     if (!extent_on_raster(mean, cov, opacity, lo, hi)) return 0u;
+    vec2 size = frame.raster_size;
+    uvec2 pmin = uvec2(max(lo, vec2(0.0))), pmax = uvec2(min(hi, size - 1.0));
+    uvec4 rect = uvec4(pmin / frame.tile_size, pmax / frame.tile_size + 1u);
+    vec4 conic = vec4(vec3(cov[1][1], -cov[0][1], cov[0][0]) / det, 0.0);
+    // The tiles it touches; with the exact footprint, a splat whose ellipse holds no pixel centre
+    // draws nothing and is culled here.
+    uint tiles = frame.exact_tiles != 0u ? tile_footprint_count(tile_footprint(mean, conic, opacity))
+                                         : (rect.z - rect.x) * (rect.w - rect.y);
+    if (tiles == 0u) return 0u;
     // Bin 0 (β = 1) counts exactly what the frame without a budget draws: not a splat whose opacity
-    // weighted at β = 1 is below 1/255 or whose extent with it misses the raster (the trim pass drops
-    // the first kind at any β; the extent kept is the unweighted one, which holds every weight's).
+    // weighted at β = 1 is below 1/255 or whose extent (footprint) with it misses the raster (every
+    // pixel centre); the trim pass drops those at any β. The extent kept is the unweighted one, which
+    // holds every weight's.
     if (budgeted && bins.x == 0) {
         float weighted = opacity * lod_weight(uint(g.lod.z), coverage, g.lod.x, g.lod.y);
         vec2 lo0, hi0;
-        if (!(weighted > 1.0 / 255.0) || !extent_on_raster(mean, cov, weighted, lo0, hi0)) {
+        bool none = !(weighted > 1.0 / 255.0) || !extent_on_raster(mean, cov, weighted, lo0, hi0) ||
+                    (frame.exact_tiles != 0u && tile_footprint_count(tile_footprint(mean, conic, weighted)) == 0u);
+        if (none) {
             bins.x = 1;
             if (bins.y < 1) return 0u;
         }
     }
-    vec2 size = frame.raster_size;
-    uvec2 pmin = uvec2(max(lo, vec2(0.0))), pmax = uvec2(min(hi, size - 1.0));
-    uvec4 rect = uvec4(pmin / frame.tile_size, pmax / frame.tile_size + 1u);
 
     uint sh_base = index * frame.sh_stride;
     vec3 direction = normalize(mat3(inst.rotation_inverse) * (world - frame.camera_position));
     vec3 color = evaluate_sh(sh_base, inst.info.z & SPLAT_INSTANCE_SH_DEGREE_MASK, direction);
     if (frame.level_colouring != 0u) color = level_colour(level, color);  // debug view
 
-    vec4 conic = vec4(vec3(cov[1][1], -cov[0][1], cov[0][0]) / det, 0.0);
     if (budgeted) {
         uint cbin = coverage_bin(coverage);
         conic.w = uintBitsToFloat(SPLAT_BUDGET_PACK_FLAG | uint(bins.x) | (uint(bins.y) << 8) | (cbin << 16) |
@@ -113,9 +124,11 @@ uint project(uint index) {
         atomicAdd(stats.visible, 1u);
         atomicAdd(stats.per_level[level - 1u], 1u);
     }
+    atomicMax(stats.depth_range.x, floatBitsToUint(z));  // positive floats order like their bits
+    atomicMax(stats.depth_range.y, ~floatBitsToUint(z));
     // color.w: the coverage, from which the budget's trim computes the weight at its β.
     projected[index] = ProjectedSplat(vec4(mean, z, opacity), conic, vec4(color, coverage), rect);
-    return (rect.z - rect.x) * (rect.w - rect.y);
+    return tiles;
 }
 
 // One workgroup per cluster that step 1a kept (GpuCluster): the Gaussians of skipped clusters

@@ -1,4 +1,5 @@
-// Step 5, tile ranges: after the sort, each tile's keys are contiguous; record [begin, end).
+// Step 5, tile ranges: after the sort, each tile's keys are contiguous; record [begin, end). Keys of
+// tile tile_count (step 3's filler, never expected) belong to no tile.
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = SPLAT_RANGES_WORKGROUP_SIZE) in;
@@ -6,11 +7,16 @@ layout(std430, binding = SPLAT_BINDING_KEYS) readonly buffer Keys { uvec2 keys[]
 layout(std430, binding = SPLAT_BINDING_TILE_RANGES) buffer Ranges { uvec2 ranges[]; };
 layout(std430, binding = SPLAT_BINDING_ARGS) readonly buffer Args { uvec4 args; };  // w = keys in use
 
+uint key_tile(uvec2 key) {
+    return frame.key_depth_bits == 0u ? key.y : key.x >> frame.key_depth_bits;
+}
+
 void main() {
     uint i = gl_GlobalInvocationID.x;
     uint count = args.w;
     if (i >= count) return;
-    uint tile = keys[i].y;
-    if (i == 0u || keys[i - 1u].y != tile) ranges[tile].x = i;
-    if (i + 1u == count || keys[i + 1u].y != tile) ranges[tile].y = i + 1u;
+    uint tile = key_tile(keys[i]);
+    if (tile >= frame.tile_count) return;
+    if (i == 0u || key_tile(keys[i - 1u]) != tile) ranges[tile].x = i;
+    if (i + 1u == count || key_tile(keys[i + 1u]) != tile) ranges[tile].y = i + 1u;
 }

@@ -30,6 +30,22 @@ std::uint32_t SplatRenderer::key_capacity() const {
     return pass_->key_capacity();
 }
 
+RasterFetch SplatRenderer::raster_fetch_in_use() const {
+    return pass_->raster_fetch_in_use();
+}
+
+const char* to_string(RasterFetch fetch) {
+    switch (fetch) {
+        case RasterFetch::texel:
+            return "texel";
+        case RasterFetch::shared:
+            return "shared";
+        case RasterFetch::automatic:
+            break;
+    }
+    return "automatic";
+}
+
 SplatMemory SplatRenderer::memory() const {
     const gpu::GpuScene& scene = pass_->scene();
     SplatMemory m;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <string>
 
 #include "engine/core/error.h"
 #include "engine/core/log.h"
@@ -131,6 +132,8 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, const R
     u.inverse_render_scale = 1.0f / s;
     u.splat_budget = settings.splat_budget;
     u.transition_band = static_cast<float>(lod.transition_band);
+    u.exact_tiles = settings.exact_tiles ? 1u : 0u;
+    u.key_depth_bits = raster.key_depth_bits;
     uniforms_.upload(0, sizeof(u), &u);
     const std::uint32_t count = scene_.gaussian_count();
     count_.upload(0, sizeof(count), &count);
@@ -149,6 +152,10 @@ SplatPass::RasterSize SplatPass::raster_size(const engine::FrameContext& frame) 
         engine::fail("splat_lod: raster tile size must be 4, 8 or 16, got " + std::to_string(r.tile_size));
     r.tiles_x = groups(static_cast<std::uint32_t>(r.width), r.tile_size);
     r.tiles_y = groups(static_cast<std::uint32_t>(r.height), r.tile_size);
+    // One-word keys hold the tile (bit_width(tile_count) bits: tile_count itself is step 3's filler)
+    // above the quantised depth, when that leaves the depth at least 16 bits.
+    const auto tile_bits = static_cast<std::uint32_t>(std::bit_width(r.tiles_x * r.tiles_y));
+    r.key_depth_bits = settings.compact_sort_keys && tile_bits <= 16 ? 32 - tile_bits : 0;
     return r;
 }
 
@@ -216,6 +223,43 @@ void SplatPass::record_selection(engine::FrameContext& frame, std::uint32_t n) {
     }
 }
 
+// settings.raster_fetch for this driver and these sizes: texel fetches need buffer textures as long
+// as the projected splats (4 texels each) and the key buffer.
+RasterFetch SplatPass::resolve_fetch(std::uint32_t gaussians) {
+    if (!cpu_driver_) {
+        const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+        const std::string name = renderer != nullptr ? renderer : "";
+        cpu_driver_ = name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+    }
+    RasterFetch fetch = settings.raster_fetch;
+    if (fetch == RasterFetch::automatic) fetch = *cpu_driver_ ? RasterFetch::texel : RasterFetch::shared;
+    GLint max_texels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    const std::uint64_t needed = std::max<std::uint64_t>(std::uint64_t(gaussians) * 4, key_capacity_);
+    if (fetch == RasterFetch::texel && needed > static_cast<std::uint64_t>(max_texels)) {
+        if (fetch_in_use_ != RasterFetch::shared)
+            engine::log_warning("splat_lod: " + std::to_string(needed) +
+                                " texels exceed the driver's buffer textures (" + std::to_string(max_texels) +
+                                "); the raster stages splats in shared memory instead");
+        fetch = RasterFetch::shared;
+    }
+    return fetch;
+}
+
+// Buffer-texture views of the projected splats and the sorted values (re-pointed each frame: the
+// buffers are reallocated when they grow).
+void SplatPass::bind_raster_texels() {
+    if (!projected_texels_) {
+        projected_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat projected texels");
+        value_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat value texels");
+    }
+    glTextureBuffer(projected_texels_.id(), GL_RGBA32F, projected_.id());
+    glTextureBuffer(value_texels_.id(), GL_R32UI, values_.id());
+    glBindTextureUnit(SPLAT_TEXTURE_PROJECTED, projected_texels_.id());
+    glBindTextureUnit(SPLAT_TEXTURE_VALUES, value_texels_.id());
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
+}
+
 // Steps 6 and 7 of execute.
 void SplatPass::record_raster(engine::FrameContext& frame, const RasterSize& raster) {
     {  // 6. per-tile front-to-back raster, stopping at the mesh depth; composite C + T·mesh, or below
@@ -224,6 +268,10 @@ void SplatPass::record_raster(engine::FrameContext& frame, const RasterSize& ras
         bind_all(frame);
         std::vector<std::string> defines{"RASTER_TILE_SIZE=" + std::to_string(raster.tile_size)};
         if (raster.upscaled) defines.push_back("SPLAT_GRADIENTS");
+        if (fetch_in_use_ == RasterFetch::shared)
+            defines.push_back("RASTER_FETCH_SHARED");
+        else
+            bind_raster_texels();
         const auto& raster_program = frame.shaders.program({"splat_lod/splat_tile_raster.comp.glsl"}, defines);
         glUseProgram(raster_program.id());
         glDispatchCompute(raster.tiles_x, raster.tiles_y, 1);
@@ -259,6 +307,7 @@ void SplatPass::execute(engine::FrameContext& frame) {
     else if (low_.width > 0)
         low_ = LowResImages{};  // back at native resolution: nothing keeps them
     ensure_frame_buffers(n, raster.tiles_x * raster.tiles_y);
+    fetch_in_use_ = resolve_fetch(n);
     upload_frame_uniforms(frame, raster);
     clear_frame_buffers();
     record_selection(frame, n);     // 1. a–d: cull, skip, project, the splat budget
@@ -299,7 +348,9 @@ void SplatPass::record_sort(engine::FrameContext& frame, std::uint32_t n, const 
     }
     {  // 4. stable radix sort by (tile, depth); the key count stays on the GPU
         GpuTimerScope t(frame.timers, "splat.sort");
-        const auto hi_bits = static_cast<std::uint32_t>(std::bit_width(raster.tiles_x * raster.tiles_y - 1));
+        const auto hi_bits = raster.key_depth_bits > 0
+                                 ? 0u
+                                 : static_cast<std::uint32_t>(std::bit_width(raster.tiles_x * raster.tiles_y));
         sort_->record({keys_, values_, args_, 3 * sizeof(std::uint32_t), key_capacity_, hi_bits});
     }
     {  // 5. tile ranges in the sorted keys

@@ -41,6 +41,7 @@ public:
     // Blocks until the statistics of every frame drawn so far are read; for tools and tests.
     void wait_for_statistics(engine::MessageBus& bus);
     std::uint32_t key_capacity() const { return key_capacity_; }
+    RasterFetch raster_fetch_in_use() const { return fetch_in_use_; }
     // The resident Gaussians (which clouds, where, what the last frame uploaded); for tools and tests.
     const gpu::GpuScene& scene() const { return scene_; }
     // For reserve(): a streamed world sizes the scene for its memory budget up front (sample_game).
@@ -68,6 +69,7 @@ private:
         int width = 0, height = 0;
         std::uint32_t tile_size = SPLAT_TILE_SIZE;
         std::uint32_t tiles_x = 0, tiles_y = 0;
+        std::uint32_t key_depth_bits = 0;  // FrameUniforms::key_depth_bits
     };
     RasterSize raster_size(const engine::FrameContext& frame) const;
     void ensure_frame_buffers(std::uint32_t gaussians, std::uint32_t tile_count);
@@ -79,6 +81,8 @@ private:
     void record_selection(engine::FrameContext& frame, std::uint32_t gaussians);
     void record_sort(engine::FrameContext& frame, std::uint32_t gaussians, const RasterSize& raster);
     void record_raster(engine::FrameContext& frame, const RasterSize& raster);
+    RasterFetch resolve_fetch(std::uint32_t gaussians);
+    void bind_raster_texels();
     void record_statistics(engine::FrameContext& frame);
     void collect_statistics(engine::MessageBus& bus, bool wait);
 
@@ -100,6 +104,9 @@ private:
     } low_;
     std::array<Readback, 4> readbacks_;
     std::uint64_t frames_ = 0;
+    RasterFetch fetch_in_use_ = RasterFetch::automatic;
+    std::optional<bool> cpu_driver_;  // the GL renderer is a CPU rasteriser (asked once)
+    engine::gl::Texture projected_texels_{engine::gl::NoCreate}, value_texels_{engine::gl::NoCreate};
     std::optional<plugin_msgs::SplatStatistics> latest_;
 };
 
