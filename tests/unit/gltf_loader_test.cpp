@@ -128,3 +128,30 @@ TEST(GltfLoader, HostileAccessorsAreRejected) {
     EXPECT_NE(e.find("hostile.gltf"), std::string::npos) << e;
     EXPECT_EQ(e.find("(no error)"), std::string::npos) << e;
 }
+
+// Primitives with KHR_gaussian_splatting are the splat plugin's: the mesh loader counts and skips them,
+// also when the file requires the extension, and a file of splats alone loads with no triangles.
+TEST(GltfLoader, SplatPrimitivesAreSkippedAndCounted) {
+    const auto dir = engine::test::output_dir("gltf_loader");
+    // A triangle (3 vertices) and a splat primitive reading the same POSITION accessor.
+    const std::string buffer =
+        R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+      "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36}],
+      "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}])";
+    const std::string splat = R"({"mode":0,"attributes":{"POSITION":0},"extensions":{"KHR_gaussian_splatting":{}}})";
+    const auto write = [&](const std::string& name, const std::string& primitives) {
+        engine::write_text_file_atomic(dir / name,
+                                       R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_gaussian_splatting"],
+              "extensionsRequired":["KHR_gaussian_splatting"],"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+              "meshes":[{"primitives":[)" + primitives +
+                                           "]}]," + buffer + "}");
+        return dir / name;
+    };
+    const auto both = engine::load_gltf(write("mesh_and_splats.gltf", R"({"attributes":{"POSITION":0}},)" + splat));
+    EXPECT_EQ(both.primitives.size(), 1u);
+    EXPECT_EQ(both.triangle_count(), 1u);
+    EXPECT_EQ(both.splat_primitives, 1u);
+    const auto only = engine::load_gltf(write("splats_only.gltf", splat));
+    EXPECT_TRUE(only.primitives.empty());
+    EXPECT_EQ(only.splat_primitives, 1u);
+}

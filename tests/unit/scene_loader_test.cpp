@@ -135,3 +135,34 @@ TEST_F(SceneLoaderTest, EveryShowcaseSceneLoads) {
     }
     EXPECT_GE(count, 3);
 }
+
+// A plugin's companions of a component type are attached beside it, from the same JSON, in owner
+// order; removing an owner's companions leaves the others, and a second one from an owner is refused.
+TEST_F(SceneLoaderTest, CompanionsAreAttachedBesideTheirComponent) {
+    const auto light_beside = [](float intensity) {
+        return [intensity](const nlohmann::json& spec, const engine::ComponentLoadContext&) {
+            std::vector<std::unique_ptr<engine::Component>> out;
+            if (spec.value("kind", "") != "ambient") return out;  // only beside ambient lights
+            auto light = std::make_unique<engine::LightComponent>();
+            light->intensity = intensity;
+            out.push_back(std::move(light));
+            return out;
+        };
+    };
+    registry.add_companion("light", light_beside(2.0f), "plugin_b");
+    registry.add_companion("light", light_beside(1.0f), "plugin_a");
+    EXPECT_THROW(registry.add_companion("light", light_beside(3.0f), "plugin_a"), engine::Error);
+    const std::string text = R"({"nodes": [
+        {"name": "sun", "components": [{"type": "light", "kind": "ambient", "intensity": 0.5}]},
+        {"name": "key", "components": [{"type": "light", "kind": "directional"}]}]})";
+    auto scene = load(text);
+    const auto& sun = scene->find_node("sun")->components();
+    ASSERT_EQ(sun.size(), 3u);
+    EXPECT_FLOAT_EQ(dynamic_cast<engine::LightComponent&>(*sun[0]).intensity, 0.5f);
+    EXPECT_FLOAT_EQ(dynamic_cast<engine::LightComponent&>(*sun[1]).intensity, 1.0f) << "plugin_a before plugin_b";
+    EXPECT_FLOAT_EQ(dynamic_cast<engine::LightComponent&>(*sun[2]).intensity, 2.0f);
+    EXPECT_EQ(scene->find_node("key")->components().size(), 1u) << "nothing beside a directional light";
+    registry.remove_companions("plugin_a");
+    scene = load(text);
+    EXPECT_EQ(scene->find_node("sun")->components().size(), 2u);
+}

@@ -18,7 +18,12 @@ namespace engine {
 namespace {
 
 // Required extensions this loader implements (none change the geometry it reads).
-constexpr const char* supported_required_extensions[] = {"KHR_materials_unlit", "KHR_texture_transform"};
+// Gaussian-splat primitives are not the mesh pass's: it skips them (MeshAsset::splat_primitives) and a
+// plugin may draw them beside the mesh (ComponentRegistry::add_companion), so a file that requires the
+// splat extensions still loads its triangles.
+constexpr const char* kSplatExtension = "KHR_gaussian_splatting";
+constexpr const char* supported_required_extensions[] = {"KHR_materials_unlit", "KHR_texture_transform",
+                                                         kSplatExtension, "KHR_gaussian_splatting_compression_spz_2"};
 
 float decode(const std::uint8_t* p, int type, bool normalized) {
     switch (type) {
@@ -177,6 +182,10 @@ struct Loader {
 
     void add_primitive(const tinygltf::Primitive& p, const glm::mat4& transform, const std::string& mesh_name) {
         const std::string what = "mesh '" + mesh_name + "'";
+        if (p.extensions.count(kSplatExtension) != 0) {
+            ++out.splat_primitives;
+            return;
+        }
         if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) {
             log_warning(path.string() + ": " + what + ": skipping a primitive with mode " + std::to_string(p.mode) +
                         " (only triangles are drawn)");
@@ -459,7 +468,9 @@ MeshAsset load_gltf(std::span<const std::uint8_t> bytes, const std::filesystem::
     } else {
         for (std::size_t i = 0; i < model.nodes.size(); ++i) l.visit(static_cast<int>(i), glm::mat4(1.0f), 0);
     }
-    if (asset.primitives.empty()) fail(path.string() + ": no triangle geometry in the default scene");
+    if (asset.primitives.empty() && asset.splat_primitives == 0)
+        fail(path.string() + ": no triangle geometry in the default scene");
+    if (asset.primitives.empty()) return asset;  // splats only: bounds stay zero
 
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     for (const auto& p : asset.primitives)

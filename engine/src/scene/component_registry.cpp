@@ -44,4 +44,24 @@ std::unique_ptr<Component> ComponentRegistry::create(const std::string& type, co
     return it->second.factory(spec, context);
 }
 
+void ComponentRegistry::add_companion(const std::string& type, CompanionFactory factory, const std::string& owner) {
+    if (!companions_[type].emplace(owner, std::move(factory)).second)
+        fail("a companion of component type '" + type + "' is already registered by " + owner);
+}
+
+void ComponentRegistry::remove_companions(const std::string& owner) {
+    for (auto& [type, owners] : companions_) owners.erase(owner);
+}
+
+std::vector<std::unique_ptr<Component>> ComponentRegistry::create_companions(
+    const std::string& type, const nlohmann::json& spec, const ComponentLoadContext& context) const {
+    std::vector<std::unique_ptr<Component>> out;
+    const auto it = companions_.find(type);
+    if (it == companions_.end()) return out;
+    for (const auto& [owner, factory] : it->second)
+        for (auto& c : factory(spec, context))
+            if (c) out.push_back(std::move(c));
+    return out;
+}
+
 }  // namespace engine

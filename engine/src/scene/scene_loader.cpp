@@ -71,7 +71,10 @@ void read_node(const nlohmann::json& spec, Node& parent, const std::string& key,
             const auto& component = (*it)[i];
             const auto cctx = context_for(state, key + ".components[" + std::to_string(i) + "]");
             if (!component.is_object()) cctx.error("", "expected an object");
-            node.attach(state.registry.create(jf::required_string(component, "type", cctx), component, cctx));
+            const std::string type = jf::required_string(component, "type", cctx);
+            node.attach(state.registry.create(type, component, cctx));
+            for (auto& companion : state.registry.create_companions(type, component, cctx))
+                node.attach(std::move(companion));
         }
     }
     if (const auto it = spec.find("children"); it != spec.end()) {

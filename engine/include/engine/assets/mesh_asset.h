@@ -44,6 +44,8 @@ struct MeshAsset {
     std::vector<MeshMaterial> materials;
     std::vector<MeshImage> images;
     glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // model space, after node transforms
+    // Primitives with KHR_gaussian_splatting: not drawn here, left to a plugin (a file may hold only these).
+    std::size_t splat_primitives = 0;
     std::size_t triangle_count() const;
 };
 

@@ -30,6 +30,10 @@ struct ComponentLoadContext {
 
 using ComponentFactory =
     std::function<std::unique_ptr<Component>(const nlohmann::json& spec, const ComponentLoadContext& context)>;
+// Components a plugin attaches beside one of another type, made from the same JSON: for instance the
+// splats of a glTF file that a "mesh" component names. Returns none when it has nothing to add.
+using CompanionFactory = std::function<std::vector<std::unique_ptr<Component>>(const nlohmann::json& spec,
+                                                                               const ComponentLoadContext& context)>;
 
 class ComponentRegistry {
 public:
@@ -42,12 +46,20 @@ public:
     std::unique_ptr<Component> create(const std::string& type, const nlohmann::json& spec,
                                       const ComponentLoadContext& context) const;
 
+    // Companions of `type`, one factory per owner (a second from the same owner throws); the scene
+    // loader attaches what they return after the component itself, in the owners' order.
+    void add_companion(const std::string& type, CompanionFactory factory, const std::string& owner);
+    void remove_companions(const std::string& owner);
+    std::vector<std::unique_ptr<Component>> create_companions(const std::string& type, const nlohmann::json& spec,
+                                                              const ComponentLoadContext& context) const;
+
 private:
     struct Entry {
         ComponentFactory factory;
         std::string owner;
     };
     std::map<std::string, Entry> factories_;
+    std::map<std::string, std::map<std::string, CompanionFactory>> companions_;  // type → owner → factory
 };
 
 }  // namespace engine
