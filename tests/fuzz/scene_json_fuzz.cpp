@@ -7,6 +7,7 @@
 // Contract: a scene whose transforms and components are finite and valid, or engine::Error
 // "<file>: <key path>: <problem>".
 #include <cmath>
+#include <utility>
 
 #include "engine/assets/asset_cache.h"
 #include "engine/core/error.h"
@@ -27,7 +28,9 @@ const engine::ComponentRegistry& sandboxed_registry() {
     static const engine::ComponentRegistry real = [] {
         engine::ComponentRegistry registry;
         engine::register_builtin_components(registry);
-        splat_lod::register_splat_component(registry, "splat_lod");
+        splat_lod::DropInLodSettings lod;  // "lod": "auto" caches inside the sandbox too
+        lod.cache_folder = splat_fuzz::sandbox_dir() / "lod_cache";
+        splat_lod::register_splat_component(registry, "splat_lod", std::move(lod));
         return registry;
     }();
     static const engine::ComponentRegistry guarded = [] {

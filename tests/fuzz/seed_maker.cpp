@@ -272,6 +272,9 @@ void splat_and_spz_seeds(SeedWriter& write) {
     write("spz", "v3_sh2_bare.spz", encode_spz(make_cloud(4, 2, 12), 3, false));
     write("spz", "v4_sh0.spz", encode_spz(make_cloud(6, 0, 13), 4));
     write("spz", "v4_sh3.spz", encode_spz(make_cloud(3, 3, 14), 4));
+    write("gltf_splats", "4_sh0.glb", splat_lod::encode_gltf_splats(make_cloud(4, 0, 16), true));
+    write("gltf_splats", "3_sh1.gltf", splat_lod::encode_gltf_splats(make_cloud(3, 1, 17), false));
+    write("gltf_splats", "2_sh3_lod_extras.glb", splat_lod::encode_gltf_splats(make_cloud(2, 3, 18, true, true), true));
 }
 
 // Chunk files as the world generator writes them (INRIA PLY with LOD properties) behind the

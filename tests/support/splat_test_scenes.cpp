@@ -36,4 +36,16 @@ Image SplatRenderHarness::render(const std::vector<std::shared_ptr<const splat_l
     return target.read_color();
 }
 
+splat_lod::reference::MeshLayer mesh_layer(const RenderTarget& target) {
+    const Image colour = target.read_color();
+    const std::vector<float> depth = target.read_view_depth();
+    splat_lod::reference::MeshLayer layer{colour.width, colour.height, {}, {}};
+    for (std::size_t i = 0; i < depth.size(); ++i) {
+        layer.depth.push_back(depth[i]);
+        const auto* p = &colour.rgba[i * 4];
+        layer.colour.push_back(glm::dvec3(p[0], p[1], p[2]) / 255.0);
+    }
+    return layer;
+}
+
 }  // namespace engine::test

@@ -6,12 +6,16 @@
 
 #include "engine/engine.h"
 #include "engine/render/image.h"
+#include "splat_lod/core/reference_renderer.h"
 #include "splat_test_data.h"
 
 namespace engine::test {
 
 // Renders splat clouds (each under its own node with `models[i]`) through Engine + splat_lod,
 // re-rendering while the key buffer had to grow, and returns the colour.
+// The mesh pass's result in `target` (colour and view depth, read back) as the CPU reference's mesh layer.
+splat_lod::reference::MeshLayer mesh_layer(const RenderTarget& target);
+
 class SplatRenderHarness {
 public:
     SplatRenderHarness();

@@ -62,4 +62,16 @@ if "$bake" --input "$dir/garden.ply" --output "$dir/keep.ply" --refine-iteration
 else
   echo "FAIL: the working bake"; cat "$dir/ok.log"; failures=$((failures + 1))
 fi
+
+# A .glb output: a failed bake leaves the previous one, a working bake writes glTF with the LOD attributes.
+echo "previous glb" > "$dir/keep.glb"
+cp "$dir/keep.glb" "$dir/keep_glb.orig"
+expect_failure glb_truncated_input "truncated.ply" --input "$dir/truncated.ply" --output "$dir/keep.glb"
+cmp -s "$dir/keep.glb" "$dir/keep_glb.orig" || { echo "FAIL: a failed bake changed the .glb"; failures=$((failures + 1)); }
+if "$bake" --input "$dir/garden.ply" --output "$dir/keep.glb" --refine-iterations 0 > "$dir/ok_glb.log" 2>&1 &&
+   [ "$(head -c 4 "$dir/keep.glb")" = "glTF" ] && grep -q "_SPLAT_LOD_LEVEL" "$dir/keep.glb"; then
+  echo "ok   working bake to .glb: $(tail -n 1 "$dir/ok_glb.log")"
+else
+  echo "FAIL: the working bake to .glb"; cat "$dir/ok_glb.log"; failures=$((failures + 1))
+fi
 exit $((failures > 0))

@@ -1,5 +1,6 @@
-// splat_bake: trained splat scene → LOD asset (INRIA PLY with lod_level, coverage_min, coverage_max;
-// coarse levels first). docs/algorithms.md §4.
+// splat_bake: trained splat scene → LOD asset (INRIA PLY with lod_level, coverage_min, coverage_max,
+// or glTF with their _SPLAT_LOD_* attributes when the output ends in .glb or .gltf; coarse levels
+// first). docs/algorithms.md §4.
 //   splat_bake --input scene.ply --output scene.lod.ply [--capture auto|orbit|forward|world]
 //              [--cameras auto|rings:RxA|grid:CxR[xD]|inside:RxA|orbit:N|cameras.json|path.json]
 //              [--up X,Y,Z] [--forward X,Y,Z] [--width 512 --height 384] [--levels 4] [--size-threshold 2]
@@ -15,7 +16,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 #include <system_error>
 
 #include <unistd.h>
@@ -26,17 +26,10 @@
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
 #include "splat_lod/bake/bake.h"
-#include "splat_lod/bake/bake_cameras.h"
-#include "splat_lod/bake/capture_shape.h"
+#include "splat_lod/bake/bake_setup.h"
 #include "splat_lod/core/splat_io.h"
 
 namespace {
-
-// Which of the settings that a capture shape decides the command line gave.
-struct Given {
-    bool cells = false, enlargement = false, pooling = false, margin = false, axis_ratio = false, member = false,
-         refine_cameras = false;
-};
 
 struct Options {
     std::string input, output, cameras = "auto", capture = "auto", up = "0,1,0", forward, cells = "auto",
@@ -45,7 +38,7 @@ struct Options {
     int height = 384;
     bool keep_ranges = false, no_member_ranges = false;
     splat_lod::bake::BakeOptions bake;
-    Given given;
+    splat_lod::bake::GivenSettings given;
 };
 
 // Fails before the (long) bake when the output cannot be written: its folder must exist and
@@ -67,86 +60,45 @@ void check_output_writable(const std::filesystem::path& output, const std::files
     fs::remove(probe, ec);
 }
 
-// The bake cameras and the capture shape they stand for, with the reason printed in the log: told by
-// --capture, implied by a generated spec, or detected from the cameras of a file.
-struct CameraChoice {
-    std::vector<splat_lod::eval::CameraPose> poses;
-    splat_lod::bake::CaptureShape shape = splat_lod::bake::CaptureShape::orbit;
-    std::string spec, reason;
-};
-
-CameraChoice choose_cameras(const Options& o, const splat_lod::bake::CameraPlacement& placement) {
-    namespace bake = splat_lod::bake;
-    const std::optional<bake::CaptureShape> told = bake::parse_capture_shape(o.capture, "--capture");
-    CameraChoice choice;
-    choice.spec = o.cameras;
-    if (o.cameras == "auto") {
-        choice.shape = told.value_or(bake::CaptureShape::orbit);
-        choice.spec = bake::auto_camera_spec(choice.shape);
-        choice.reason = told ? "given by --capture"
-                             : "no cameras to detect it from (the Gaussians alone do not show where the capture "
-                               "stood), so the default; --capture forward or world chooses another";
-    } else if (const auto implied = bake::generated_capture_shape(o.cameras)) {
-        choice.shape = told.value_or(*implied);
-        choice.reason = told ? "given by --capture" : "implied by --cameras " + o.cameras;
-    }
-    choice.poses = bake::bake_camera_poses(choice.spec, placement);
-    if (o.cameras != "auto" && !bake::generated_capture_shape(o.cameras)) {
-        const bake::CaptureDetection detection = bake::detect_capture_shape(choice.poses, placement.extent);
-        choice.shape = told.value_or(detection.shape);
-        choice.reason = told ? "given by --capture; the cameras look like " + detection.reason
-                             : "detected from the cameras: " + detection.reason;
-    }
-    return choice;
+// The forward capture's settings in the log (`splat_bake: forward settings: …`).
+void print_forward_settings(const splat_lod::bake::BakeOptions& b, std::size_t cameras) {
+    std::fprintf(stderr,
+                 "splat_bake: forward settings: %s pooling, %s, view margin %g, axis ratio >= %g, member ranges %s, "
+                 "%zu of %zu cameras in the refinement\n",
+                 b.pooling == splat_lod::bake::PoolingRule::moments ? "moments" : "mean",
+                 b.choose_recipe                              ? "both cell recipes"
+                 : b.cells == splat_lod::bake::CellRule::grid ? "grid cells"
+                                                              : "adaptive cells",
+                 b.view_margin, b.min_axis_ratio, b.member_ranges ? "on" : "off",
+                 b.refine_cameras > 0 ? std::min(cameras, static_cast<std::size_t>(b.refine_cameras)) : cameras,
+                 cameras);
 }
 
-// The capture shape's settings (capture_defaults) for every one the command line did not give.
-void apply_capture_defaults(Options& o, splat_lod::bake::CaptureShape shape, std::size_t cameras) {
-    const splat_lod::bake::BakeOptions d = splat_lod::bake::capture_defaults(o.bake, shape);
-    if (!o.given.cells && !o.given.enlargement) {
-        o.bake.cells = d.cells;
-        o.bake.choose_recipe = d.choose_recipe;
-    }
-    if (!o.given.pooling) o.bake.pooling = d.pooling;
-    if (!o.given.margin) o.bake.view_margin = d.view_margin;
-    if (!o.given.axis_ratio) o.bake.min_axis_ratio = d.min_axis_ratio;
-    if (!o.given.member) o.bake.member_ranges = d.member_ranges;
-    if (!o.given.refine_cameras) o.bake.refine_cameras = d.refine_cameras;
-    if (shape != splat_lod::bake::CaptureShape::forward) return;
-    std::fprintf(
-        stderr,
-        "splat_bake: forward settings: %s pooling, %s, view margin %g, axis ratio >= %g, member ranges %s, "
-        "%zu of %zu cameras in the refinement\n",
-        o.bake.pooling == splat_lod::bake::PoolingRule::moments ? "moments" : "mean",
-        o.bake.choose_recipe                              ? "both cell recipes"
-        : o.bake.cells == splat_lod::bake::CellRule::grid ? "grid cells"
-                                                          : "adaptive cells",
-        o.bake.view_margin, o.bake.min_axis_ratio, o.bake.member_ranges ? "on" : "off",
-        o.bake.refine_cameras > 0 ? std::min(cameras, static_cast<std::size_t>(o.bake.refine_cameras)) : cameras,
-        cameras);
-}
-
-// The bake cameras for the options and the scene; prints the capture shape and why, and applies its
-// settings (apply_capture_defaults).
+// The bake cameras for the options and the scene (splat_lod::bake::prepare_bake); prints the capture
+// shape and why, and applies its settings to those the command line did not give.
 std::vector<splat_lod::reference::ReferenceCamera> prepare_cameras(Options& o, const splat_lod::SplatCloud& fine) {
     namespace bake = splat_lod::bake;
-    bake::CameraPlacement placement;
-    placement.extent = splat_lod::eval::robust_extent(fine.positions);
-    placement.up = engine::parse_vec3(o.up, "--up");
-    placement.positions = fine.positions;
+    bake::BakeSetup setup;
+    setup.cameras = o.cameras;
+    setup.capture = o.capture;
+    setup.up = engine::parse_vec3(o.up, "--up");
     if (!o.forward.empty()) {
-        placement.forward = engine::parse_vec3(o.forward, "--forward");
-        if (!(glm::length(placement.forward) > 0.0f)) engine::fail("--forward: the direction must not be zero");
+        setup.forward = engine::parse_vec3(o.forward, "--forward");
+        if (!(glm::length(setup.forward) > 0.0f)) engine::fail("--forward: the direction must not be zero");
     }
-    const CameraChoice choice = choose_cameras(o, placement);
-    const auto cameras = bake::bake_cameras(choice.poses, o.width, o.height);
-    std::fprintf(stderr, "splat_bake: capture %s (%s)\n", bake::capture_shape_name(choice.shape),
-                 choice.reason.c_str());
-    std::fprintf(stderr, "splat_bake: %zu cameras (%s) at %dx%d\n", cameras.size(), choice.spec.c_str(), o.width,
-                 o.height);
-    apply_capture_defaults(o, choice.shape, cameras.size());
+    setup.width = o.width;
+    setup.height = o.height;
+    setup.options = o.bake;
+    setup.given = o.given;
+    bake::PreparedBake prepared = bake::prepare_bake(fine, setup);
+    std::fprintf(stderr, "splat_bake: capture %s (%s)\n", bake::capture_shape_name(prepared.choice.shape),
+                 prepared.choice.reason.c_str());
+    std::fprintf(stderr, "splat_bake: %zu cameras (%s) at %dx%d\n", prepared.cameras.size(),
+                 prepared.choice.spec.c_str(), o.width, o.height);
+    o.bake = prepared.options;
+    if (prepared.choice.shape == bake::CaptureShape::forward) print_forward_settings(o.bake, prepared.cameras.size());
     bake::validate(o.bake);
-    return cameras;
+    return std::move(prepared.cameras);
 }
 
 int run(Options& o) {
@@ -182,7 +134,7 @@ int run(Options& o) {
     } catch (const engine::Error& e) {
         engine::fail(o.input + ": " + e.what());
     }
-    splat_lod::write_inria_ply(o.output, baked);
+    splat_lod::write_splat_file(o.output, baked);
     if (const std::size_t stale = engine::remove_stale_temporaries(o.output); stale > 0)
         std::fprintf(stderr, "splat_bake: removed %zu temporary file(s) of killed bakes beside %s\n", stale,
                      o.output.c_str());
@@ -285,7 +237,9 @@ int main(int argc, char** argv) {
     CLI::App app{"Bake levels of detail (multi-scale 3DGS) into a trained splat scene"};
     app.add_option("--input", o.input, "trained scene (.ply, .compressed.ply, .splat, .spz, SOG meta.json)")
         ->required();
-    app.add_option("--output", o.output, "LOD asset to write (INRIA PLY)")->required();
+    app.add_option("--output", o.output,
+                   "LOD asset to write: INRIA PLY, or glTF (KHR_gaussian_splatting) for .glb/.gltf")
+        ->required();
     add_camera_options(app, o);
     const ShapeOptions shape = add_bake_options(app, o);
     CLI11_PARSE(app, argc, argv);

@@ -243,14 +243,7 @@ TEST_F(SplatPipelineTest, MeshesAndSplatsCompositeByDepth) {
     splat->cloud = std::make_shared<const splat_lod::SplatCloud>();
     engine.renderer().render(*meshes_only, camera, target);
     const engine::Image mesh_colour = target.read_color();
-    const std::vector<float> mesh_depth = target.read_view_depth();
-
-    ref::MeshLayer layer{w, h, {}, {}};
-    for (int i = 0; i < w * h; ++i) {
-        layer.depth.push_back(mesh_depth[static_cast<std::size_t>(i)]);
-        const auto* p = &mesh_colour.rgba[static_cast<std::size_t>(i) * 4];
-        layer.colour.push_back(glm::dvec3(p[0], p[1], p[2]) / 255.0);
-    }
+    const ref::MeshLayer layer = engine::test::mesh_layer(target);
     const ref::ReferenceInstance instance{cloud.get(), glm::dmat4(model), splat_lod::kMaxShDegree};
     const auto cpu =
         ref::to_image8(ref::render_reference(std::span(&instance, 1), camera, ref::ReferenceSettings{}, &layer));

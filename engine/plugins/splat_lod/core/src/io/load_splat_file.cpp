@@ -43,13 +43,15 @@ SplatFileFormat detect_splat_format(const fs::path& path) {
     if (starts_with(head, {'p', 'l', 'y', '\n'}) || starts_with(head, {'p', 'l', 'y', '\r'}))
         return SplatFileFormat::ply;
     if (starts_with(head, {0x1f, 0x8b}) || starts_with(head, {'N', 'G', 'S', 'P'})) return SplatFileFormat::spz;
+    if (starts_with(head, {'g', 'l', 'T', 'F'})) return SplatFileFormat::gltf;
     const std::string ext = lower_extension(path);
     if (ext == ".ply") return SplatFileFormat::ply;
     if (ext == ".spz") return SplatFileFormat::spz;
     if (ext == ".splat") return SplatFileFormat::antimatter_splat;
+    if (ext == ".gltf" || ext == ".glb") return SplatFileFormat::gltf;
     if (ext == ".json") return SplatFileFormat::sog;
     if (ext == ".sog") io::fail_file(path.string(), "zipped SOG bundles are not supported: unzip to a folder first");
-    io::fail_file(path.string(), "unrecognised splat file (not PLY, SPZ, SOG or .splat)");
+    io::fail_file(path.string(), "unrecognised splat file (not PLY, SPZ, SOG, .splat or glTF)");
 }
 
 SplatCloud load_splat_file(const fs::path& path, LoadReport* report) {
@@ -62,6 +64,8 @@ SplatCloud load_splat_file(const fs::path& path, LoadReport* report) {
             return read_spz(path, report);
         case SplatFileFormat::sog:
             return read_sog(path, report);
+        case SplatFileFormat::gltf:
+            return read_gltf_splats(path, report);
     }
     io::fail_file(path.string(), "unrecognised splat file");
 }

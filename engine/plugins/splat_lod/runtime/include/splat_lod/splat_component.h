@@ -1,12 +1,18 @@
 #pragma once
 // The "splat" component: a Gaussian splat scene under a node, drawn by the splat_lod pass
 // together with every other splat component of the scene (one depth-sorted set).
-//   {"type": "splat", "asset": "scene.ply", "sh_degree": 3}
+//   {"type": "splat", "asset": "scene.ply", "sh_degree": 3, "lod": "auto"}
 // The node's transform applies; Y-down captures are fixed by rotating the node 180° about X.
+// "lod": "auto" is the drop-in LOD (docs/lod.md): the trained scene is drawn at once while its LOD
+// asset is baked in the background into the user's cache, and replaces it between two frames; later
+// loads take the asset from the cache.
 #include <filesystem>
+#include <functional>
 #include <memory>
+#include <string>
 
 #include "engine/scene/component.h"
+#include "splat_lod/bake/bake_setup.h"
 #include "splat_lod/core/splat_cloud.h"
 
 namespace engine {
@@ -14,6 +20,10 @@ class ComponentRegistry;
 }
 
 namespace splat_lod {
+
+namespace bake {
+class BackgroundBake;
+}
 
 struct SplatComponent : engine::Component {
     std::string_view type_name() const override { return "splat"; }
@@ -28,9 +38,27 @@ struct SplatComponent : engine::Component {
     // Multiplies the opacity of every Gaussian, clamped to [0, 1]: a streamer fades a part in as it
     // arrives and out as what replaces it takes over (chunk_streamer.h, "fades").
     float opacity = 1.0f;
+    // "lod": "auto" while its bake runs; null otherwise (no "lod", a cache hit, or the bake ended).
+    std::shared_ptr<bake::BackgroundBake> lod_bake;
+
+    // Takes a finished bake's cloud in place of the trained one and returns true; a failed or cancelled
+    // bake is dropped (the trained scene stays). The plugin calls it for every splat component at the
+    // start of each frame, on the thread that renders, so a frame never sees half a swap.
+    bool update_lod();
+};
+
+// How "lod": "auto" bakes and where it caches. The defaults are those of
+// `splat_bake --capture auto --cameras auto` and splat_lod::bake::lod_cache_folder(); tests make the
+// bake shorter and the cache a temporary folder.
+struct DropInLodSettings {
+    bake::BakeSetup setup;
+    std::filesystem::path cache_folder;  // empty: bake::lod_cache_folder()
+    // Called on the bake's thread with its progress; may throw to fail the bake (for tests).
+    std::function<void(const std::string& stage, double fraction)> observer;
 };
 
 // Registers the "splat" type (asset path resolved against the scene file, loads cached).
-void register_splat_component(engine::ComponentRegistry& registry, const std::string& owner);
+void register_splat_component(engine::ComponentRegistry& registry, const std::string& owner,
+                              DropInLodSettings lod = {});
 
 }  // namespace splat_lod

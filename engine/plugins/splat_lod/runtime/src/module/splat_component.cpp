@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "drop_in_lod.h"
 #include "engine/assets/asset_cache.h"
 #include "engine/core/error.h"
 #include "engine/scene/component_registry.h"
@@ -21,17 +22,22 @@ std::optional<engine::Bounds> SplatComponent::local_bounds() const {
     return b;
 }
 
-void register_splat_component(engine::ComponentRegistry& registry, const std::string& owner) {
+void register_splat_component(engine::ComponentRegistry& registry, const std::string& owner, DropInLodSettings lod) {
     registry.add(
         "splat",
-        [](const nlohmann::json& spec, const engine::ComponentLoadContext& ctx) -> std::unique_ptr<engine::Component> {
+        [lod = std::move(lod)](const nlohmann::json& spec,
+                               const engine::ComponentLoadContext& ctx) -> std::unique_ptr<engine::Component> {
             namespace jf = engine::json_fields;
-            jf::only_keys(spec, {"type", "asset", "sh_degree"}, ctx);
+            jf::only_keys(spec, {"type", "asset", "sh_degree", "lod"}, ctx);
             auto component = std::make_unique<SplatComponent>();
             component->asset = ctx.resolve(jf::required_string(spec, "asset", ctx));
             component->sh_degree_cap = jf::integer(spec, "sh_degree", kMaxShDegree, ctx);
             if (component->sh_degree_cap < 0 || component->sh_degree_cap > kMaxShDegree)
                 ctx.error("sh_degree", "must be 0..3");
+            const std::string lod_mode = jf::string(spec, "lod", "", ctx);
+            if (spec.contains("lod") && lod_mode != "auto")
+                ctx.error("lod", "'" + lod_mode +
+                                     "' is not a LOD mode (known: auto; leave \"lod\" out to draw the file as it is)");
             if (ctx.assets == nullptr) engine::fail("splat_lod: no asset cache");
             try {
                 component->cloud = ctx.assets->get<SplatCloud>(component->asset, [](const std::filesystem::path& p) {
@@ -40,6 +46,7 @@ void register_splat_component(engine::ComponentRegistry& registry, const std::st
             } catch (const engine::Error& e) {
                 ctx.error("asset", e.what());
             }
+            if (lod_mode == "auto") start_drop_in_lod(*component, lod, *ctx.assets);
             return component;
         },
         owner);

@@ -7,6 +7,8 @@
 #include "engine/engine.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/component_registry.h"
+#include "module/drop_in_lod.h"
+#include "module/gltf_splat_companion.h"
 #include "passes/splat_pass.h"
 #include "splat_lod/lod_panel.h"
 #include "splat_lod/splat_component.h"
@@ -22,7 +24,9 @@ public:
 
     void startup(engine::PluginContext& context) override {
         register_splat_component(context.components, name());
+        register_gltf_splat_companion(context.components, name());  // the splats of a glTF mesh asset
         context.renderer.add_shader_root(shader_dir());
+        context.renderer.add_pass(std::make_shared<LodSwapPass>());  // "lod": "auto" (drop_in_lod.h)
         auto pass = std::make_shared<SplatPass>();
         // Settings arrive as plugin_msgs::LodSettings from the UI, tools or the game.
         settings_ = context.bus.subscribe<plugin_msgs::LodSettings>(
@@ -35,7 +39,9 @@ public:
     void shutdown(engine::PluginContext& context) override {
         settings_.reset();
         context.renderer.remove_pass("splat");
+        context.renderer.remove_pass(LodSwapPass().name());
         context.components.remove("splat");
+        context.components.remove_companions(name());
     }
 
 private:

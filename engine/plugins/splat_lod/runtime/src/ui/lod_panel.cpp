@@ -6,8 +6,10 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "engine/ui/overlay.h"
+#include "splat_lod/bake/lod_cache.h"
 
 namespace splat_lod {
 namespace {
@@ -76,6 +78,7 @@ void LodPanel::draw() {
     enum_combo("upscaler", edit.upscaler, plugin_msgs::kUpscalerNames);
     submit(edit);
     if (!error_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", error_.c_str());
+    for (const std::string& line : bake::running_bake_lines()) ImGui::TextUnformatted(line.c_str());  // "lod": "auto"
 
     ImGui::Separator();
     if (!statistics_) {

@@ -19,9 +19,11 @@ enum class SplatFileFormat {
     antimatter_splat,  // antimatter15 ".splat", 32 bytes per Gaussian
     spz,               // Niantic SPZ v2/v3 (gzip) or v4 (zstd streams)
     sog,               // PlayCanvas SOG: a folder (or its meta.json) with webp textures
+    gltf,              // glTF 2.0 (.gltf, .glb) with KHR_gaussian_splatting primitives
 };
 
-// Decides by content first (PLY magic, gzip, NGSP, folder/meta.json), then by extension (.splat).
+// Decides by content first (PLY magic, gzip, NGSP, glTF magic, folder/meta.json), then by extension
+// (.splat, .gltf, .glb).
 SplatFileFormat detect_splat_format(const std::filesystem::path& path);
 
 // Reads any supported format; the report (if given) says which one.
@@ -37,6 +39,26 @@ SplatCloud read_spz(const std::filesystem::path& path, LoadReport* report = null
 SplatCloud read_spz(std::span<const std::uint8_t> bytes, const std::string& name, LoadReport* report = nullptr);
 // `path` is the SOG folder or its meta.json.
 SplatCloud read_sog(const std::filesystem::path& path, LoadReport* report = nullptr);
+
+// glTF 2.0 with KHR_gaussian_splatting (docs/gltf_splats.md): every splat primitive of the default
+// scene's nodes, each node's world transform applied (positions and covariances; SH coefficients are
+// not rotated), in one cloud. External buffers must lie in the file's folder; the byte-span overload
+// allows none. SPZ-compressed primitives (KHR_gaussian_splatting_compression_spz_2) are read through
+// read_spz and turned from SPZ's right-up-back axes into glTF's left-up-front ones.
+SplatCloud read_gltf_splats(const std::filesystem::path& path, LoadReport* report = nullptr);
+SplatCloud read_gltf_splats(std::span<const std::uint8_t> bytes, const std::string& name, LoadReport* report = nullptr);
+
+// One POINTS primitive with float KHR_gaussian_splatting attributes at the cloud's SH degree, plus
+// _SPLAT_LOD_COVERAGE_MIN/_MAX (float), _SPLAT_LOD_LEVEL (unsigned byte) when has_lod_attributes() and
+// _SPLAT_LOD_EXTRA_<name> (float) per extra property. `.glb` is binary, `.gltf` JSON with the buffer
+// embedded as base64. Written through engine::write_file_atomic. A file read and written again gives
+// the same bytes.
+void write_gltf_splats(const std::filesystem::path& path, const SplatCloud& cloud);
+std::vector<std::uint8_t> encode_gltf_splats(const SplatCloud& cloud, bool binary);
+
+// By the name's extension: .glb and .gltf through write_gltf_splats, anything else through
+// write_inria_ply.
+void write_splat_file(const std::filesystem::path& path, const SplatCloud& cloud);
 
 // Binary little-endian INRIA PLY: x y z nx ny nz f_dc_0..2 f_rest_* (45/24/9/0 by SH degree)
 // opacity scale_0..2 rot_0..3, then the extra properties (float), then coverage_min,
