@@ -1,4 +1,4 @@
-// A glTF file holding triangles and KHR_gaussian_splatting primitives together, named by one "mesh"
+// A .glb holding triangles and KHR_gaussian_splatting primitives together, named by one "mesh"
 // component: the mesh pass draws the triangles, the plugin's companion puts the splats beside them,
 // and the two composite by depth (docs/algorithms.md §1) like any mesh and splat component.
 #include <cmath>
@@ -74,17 +74,33 @@ nlohmann::json mesh_and_splats(const splat_lod::SplatCloud& cloud) {
     return doc;
 }
 
+// A binary glTF holding `doc` as its JSON chunk (its buffers stay data URIs, which a .glb may have).
+std::vector<std::uint8_t> glb_of(const nlohmann::json& doc) {
+    std::string json = doc.dump();
+    json.resize((json.size() + 3) / 4 * 4, ' ');
+    const auto u32 = [](std::vector<std::uint8_t>& out, std::uint32_t v) {
+        for (int k = 0; k < 4; ++k) out.push_back(static_cast<std::uint8_t>(v >> (8 * k)));
+    };
+    std::vector<std::uint8_t> out = {'g', 'l', 'T', 'F'};
+    u32(out, 2);
+    u32(out, static_cast<std::uint32_t>(12 + 8 + json.size()));
+    u32(out, static_cast<std::uint32_t>(json.size()));
+    u32(out, 0x4E4F534Au);  // "JSON"
+    out.insert(out.end(), json.begin(), json.end());
+    return out;
+}
+
 }  // namespace
 
 TEST(GltfSplatScene, OneMeshComponentDrawsTheTrianglesAndTheSplatsCompositedByDepth) {
     const auto dir = engine::test::output_dir("gltf_splat_scene");
     const splat_lod::SplatCloud cloud = ball();
-    engine::write_text_file_atomic(dir / "quad_and_ball.gltf", mesh_and_splats(cloud).dump());
+    engine::write_file_atomic(dir / "quad_and_ball.glb", glb_of(mesh_and_splats(cloud)));
     engine::write_text_file_atomic(dir / "scene.json", R"({"background": [0.2, 0.25, 0.3], "nodes": [
         {"name": "camera", "translation": [1.2, 0.8, 2.2], "look_at": [0, 0, 0],
          "components": [{"type": "camera", "fov_y_deg": 45}]},
         {"name": "sun", "rotation_euler_deg": [-40, 30, 0], "components": [{"type": "light", "intensity": 2.0}]},
-        {"name": "model", "translation": [0, 0.1, 0], "components": [{"type": "mesh", "asset": "quad_and_ball.gltf"}]}]})");
+        {"name": "model", "translation": [0, 0.1, 0], "components": [{"type": "mesh", "asset": "quad_and_ball.glb"}]}]})");
     engine::test::gl_context().make_current();
     engine::Engine engine;
     engine.plugins().add_static(splat_lod::make_plugin());

@@ -93,10 +93,13 @@ struct Builder {
         for (std::size_t i = 0; i < values.size(); ++i) io::store_f32le(buffer.data() + offset + 4 * i, values[i]);
         add_view(name, offset, values.size() * 4, 5126, type, count);
     }
+    // glTF aligns every element of a vertex attribute to 4 bytes: one byte in four, byteStride 4.
     void add_bytes(const std::string& name, const std::vector<std::uint8_t>& values) {
         const std::size_t offset = buffer.size();
-        buffer.insert(buffer.end(), values.begin(), values.end());
-        add_view(name, offset, values.size(), 5121, "SCALAR", values.size());
+        buffer.resize(offset + values.size() * 4, 0);
+        for (std::size_t i = 0; i < values.size(); ++i) buffer[offset + 4 * i] = values[i];
+        add_view(name, offset, values.size() * 4, 5121, "SCALAR", values.size());
+        views.back()["byteStride"] = 4;
     }
     void add_view(const std::string& name, std::size_t offset, std::size_t length, int component, const char* type,
                   std::size_t count) {

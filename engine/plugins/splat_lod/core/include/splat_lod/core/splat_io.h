@@ -49,7 +49,7 @@ SplatCloud read_gltf_splats(const std::filesystem::path& path, LoadReport* repor
 SplatCloud read_gltf_splats(std::span<const std::uint8_t> bytes, const std::string& name, LoadReport* report = nullptr);
 
 // One POINTS primitive with float KHR_gaussian_splatting attributes at the cloud's SH degree, plus
-// _SPLAT_LOD_COVERAGE_MIN/_MAX (float), _SPLAT_LOD_LEVEL (unsigned byte) when has_lod_attributes() and
+// _SPLAT_LOD_COVERAGE_MIN/_MAX (float), _SPLAT_LOD_LEVEL (unsigned byte, byte stride 4) when has_lod_attributes() and
 // _SPLAT_LOD_EXTRA_<name> (float) per extra property. `.glb` is binary, `.gltf` JSON with the buffer
 // embedded as base64. Written through engine::write_file_atomic. A file read and written again gives
 // the same bytes.
