@@ -61,4 +61,19 @@ splat_lod::SplatCloud make_cloud(const std::vector<GaussianSpec>& specs) {
     return cloud;
 }
 
+splat_lod::SplatCloud lattice_cloud(int n) {
+    std::vector<GaussianSpec> specs;
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                GaussianSpec g;
+                g.position = glm::vec3(x, y, z) / static_cast<float>(n - 1) - 0.5f;
+                g.log_scale = glm::vec3(-4.0f);
+                g.color = glm::vec3(0.2f + 0.3f * static_cast<float>(x % 3), 0.3f + 0.05f * static_cast<float>(y % 5),
+                                    static_cast<float>((x + z) % 2));
+                specs.push_back(g);
+            }
+    return make_cloud(specs);
+}
+
 }  // namespace engine::test

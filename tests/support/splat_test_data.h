@@ -32,4 +32,8 @@ struct GaussianSpec {
 };
 splat_lod::SplatCloud make_cloud(const std::vector<GaussianSpec>& specs);
 
+// n³ small Gaussians on a lattice filling the unit cube around the origin, colours varying: a bake of
+// it adds coarse levels in well under a second (the drop-in LOD and cache tests).
+splat_lod::SplatCloud lattice_cloud(int n = 12);
+
 }  // namespace engine::test

@@ -9,6 +9,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine/assets/gltf_external_files.h"
 #include "engine/assets/mesh_asset.h"
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
@@ -321,44 +322,6 @@ struct Loader {
     }
 };
 
-// External files of a model: regular files in its folder or below (ExternalFiles::allows), read
-// through tinygltf's file-system callbacks. tinygltf would otherwise also try the working
-// directory and follow ".." and absolute URIs anywhere, devices and FIFOs included.
-struct ExternalFiles {
-    std::filesystem::path folder;  // absolute, normalised
-
-    bool allows(const std::string& file) const {
-        std::error_code ec;
-        const auto absolute = std::filesystem::absolute(std::filesystem::path(file), ec).lexically_normal();
-        if (ec) return false;
-        const auto relative = absolute.lexically_relative(folder);
-        if (relative.empty() || *relative.begin() == "..") return false;
-        return std::filesystem::is_regular_file(absolute, ec);
-    }
-
-    static bool exists(const std::string& file, void* self) {
-        return static_cast<const ExternalFiles*>(self)->allows(file);
-    }
-    static std::string expand(const std::string& file, void*) { return file; }
-    static bool read(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* self) {
-        if (!static_cast<const ExternalFiles*>(self)->allows(file)) {
-            if (err) *err += "not a file in the model's folder: " + file + "\n";
-            return false;
-        }
-        try {
-            *out = read_binary_file(file);
-        } catch (const Error& e) {
-            if (err) *err += std::string(e.what()) + "\n";
-            return false;
-        }
-        return true;
-    }
-    static bool write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
-        if (err) *err += "the loader writes no files\n";
-        return false;
-    }
-};
-
 // Images go through tinygltf's stb decoder after size checks: stb allocates for the sizes an image
 // claims (texels, PNG chunk lengths) before decoding it, so a few kilobytes could claim gigabytes.
 // Real textures stay far below the texel bound (deflate expands at most 1032:1, so even a flat
@@ -433,16 +396,15 @@ MeshAsset load_gltf(std::span<const std::uint8_t> bytes, const std::filesystem::
     if (bytes.empty()) fail(path.string() + ": the file is empty");
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) fail(path.string() + ": larger than 4 GiB");
     std::error_code ec;
-    ExternalFiles files{std::filesystem::absolute(path, ec).parent_path().lexically_normal()};
+    const GltfExternalFiles files(std::filesystem::absolute(path, ec).parent_path().lexically_normal());
     if (ec) fail(path.string() + ": cannot resolve its folder: " + ec.message());
     tinygltf::TinyGLTF loader;
-    loader.SetFsCallbacks(
-        {&ExternalFiles::exists, &ExternalFiles::expand, &ExternalFiles::read, &ExternalFiles::write, &files});
+    files.install(loader);
     loader.SetImageLoader(&load_image_checked, nullptr);
     tinygltf::Model model;
     std::string err, warn;
     const auto size = static_cast<unsigned int>(bytes.size());
-    const std::string base_dir = files.folder.string();
+    const std::string base_dir = files.folder().string();
     const auto* text = reinterpret_cast<const char*>(bytes.data());
     const bool ok = ext == ".glb" ? loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), size, base_dir)
                                   : loader.LoadASCIIFromString(&model, &err, &warn, text, size, base_dir);

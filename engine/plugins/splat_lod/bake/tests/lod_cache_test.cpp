@@ -43,22 +43,6 @@ private:
     std::optional<std::string> old_;
 };
 
-// n³ small Gaussians in a unit cube, colours varying: a bake of it adds coarse levels.
-SplatCloud small_scene(int n = 12) {
-    std::vector<engine::test::GaussianSpec> specs;
-    for (int z = 0; z < n; ++z)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
-                engine::test::GaussianSpec g;
-                g.position = glm::vec3(x, y, z) / static_cast<float>(n - 1) - 0.5f;
-                g.log_scale = glm::vec3(-4.0f);
-                g.color = glm::vec3(0.2f + 0.6f * static_cast<float>(x % 3) / 2.0f,
-                                    0.3f + 0.05f * static_cast<float>(y % 5), static_cast<float>((x + z) % 2));
-                specs.push_back(g);
-            }
-    return engine::test::make_cloud(specs);
-}
-
 // A bake of a couple of seconds: few cameras, small images, few refinement iterations.
 bake::BakeSetup quick_setup() {
     bake::BakeSetup setup;
@@ -127,7 +111,7 @@ TEST(LodCache, BackgroundBakeWritesOneCompleteEntry) {
     // A temporary that a killed bake of the same entry left (its process no longer runs).
     fs::create_directories(folder);
     { std::ofstream(entry.string() + ".tmp-2147483646-0") << "partial"; }
-    const auto fine = std::make_shared<const SplatCloud>(small_scene());
+    const auto fine = std::make_shared<const SplatCloud>(engine::test::lattice_cloud());
     std::atomic<int> reports{0};
     BackgroundBake job(fine, entry, quick_setup(), "scene.ply", [&](const std::string&, double) { ++reports; });
     ASSERT_TRUE(job.wait(120.0));
@@ -148,7 +132,7 @@ TEST(LodCache, CancelledBakeLeavesNoEntry) {
     const fs::path folder = engine::test::output_dir("LodCache") / "cache";
     fs::remove_all(folder);
     std::atomic<bool> midway{false}, cancelled{false};
-    const auto fine = std::make_shared<const SplatCloud>(small_scene());
+    const auto fine = std::make_shared<const SplatCloud>(engine::test::lattice_cloud());
     BackgroundBake job(fine, folder / "scene.lod.ply", quick_setup(), "scene.ply",
                        [&](const std::string& stage, double) {
                            if (stage.find("refine level") == std::string::npos) return;
@@ -173,7 +157,7 @@ TEST(LodCache, CancelledBakeLeavesNoEntry) {
 TEST(LodCache, FailedBakeLeavesNoEntryAndNamesTheFile) {
     const fs::path folder = engine::test::output_dir("LodCache") / "cache";
     fs::remove_all(folder);
-    const auto fine = std::make_shared<const SplatCloud>(small_scene());
+    const auto fine = std::make_shared<const SplatCloud>(engine::test::lattice_cloud());
     // Failing midway (a hook that throws as a bake step would).
     BackgroundBake failing(fine, folder / "a.lod.ply", quick_setup(), "garden.ply",
                            [](const std::string& stage, double) {
@@ -183,7 +167,7 @@ TEST(LodCache, FailedBakeLeavesNoEntryAndNamesTheFile) {
     EXPECT_EQ(failing.state(), BackgroundBake::State::failed);
     EXPECT_EQ(failing.error(), "garden.ply: disk on fire");
     // Input the bake refuses: it already has LOD attributes.
-    auto baked_already = small_scene(4);
+    auto baked_already = engine::test::lattice_cloud(4);
     baked_already.lod_level.assign(baked_already.size(), 2);
     baked_already.coverage_min.assign(baked_already.size(), -1.0f);
     baked_already.coverage_max.assign(baked_already.size(), -1.0f);
@@ -199,8 +183,8 @@ TEST(LodCache, FailedBakeLeavesNoEntryAndNamesTheFile) {
 TEST(LodCache, UnwritableCacheStillHandsOverTheBake) {
     const fs::path dir = engine::test::output_dir("LodCache");
     std::ofstream(dir / "not_a_folder") << "a file where the cache folder should be";
-    BackgroundBake job(std::make_shared<const SplatCloud>(small_scene(8)), dir / "not_a_folder" / "scene.lod.ply",
-                       quick_setup(), "scene.ply");
+    BackgroundBake job(std::make_shared<const SplatCloud>(engine::test::lattice_cloud(8)),
+                       dir / "not_a_folder" / "scene.lod.ply", quick_setup(), "scene.ply");
     ASSERT_TRUE(job.wait(120.0));
     EXPECT_EQ(job.state(), BackgroundBake::State::done) << job.error();
     ASSERT_NE(job.result(), nullptr);
@@ -211,8 +195,8 @@ TEST(LodCache, DestroyingARunningBakeCancelsIt) {
     const fs::path folder = engine::test::output_dir("LodCache") / "cache";
     fs::remove_all(folder);
     {
-        BackgroundBake job(std::make_shared<const SplatCloud>(small_scene()), folder / "scene.lod.ply", quick_setup(),
-                           "scene.ply");
+        BackgroundBake job(std::make_shared<const SplatCloud>(engine::test::lattice_cloud()), folder / "scene.lod.ply",
+                           quick_setup(), "scene.ply");
     }
     EXPECT_TRUE(entries(folder).empty());
 }

@@ -50,27 +50,12 @@ struct ReleaseOnExit {
     ~ReleaseOnExit() { flag = true; }
 };
 
-// n³ small Gaussians in a unit cube around the origin, colours varying: its bake adds coarse levels.
-inline splat_lod::SplatCloud small_cloud(int n = 12) {
-    std::vector<engine::test::GaussianSpec> specs;
-    for (int z = 0; z < n; ++z)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
-                engine::test::GaussianSpec g;
-                g.position = glm::vec3(x, y, z) / static_cast<float>(n - 1) - 0.5f;
-                g.log_scale = glm::vec3(-4.0f);
-                g.color = glm::vec3(0.2f + 0.3f * static_cast<float>(x % 3), 0.3f + 0.05f * static_cast<float>(y % 5),
-                                    static_cast<float>((x + z) % 2));
-                specs.push_back(g);
-            }
-    return engine::test::make_cloud(specs);
-}
-
-// `folder`/scene.ply (small_cloud) and `folder`/scene.json with one splat component whose extra keys
+// `folder`/scene.ply (lattice_cloud) and `folder`/scene.json with one splat component whose extra keys
 // are `lod_keys` (e.g. R"(, "lod": "auto")"); returns the scene file.
 inline fs::path write_scene(const fs::path& folder, const std::string& lod_keys) {
     fs::create_directories(folder);
-    if (!fs::exists(folder / "scene.ply")) splat_lod::write_inria_ply(folder / "scene.ply", small_cloud());
+    if (!fs::exists(folder / "scene.ply"))
+        splat_lod::write_inria_ply(folder / "scene.ply", engine::test::lattice_cloud());
     const fs::path scene = folder / "scene.json";
     std::ofstream(scene) << R"({"nodes": [{"name": "cube", "components": [{"type": "splat", "asset": "scene.ply")"
                          << lod_keys << "}]}]}\n";

@@ -8,6 +8,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "engine/assets/gltf_external_files.h"
 #include "engine/core/file_io.h"
 #include "gltf_splats.h"
 #include "io_util.h"
@@ -19,42 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// External buffers: regular files in the model's folder or below, nothing when reading from memory.
-struct ExternalFiles {
-    fs::path folder;  // absolute and normalised; empty: no external files
-
-    bool allows(const std::string& file) const {
-        if (folder.empty()) return false;
-        std::error_code ec;
-        const auto absolute = fs::absolute(fs::path(file), ec).lexically_normal();
-        if (ec) return false;
-        const auto relative = absolute.lexically_relative(folder);
-        if (relative.empty() || *relative.begin() == "..") return false;
-        return fs::is_regular_file(absolute, ec);
-    }
-    static bool exists(const std::string& file, void* self) {
-        return static_cast<const ExternalFiles*>(self)->allows(file);
-    }
-    static std::string expand(const std::string& file, void*) { return file; }
-    static bool read(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* self) {
-        if (!static_cast<const ExternalFiles*>(self)->allows(file)) {
-            if (err) *err += "not a file in the model's folder: " + file + "\n";
-            return false;
-        }
-        try {
-            *out = engine::read_binary_file(file);
-        } catch (const engine::Error& e) {
-            if (err) *err += std::string(e.what()) + "\n";
-            return false;
-        }
-        return true;
-    }
-    static bool write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
-        if (err) *err += "the reader writes no files\n";
-        return false;
-    }
-};
-
 // Images are of no use to splats: they are not decoded.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
     return true;
@@ -63,10 +28,9 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
 tinygltf::Model parse(std::span<const std::uint8_t> bytes, const std::string& name, const fs::path& folder) {
     if (bytes.empty()) io::fail_file(name, "the file is empty");
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) io::fail_file(name, "larger than 4 GiB");
-    ExternalFiles files{folder};
+    const engine::GltfExternalFiles files(folder);  // external buffers: only in the model's folder
     tinygltf::TinyGLTF loader;
-    loader.SetFsCallbacks(
-        {&ExternalFiles::exists, &ExternalFiles::expand, &ExternalFiles::read, &ExternalFiles::write, &files});
+    files.install(loader);
     loader.SetImageLoader(&skip_image, nullptr);
     tinygltf::Model model;
     std::string err, warn;

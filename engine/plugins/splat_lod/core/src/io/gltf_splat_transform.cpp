@@ -8,38 +8,10 @@
 #include "engine/core/error.h"
 #include "gltf_splats.h"
 #include "splat_lod/core/splat_io.h"
+#include "splat_lod/core/splat_math.h"
 
 namespace splat_lod::io {
 namespace {
-
-// Eigen-decomposition of a symmetric 3x3 matrix by cyclic Jacobi rotations: a = v·diag(values)·vᵀ.
-void symmetric_eigen(glm::dmat3 a, glm::dvec3& values, glm::dmat3& v) {
-    v = glm::dmat3(1.0);
-    for (int sweep = 0; sweep < 32; ++sweep) {
-        const double off = a[1][0] * a[1][0] + a[2][0] * a[2][0] + a[2][1] * a[2][1];
-        const double diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
-        if (off <= 1e-30 * diag || off == 0.0) break;
-        for (int p = 0; p < 2; ++p)
-            for (int q = p + 1; q < 3; ++q) {
-                if (a[q][p] == 0.0) continue;
-                const double theta = (a[q][q] - a[p][p]) / (2.0 * a[q][p]);
-                const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
-                const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
-                glm::dmat3 j(1.0);  // rotation in the (p, q) plane; a ← jᵀ·a·j
-                j[p][p] = c;
-                j[q][q] = c;
-                j[q][p] = s;
-                j[p][q] = -s;
-                a = glm::transpose(j) * a * j;
-                v = v * j;
-            }
-    }
-    values = {a[0][0], a[1][1], a[2][2]};
-}
-
-glm::dmat3 rotation_matrix(const Rotation& r) {
-    return glm::mat3_cast(glm::normalize(glm::dquat(r.w, r.x, r.y, r.z)));
-}
 
 Rotation to_rotation(const glm::dquat& q) {
     return {static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
@@ -47,12 +19,14 @@ Rotation to_rotation(const glm::dquat& q) {
 
 // Gaussian i under a general linear map: Σ' = A·R·S²·Rᵀ·Aᵀ, decomposed again.
 void transform_covariance(SplatCloud& cloud, std::size_t i, const glm::dmat3& a) {
-    const glm::dmat3 r = rotation_matrix(cloud.rotations[i]);
+    const Rotation& q = cloud.rotations[i];  // not normalised yet (sanitise does that at the end)
+    const glm::dquat unit = glm::normalize(glm::dquat(q.w, q.x, q.y, q.z));
+    const glm::dmat3 r = glm::mat3_cast(unit);
     const glm::dvec3 s = glm::exp(glm::dvec3(cloud.log_scales[i]));
     const glm::dmat3 m = a * r * glm::dmat3(glm::dvec3(s.x, 0, 0), glm::dvec3(0, s.y, 0), glm::dvec3(0, 0, s.z));
     glm::dvec3 values;
     glm::dmat3 v;
-    symmetric_eigen(m * glm::transpose(m), values, v);
+    math::symmetric_eigen(m * glm::transpose(m), values, v);
     if (glm::determinant(v) < 0.0) v[2] = -v[2];
     cloud.rotations[i] = to_rotation(glm::quat_cast(v));
     for (int c = 0; c < 3; ++c) cloud.log_scales[i][c] = static_cast<float>(0.5 * std::log(std::max(values[c], 0.0)));

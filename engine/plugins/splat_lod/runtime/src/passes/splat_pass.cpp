@@ -226,15 +226,15 @@ void SplatPass::record_selection(engine::FrameContext& frame, std::uint32_t n) {
 // settings.raster_fetch for this driver and these sizes: texel fetches need buffer textures as long
 // as the projected splats (4 texels each) and the key buffer.
 RasterFetch SplatPass::resolve_fetch(std::uint32_t gaussians) {
-    if (!cpu_driver_) {
+    if (!cpu_driver_) {  // the driver's name and limit, asked once
         const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
         const std::string name = renderer != nullptr ? renderer : "";
         cpu_driver_ = name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels_);
     }
     RasterFetch fetch = settings.raster_fetch;
     if (fetch == RasterFetch::automatic) fetch = *cpu_driver_ ? RasterFetch::texel : RasterFetch::shared;
-    GLint max_texels = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    const GLint max_texels = max_texels_;
     const std::uint64_t needed = std::max<std::uint64_t>(std::uint64_t(gaussians) * 4, key_capacity_);
     if (fetch == RasterFetch::texel && needed > static_cast<std::uint64_t>(max_texels)) {
         if (fetch_in_use_ != RasterFetch::shared)

@@ -106,6 +106,7 @@ private:
     std::uint64_t frames_ = 0;
     RasterFetch fetch_in_use_ = RasterFetch::automatic;
     std::optional<bool> cpu_driver_;  // the GL renderer is a CPU rasteriser (asked once)
+    GLint max_texels_ = 0;            // GL_MAX_TEXTURE_BUFFER_SIZE (asked with cpu_driver_)
     engine::gl::Texture projected_texels_{engine::gl::NoCreate}, value_texels_{engine::gl::NoCreate};
     std::optional<plugin_msgs::SplatStatistics> latest_;
 };
