@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 
 #include "engine/core/error.h"
@@ -104,6 +105,7 @@ ChunkMap chunk_map(const HeightGrid& ground, const ChunkGrid& chunks, const engi
     map.width = camera.width;
     map.height = camera.height;
     map.chunk.assign(static_cast<std::size_t>(map.width) * static_cast<std::size_t>(map.height), -1);
+    map.distance.assign(map.chunk.size(), -1.0f);
     const glm::mat3 to_world = glm::mat3(glm::inverse(camera.view));
     const float f = camera.focal_length();
     const glm::vec2 c = camera.principal_point();
@@ -116,8 +118,10 @@ ChunkMap chunk_map(const HeightGrid& ground, const ChunkGrid& chunks, const engi
             const float t = hit_ground(ground, camera.position, dir, min_step);
             if (t < 0.0f) continue;
             const glm::vec3 p = camera.position + t * dir;
-            map.chunk[static_cast<std::size_t>(y) * static_cast<std::size_t>(map.width) + static_cast<std::size_t>(x)] =
-                chunks.chunk_at(p.x, p.z);
+            const std::size_t i =
+                static_cast<std::size_t>(y) * static_cast<std::size_t>(map.width) + static_cast<std::size_t>(x);
+            map.chunk[i] = chunks.chunk_at(p.x, p.z);
+            if (map.chunk[i] >= 0) map.distance[i] = t;
         }
     return map;
 }
@@ -158,26 +162,71 @@ std::vector<std::uint8_t> border_band(const ChunkMap& map, int radius) {
     return band;
 }
 
-std::optional<double> seam_ratio(const splat_lod::eval::FloatImage& image, const splat_lod::eval::FloatImage& reference,
-                                 const ChunkMap& map, int radius) {
+namespace {
+
+void check_sizes(const char* what, const splat_lod::eval::FloatImage& image,
+                 const splat_lod::eval::FloatImage& reference, const ChunkMap& map) {
     if (image.width != reference.width || image.height != reference.height || image.width != map.width ||
         image.height != map.height)
-        engine::fail("seam_ratio: the image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-                     ", the reference " + std::to_string(reference.width) + "x" + std::to_string(reference.height) +
-                     ", the chunk map " + std::to_string(map.width) + "x" + std::to_string(map.height));
+        engine::fail(std::string(what) + ": the image is " + std::to_string(image.width) + "x" +
+                     std::to_string(image.height) + ", the reference " + std::to_string(reference.width) + "x" +
+                     std::to_string(reference.height) + ", the chunk map " + std::to_string(map.width) + "x" +
+                     std::to_string(map.height));
+}
+
+// Mean absolute error over RGB of pixel i.
+double pixel_error(const splat_lod::eval::FloatImage& image, const splat_lod::eval::FloatImage& reference,
+                   std::size_t i) {
+    double e = 0.0;
+    for (std::size_t c = 0; c < 3; ++c) e += std::abs(double(image.rgb[3 * i + c]) - double(reference.rgb[3 * i + c]));
+    return e / 3.0;
+}
+
+}  // namespace
+
+std::optional<double> seam_ratio(const splat_lod::eval::FloatImage& image, const splat_lod::eval::FloatImage& reference,
+                                 const ChunkMap& map, int radius) {
+    check_sizes("seam_ratio", image, reference, map);
     const std::vector<std::uint8_t> band = border_band(map, radius);
     double error[2] = {0.0, 0.0};
     std::size_t pixels[2] = {0, 0};
     for (std::size_t i = 0; i < band.size(); ++i) {
         if (map.chunk[i] < 0) continue;
-        double e = 0.0;
-        for (std::size_t c = 0; c < 3; ++c)
-            e += std::abs(double(image.rgb[3 * i + c]) - double(reference.rgb[3 * i + c]));
-        error[band[i]] += e / 3.0;
+        error[band[i]] += pixel_error(image, reference, i);
         ++pixels[band[i]];
     }
     if (pixels[0] == 0 || pixels[1] == 0 || error[0] <= 0.0) return std::nullopt;
     return (error[1] / static_cast<double>(pixels[1])) / (error[0] / static_cast<double>(pixels[0]));
+}
+
+std::optional<double> seam_ratio_same_distance(const splat_lod::eval::FloatImage& image,
+                                               const splat_lod::eval::FloatImage& reference, const ChunkMap& map,
+                                               int radius) {
+    check_sizes("seam_ratio_same_distance", image, reference, map);
+    if (map.distance.size() != map.chunk.size())
+        engine::fail("seam_ratio_same_distance: the chunk map has no distances");
+    const std::vector<std::uint8_t> band = border_band(map, radius);
+    // Per distance bin: error and pixel count inside (1) and outside (0) the band.
+    struct Bin {
+        double error[2] = {0.0, 0.0};
+        std::size_t pixels[2] = {0, 0};
+    };
+    std::map<int, Bin> bins;
+    for (std::size_t i = 0; i < band.size(); ++i) {
+        if (map.chunk[i] < 0 || !(map.distance[i] > 0.0f)) continue;
+        const int key = static_cast<int>(std::floor(kSeamDistanceBinsPerOctave * std::log2(double{map.distance[i]})));
+        Bin& bin = bins[key];
+        bin.error[band[i]] += pixel_error(image, reference, i);
+        ++bin.pixels[band[i]];
+    }
+    double actual = 0.0, expected = 0.0;
+    for (const auto& [key, bin] : bins) {
+        if (bin.pixels[0] == 0 || bin.pixels[1] == 0) continue;
+        actual += bin.error[1];
+        expected += static_cast<double>(bin.pixels[1]) * bin.error[0] / static_cast<double>(bin.pixels[0]);
+    }
+    if (!(expected > 0.0)) return std::nullopt;
+    return actual / expected;
 }
 
 }  // namespace sample_game

@@ -122,6 +122,11 @@ std::vector<FrameColumn> image_columns() {
          [](R r) { return r.ssim_vs_reference < 0.0 ? std::string("-1") : decimal(r.ssim_vs_reference, 4); }},
         {"seam_ratio", "mean abs. error vs the reference within 4 px of projected chunk borders / elsewhere (-1: none)",
          [](R r) { return r.seam_ratio < 0.0 ? std::string("-1") : decimal(r.seam_ratio, 3); }},
+        {"seam_ratio_same_distance",
+         "seam_ratio against pixels outside the band at the same ground distance (1/16-octave bins; -1: none)",
+         [](R r) {
+             return r.seam_ratio_same_distance < 0.0 ? std::string("-1") : decimal(r.seam_ratio_same_distance, 3);
+         }},
         {"temporal_error",
          "frames f whose f-1 has a reference too: mean over pixels and RGB of |(M_f - M_f-1) - (R_f - R_f-1)|, "
          "0..255, M this run's images, R the reference (-1: none)",

@@ -116,6 +116,7 @@ struct Run {
         const ChunkMap map =
             chunk_map(*ground, ChunkGrid{world.manifest().size_m, world.manifest().chunk_size_m}, camera);
         r.seam_ratio = seam_ratio(image, *truth, map).value_or(-1.0);
+        r.seam_ratio_same_distance = seam_ratio_same_distance(image, *truth, map).value_or(-1.0);
         const splat_lod::eval::FloatImage* truth_before = reference_of(r.frame - 1);
         if (truth_before && previous.frame == r.frame - 1)
             r.temporal_error = temporal_error(previous.image, image, *truth_before, *truth);

@@ -119,6 +119,7 @@ std::vector<ReferenceFrameResult> reference_frames(const std::vector<FrameRecord
             f.lod_psnr = r.psnr_vs_reference;
             f.lod_ssim = r.ssim_vs_reference;
             f.seam_ratio = r.seam_ratio;
+            f.seam_ratio_same_distance = r.seam_ratio_same_distance;
             f.lod_temporal_error = r.temporal_error;
         }
     for (const auto& r : baseline)
@@ -126,6 +127,7 @@ std::vector<ReferenceFrameResult> reference_frames(const std::vector<FrameRecord
             it->second.baseline_psnr = r.psnr_vs_reference;
             it->second.baseline_ssim = r.ssim_vs_reference;
             it->second.baseline_seam_ratio = r.seam_ratio;
+            it->second.baseline_seam_ratio_same_distance = r.seam_ratio_same_distance;
             it->second.baseline_temporal_error = r.temporal_error;
         }
     std::vector<ReferenceFrameResult> out;
@@ -293,16 +295,18 @@ std::string reference_table(const ProfileSummary& s) {
     if (s.reference_frames.empty()) return "";
     const auto cell = [](double v, int digits) { return v < 0.0 ? std::string("-") : formatted("%.*f", digits, v); };
     std::string out =
-        "\nagainst the reference (PSNR dB / SSIM; seam_ratio and temporal_error of the LOD image, and of the "
-        "baseline's)\n";
+        "\nagainst the reference (PSNR dB / SSIM; seam_ratio, seam_ratio_same_distance and temporal_error of the "
+        "LOD image, and of the baseline's)\n";
     out +=
-        "  frame  segment    LOD psnr    ssim | baseline psnr    ssim | seam_ratio (baseline) | temporal (baseline)\n";
+        "  frame  segment    LOD psnr    ssim | baseline psnr    ssim | seam_ratio (baseline) | same distance "
+        "(baseline) | temporal (baseline)\n";
     for (const auto& f : s.reference_frames)
         out +=
-            formatted("  %5d  %-9s %9s %7s | %13s %7s | %10s (%s) | %8s (%s)\n", f.frame,
+            formatted("  %5d  %-9s %9s %7s | %13s %7s | %10s (%s) | %13s (%s) | %8s (%s)\n", f.frame,
                       std::string(to_string(f.segment)).c_str(), cell(f.lod_psnr, 2).c_str(),
                       cell(f.lod_ssim, 4).c_str(), cell(f.baseline_psnr, 2).c_str(), cell(f.baseline_ssim, 4).c_str(),
                       cell(f.seam_ratio, 3).c_str(), cell(f.baseline_seam_ratio, 3).c_str(),
+                      cell(f.seam_ratio_same_distance, 3).c_str(), cell(f.baseline_seam_ratio_same_distance, 3).c_str(),
                       cell(f.lod_temporal_error, 2).c_str(), cell(f.baseline_temporal_error, 2).c_str());
     out += temporal_line(s);
     return out;

@@ -116,3 +116,54 @@ TEST(ChunkBorders, SeamRatioComparesTheBandWithTheRest) {
     EXPECT_FALSE(seam_ratio(reference, reference, map, 4).has_value()) << "no error outside the band";
     EXPECT_THROW(seam_ratio(splat_lod::eval::make_float_image(4, 4), reference, map, 4), engine::Error);
 }
+
+TEST(ChunkBorders, EveryPixelKnowsHowFarItsGroundIs) {
+    const engine::CameraView camera = from_above();
+    const ChunkMap map = chunk_map(flat_ground(), kGrid, camera);
+    ASSERT_EQ(map.distance.size(), map.chunk.size());
+    // Straight down from 50 m above the ground at the image centre; farther toward the corners.
+    EXPECT_NEAR(map.distance[48 * 128 + 64], 50.0f, 0.05f);
+    EXPECT_GT(map.distance[0], map.distance[48 * 128 + 64]);
+    const auto level = engine::make_look_at_camera({0.0f, 3.7f, 0.0f}, {10.0f, 3.7f, 0.0f}, {0.0f, 1.0f, 0.0f},
+                                                   glm::radians(60.0f), 96, 64, 0.1f, 500.0f);
+    const ChunkMap sky = chunk_map(flat_ground(), kGrid, level);
+    EXPECT_EQ(sky.distance[static_cast<std::size_t>(5 * 96 + 48)], -1.0f) << "the sky has no ground";
+}
+
+// Error that grows with the distance alone (aliasing toward the horizon) makes seam_ratio large where
+// the borders crowd far away; with the distance held fixed the ratio is 1. Error added along the
+// borders raises both.
+TEST(ChunkBorders, SeamRatioAtTheSameDistanceSeesOnlyTheBorders) {
+    // Level, looking along +x from the −x edge of the world, slightly down: the chunk borders x = −16 and
+    // x = 16 cross the ground at two distances, and the far one takes fewer rows.
+    const auto camera = engine::make_look_at_camera({-46.0f, 4.0f, 0.0f}, {0.0f, 2.0f, 0.0f}, {0.0f, 1.0f, 0.0f},
+                                                    glm::radians(60.0f), 160, 120, 0.1f, 500.0f);
+    const ChunkMap map = chunk_map(flat_ground(), kGrid, camera);
+    const std::vector<std::uint8_t> band = border_band(map, 4);
+    auto reference = splat_lod::eval::make_float_image(160, 120, 0.5f);
+    auto by_distance = reference, with_seam = reference;
+    std::size_t in_band = 0;
+    for (std::size_t i = 0; i < band.size(); ++i) {
+        if (map.chunk[i] < 0) continue;
+        in_band += band[i];
+        // Error a cubic of the distance: up to about 0.3 at the world's far edge.
+        const float d = map.distance[i] / 96.0f, e = 0.3f * d * d * d;
+        for (std::size_t c = 0; c < 3; ++c) {
+            by_distance.rgb[3 * i + c] += e;
+            with_seam.rgb[3 * i + c] += e + (band[i] ? 0.5f * e : 0.0f);
+        }
+    }
+    ASSERT_GT(in_band, 100u);
+    const auto plain = seam_ratio(by_distance, reference, map, 4);
+    const auto same = seam_ratio_same_distance(by_distance, reference, map, 4);
+    ASSERT_TRUE(plain.has_value() && same.has_value());
+    EXPECT_NEAR(*same, 1.0, 0.1) << "no seam: the band's error is that of its distance";
+    EXPECT_GT(std::abs(*plain - 1.0), 0.2) << "the plain ratio measures where the borders lie: " << *plain;
+    const auto seam = seam_ratio_same_distance(with_seam, reference, map, 4);
+    ASSERT_TRUE(seam.has_value());
+    EXPECT_NEAR(*seam, 1.5, 0.15) << "half again the error along the borders";
+    EXPECT_FALSE(seam_ratio_same_distance(reference, reference, map, 4).has_value()) << "no error at all";
+    ChunkMap no_distances = map;
+    no_distances.distance.clear();
+    EXPECT_THROW(seam_ratio_same_distance(by_distance, reference, no_distances, 4), engine::Error);
+}

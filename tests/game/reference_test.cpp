@@ -180,6 +180,7 @@ TEST_F(ReferenceTest, TheProfileComparesItsFramesWithTheReference) {
         SCOPED_TRACE("profile.csv row " + std::to_string(row));
         const double psnr = lod.number(row, "psnr_vs_reference"), ssim = lod.number(row, "ssim_vs_reference");
         const double seam = lod.number(row, "seam_ratio"), temporal = lod.number(row, "temporal_error");
+        const double seam_same_distance = lod.number(row, "seam_ratio_same_distance");
         if (frames.count(row) && row > 0 && frames.count(row - 1)) {
             ++pairs;
             EXPECT_TRUE(temporal >= 0.0 && temporal < 64.0) << temporal;
@@ -190,11 +191,14 @@ TEST_F(ReferenceTest, TheProfileComparesItsFramesWithTheReference) {
             EXPECT_GT(psnr, 10.0);
             EXPECT_TRUE(ssim > 0.0 && ssim <= 1.0) << ssim;
             EXPECT_TRUE(seam == -1.0 || seam > 0.0) << seam;
+            EXPECT_TRUE(seam_same_distance == -1.0 || seam_same_distance > 0.0) << seam_same_distance;
+            EXPECT_EQ(seam_same_distance > 0.0, seam > 0.0) << "both measures see the same borders";
             seams += seam > 0.0 ? 1 : 0;
         } else {
             EXPECT_EQ(psnr, -1.0);
             EXPECT_EQ(ssim, -1.0);
             EXPECT_EQ(seam, -1.0);
+            EXPECT_EQ(seam_same_distance, -1.0);
         }
     }
     EXPECT_GE(seams, 4) << "chunk borders are in view on most reference frames";

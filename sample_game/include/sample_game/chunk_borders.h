@@ -43,10 +43,12 @@ struct ChunkGrid {
     int chunk_at(float x, float z) const;  // −1 outside the world
 };
 
-// Per pixel (row-major, top row first): the chunk it shows, −1 for none.
+// Per pixel (row-major, top row first): the chunk it shows, −1 for none, and how far along the
+// pixel's ray the ground is (m; −1 for none).
 struct ChunkMap {
     int width = 0, height = 0;
     std::vector<int> chunk;
+    std::vector<float> distance;
 };
 
 // Casts every pixel centre's ray of `camera` onto the ground: marched in steps growing with the
@@ -61,5 +63,17 @@ std::vector<std::uint8_t> border_band(const ChunkMap& map, int radius = kSeamBan
 // outside the band is 0. Throws engine::Error when the sizes differ.
 std::optional<double> seam_ratio(const splat_lod::eval::FloatImage& image, const splat_lod::eval::FloatImage& reference,
                                  const ChunkMap& map, int radius = kSeamBandRadiusPx);
+
+// seam_ratio with the distance held fixed: the band's error divided by the error that pixels outside
+// the band at the same ground distance have (distance bins a sixteenth of an octave wide; the band's pixels in
+// a bin without pixels outside the band are left out). Error against a supersampled reference grows
+// by orders of magnitude from the near ground to the horizon (aliasing, not seams), and the projected
+// borders crowd toward the horizon, so seam_ratio is large wherever the view sees both near ground and
+// far chunks, with or without a seam; this ratio is about 1 there unless the borders themselves carry
+// error. None when nothing is comparable or the comparable error outside the band is 0.
+inline constexpr int kSeamDistanceBinsPerOctave = 16;
+std::optional<double> seam_ratio_same_distance(const splat_lod::eval::FloatImage& image,
+                                               const splat_lod::eval::FloatImage& reference, const ChunkMap& map,
+                                               int radius = kSeamBandRadiusPx);
 
 }  // namespace sample_game

@@ -64,6 +64,9 @@ struct FrameRecord {
     // ±4 px of the projected chunk borders divided by that elsewhere (chunk_borders.h); −1 on
     // baseline rows, frames without a reference, and frames without border or error to compare.
     double seam_ratio = -1.0;
+    // The same with the distance held fixed (seam_ratio_same_distance in chunk_borders.h): the band's
+    // error over that of pixels outside it whose ground is as far away; −1 where seam_ratio is.
+    double seam_ratio_same_distance = -1.0;
     // Rows whose frame f and predecessor f − 1 both have a reference, drawn by this row's run: the mean
     // over pixels and RGB channels of |(M_f − M_{f−1}) − (R_f − R_{f−1})| in 8-bit units (frame_strip.h;
     // M this run's images, R the reference's): change between consecutive frames that the reference

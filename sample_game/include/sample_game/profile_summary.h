@@ -70,6 +70,8 @@ struct ReferenceFrameResult {
     Segment segment = Segment::ground;
     double lod_psnr = -1.0, lod_ssim = -1.0, baseline_psnr = -1.0, baseline_ssim = -1.0, seam_ratio = -1.0;
     double baseline_seam_ratio = -1.0;  // the same measure of the baseline image, for comparison
+    // seam_ratio_same_distance of the LOD and of the baseline image.
+    double seam_ratio_same_distance = -1.0, baseline_seam_ratio_same_distance = -1.0;
     // temporal_error of the frame against its predecessor (−1: the predecessor has no reference).
     double lod_temporal_error = -1.0, baseline_temporal_error = -1.0;
 };
