@@ -23,8 +23,6 @@ splat_lod::world::StreamerSettings streamer_settings(const GameSettings& s) {
     out.gpu_sh_degree = s.sh_degree;
     out.lod.size_threshold_px = s.lod.size_threshold_px;
     out.lod.rel_min = s.lod.rel_min;
-    // Outside mode full the renderer switches hard; the streamer's load distances follow.
-    out.lod.transition_band = s.lod.mode == plugin_msgs::LodMode::full ? s.lod.transition_band : 0.0f;
     out.load_distance_scale = s.load_distance_scale;
     out.group_cell_px = s.group_cell_px;
     out.retry_failed_after_frames = s.retry_failed_after_frames;

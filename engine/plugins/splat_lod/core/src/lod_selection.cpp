@@ -35,12 +35,12 @@ double lod_weight(const LodRule& rule, int level, double coverage, double covera
     double weight = 1.0;
     if (level != rule.finest_level && coverage_max >= 0.0) {
         const double x = std::log2(coverage / (coverage_max * rule.rel_max));
-        weight *= std::clamp(0.5 - x / band, 0.0, 1.0);
+        weight *= std::clamp(1.0 - x / band, 0.0, 1.0);
     }
     if (level != rule.coarsest_level && coverage_min >= 0.0) {
         const double y =
             std::log2(std::max(coverage / rule.size_threshold_px, coverage / (coverage_min * rule.rel_min)));
-        weight *= std::clamp(0.5 + y / band, 0.0, 1.0);
+        weight *= std::clamp(y / band, 0.0, 1.0);
     }
     return weight;
 }

@@ -73,27 +73,33 @@ TEST(LodWeight, HardSwitchingIsTheSelectionRule) {
     EXPECT_EQ(lod_weight(smooth, 1, 1.9, 5.0, 10.0), 0.0);
 }
 
-TEST(LodWeight, RampsInLogCoverageCentredOnEachSwitch) {
-    LodRule rule;  // band 1 octave
+TEST(LodWeight, RampsInLogCoverageOnTheFineSideOfEachSwitch) {
+    LodRule rule;
     rule.transition_band = 1.0;
-    // Too large: switch at S = S_max·rel_max = 15; ½ there, 1 from 15/√2 down, 0 from 15·√2 up.
-    EXPECT_DOUBLE_EQ(lod_weight(rule, 2, 15.0, -1.0, 10.0), 0.5);
+    // Too large: switch at S = S_max·rel_max = 15; 1 up to there (as the hard rule), then down to 0 at
+    // 30, one octave past it.
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 2, 15.0, -1.0, 10.0), 1.0);
     EXPECT_DOUBLE_EQ(lod_weight(rule, 2, 15.0 / std::sqrt(2.0), -1.0, 10.0), 1.0);
-    EXPECT_DOUBLE_EQ(lod_weight(rule, 2, 15.0 * std::sqrt(2.0), -1.0, 10.0), 0.0);
-    EXPECT_NEAR(lod_weight(rule, 2, 15.0 * std::pow(2.0, 0.25), -1.0, 10.0), 0.25, 1e-12);
-    // Too small: switch at max(S/S_T, S/(S_min·rel_min)) = 1, here S = 1 (S_min 2, below S_T).
-    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 1.0, 2.0, -1.0), 0.5);
-    EXPECT_NEAR(lod_weight(rule, 1, std::pow(2.0, -0.25), 2.0, -1.0), 0.25, 1e-12);
+    EXPECT_NEAR(lod_weight(rule, 2, 15.0 * std::sqrt(2.0), -1.0, 10.0), 0.5, 1e-12);
+    EXPECT_NEAR(lod_weight(rule, 2, 15.0 * std::pow(2.0, 0.25), -1.0, 10.0), 0.75, 1e-12);
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 2, 30.0, -1.0, 10.0), 0.0);
+    // Too small: switch at max(S/S_T, S/(S_min·rel_min)) = 1, here S = 1 (S_min 2, below S_T): 0 from
+    // there down (as the hard rule calls it too small), 1 from one octave above it.
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 1.0, 2.0, -1.0), 0.0);
     EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 1.0 / std::sqrt(2.0), 2.0, -1.0), 0.0);
+    EXPECT_NEAR(lod_weight(rule, 1, std::pow(2.0, 0.25), 2.0, -1.0), 0.25, 1e-12);
+    EXPECT_NEAR(lod_weight(rule, 1, std::sqrt(2.0), 2.0, -1.0), 0.5, 1e-12);
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 2.0, 2.0, -1.0), 1.0);
     // Where S_T decides (S / S_T above S / (S_min·rel_min)), the switch is at S = S_T.
-    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 2.0, 100.0, -1.0), 0.5);
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 2.0, 100.0, -1.0), 0.0);
+    EXPECT_NEAR(lod_weight(rule, 1, 2.0 * std::sqrt(2.0), 100.0, -1.0), 0.5, 1e-12);
     // Exemptions: the finest is never too large, the coarsest never too small, unset bounds filter nothing.
     EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 1000.0, -1.0, 10.0), 1.0);
     EXPECT_DOUBLE_EQ(lod_weight(rule, 4, 0.001, 5.0, -1.0), 1.0);
     EXPECT_DOUBLE_EQ(lod_weight(rule, 3, 0.001, -1.0, -1.0), 1.0);
     // A wider band fades over more octaves.
     rule.transition_band = 2.0;
-    EXPECT_NEAR(lod_weight(rule, 2, 15.0 * std::sqrt(2.0), -1.0, 10.0), 0.25, 1e-12);
+    EXPECT_NEAR(lod_weight(rule, 2, 15.0 * std::sqrt(2.0), -1.0, 10.0), 0.75, 1e-12);
 }
 
 // A Gaussian fading out where its replacement fades in: on a dolly both coverages scale by the same
@@ -116,7 +122,7 @@ TEST(LodWeight, FineAndCoarseWeightsSumToOneAcrossTheBand) {
             const double coarse = lod_weight(rule, 2, 16.0 * t, -1.0, coarse_max);
             ASSERT_NEAR(fine + coarse, 1.0, 1e-9) << "band " << band << " t " << t;
             const double y = std::log2(t);
-            if (std::abs(y) > 0.5 * band + 1e-9) {
+            if (y < -1e-9 || y > band + 1e-9) {
                 EXPECT_EQ(fine, lod_selected(hard, 1, t, fine_min, -1.0) ? 1.0 : 0.0);
                 EXPECT_EQ(coarse, lod_selected(hard, 2, 16.0 * t, -1.0, coarse_max) ? 1.0 : 0.0);
             }

@@ -141,8 +141,7 @@ sw::StreamerSettings sync_settings() {
     s.memory_budget_bytes = 1ull << 30;
     s.max_requests_in_flight = 64;
     s.unload_delay_frames = 0;
-    s.lod.transition_band = 0.0f;  // the load distances above are those of the hard rule
-    s.group_cell_px = 1.0f;        // the grouped world's switch distances (chunk_streamer_test_groups.cpp) assume 1 px
+    s.group_cell_px = 1.0f;  // the grouped world's switch distances (chunk_streamer_test_groups.cpp) assume 1 px
     return s;
 }
 

@@ -360,9 +360,9 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     const auto ref_camera = ref::make_reference_camera(camera);
     const ref::ReferenceSettings settings;
     splat_lod::SplatRenderer pass(harness.engine().renderer());
-    harness.engine().bus().publish(plugin_msgs::LodSettings{});  // full, band 1 octave
+    harness.engine().bus().publish(plugin_msgs::LodSettings{});  // full, band ¼ octave
     splat_lod::LodRule rule = pass.settings().lod;
-    ASSERT_EQ(rule.transition_band, 1.0);
+    ASSERT_EQ(rule.transition_band, 0.25);
     rule.coarsest_level = 4;
     auto weighted = cloud;
     std::vector<std::uint8_t> keep(cloud.size());
@@ -372,8 +372,9 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
         const glm::dvec3 c = p.cov2d - glm::dvec3(settings.dilation, 0.0, settings.dilation);
         const double coverage = splat_lod::pixel_coverage(c.x, c.y, c.z, p.opacity);
         cloud.lod_level[i] = static_cast<std::uint8_t>(1 + i % 4);
-        // Switches spread over ±0.9 octave around this view's coverage: most inside the band.
-        const double octaves = 0.9 * std::sin(0.37 * static_cast<double>(i));
+        // Switches spread from 0.075 octave past this view's coverage to 0.325 before it: the band is
+        // the quarter octave before each switch, so many are inside it.
+        const double octaves = 0.125 + 0.2 * std::sin(0.37 * static_cast<double>(i));
         cloud.coverage_max[i] = static_cast<float>(coverage / (rule.rel_max * std::exp2(octaves)));
         cloud.coverage_min[i] =
             (i % 2 == 0) ? -1.0f : static_cast<float>(coverage / (rule.rel_min * std::exp2(octaves)));

@@ -68,9 +68,9 @@ bool skip_cluster(uint cluster) {
     float jacobian = sqrt(fx * fx * (1.0 + lx * lx) + fy * fy * (1.0 + ly * ly)) / z_min;
     // × the coverage scale: selection uses the coverage at the output resolution (splat_project).
     float scale = 2.0 * stretch * jacobian * frame.coverage_scale * 1.001;  // margin for float rounding
-    bool smooth_fade = mode == SPLAT_LOD_MODE_FULL && frame.transition_band > 0.0;
-    float fade = smooth_fade ? exp2(-0.5 * frame.transition_band) : 1.0;
-    return c.bounds.x * scale < frame.size_threshold * fade && c.bounds.y * scale < frame.rel_min * fade;
+    // The same thresholds with smooth transitions: a Gaussian's weight is 0 from its "too small"
+    // switch on (lod_weight), so the band never draws one that the hard rule calls too small.
+    return c.bounds.x * scale < frame.size_threshold && c.bounds.y * scale < frame.rel_min;
 }
 
 void main() {

@@ -25,8 +25,7 @@ double level_load_distance(const ChunkEntry& chunk, int level, double focal_leng
     if (bounds.extent_per_min_coverage_max < 0.0f) return std::numeric_limits<double>::infinity();
     const double by_size = 2.0 * bounds.extent_max * focal_length_px / lod.size_threshold_px;
     const double by_ratio = 2.0 * bounds.extent_per_min_coverage_max * focal_length_px / lod.rel_min;
-    const double band = lod.transition_band > 0.0f ? double{lod.transition_band} : 0.0;
-    const double distance = std::max(by_size, by_ratio) * std::exp2(0.5 * band);
+    const double distance = std::max(by_size, by_ratio);
     return distance > 0.0 ? distance : 0.0;  // NaN and negative bounds: never needed by distance
 }
 

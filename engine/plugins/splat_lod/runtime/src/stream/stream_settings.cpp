@@ -29,8 +29,6 @@ void validate(const StreamerSettings& s) {
         settings_error("lod.size_threshold_px must be positive and finite");
     if (!(s.lod.rel_min > 0.0f) || !std::isfinite(s.lod.rel_min))
         settings_error("lod.rel_min must be positive and finite");
-    if (!(s.lod.transition_band >= 0.0f && s.lod.transition_band <= plugin_msgs::LodSettings::kMaxTransitionBand))
-        settings_error("lod.transition_band must be in [0, 4] octaves");
     if (!(s.load_distance_scale > 0.0f) || !std::isfinite(s.load_distance_scale))
         settings_error("load_distance_scale must be positive and finite");
     if (!(s.unload_distance_factor >= 1.0f) || !std::isfinite(s.unload_distance_factor))

@@ -28,14 +28,18 @@ double pixel_coverage(double cov_xx, double cov_xy, double cov_yy, double opacit
 bool lod_selected(const LodRule& rule, int level, double coverage, double coverage_min, double coverage_max);
 
 // The weight in [0, 1] by which a Gaussian's opacity is scaled this frame; 0 means not drawn. With a
-// band b > 0 in mode full, each of the rule's two tests becomes a ramp linear in log2 coverage,
-// centred on its switch and b octaves wide:
-//   not too large: x = log2(S / (S_max·S_rel_max)),             w_large = clamp(½ − x/b, 0, 1);
-//   not too small: y = log2(max(S / S_T, S / (S_min·S_rel_min))), w_small = clamp(½ + y/b, 0, 1);
+// band b > 0 in mode full, each of the rule's two tests becomes a ramp linear in log2 coverage, b
+// octaves wide, on the side of its switch where the hard rule draws the finer Gaussian:
+//   not too large: x = log2(S / (S_max·S_rel_max)),             w_large = clamp(1 − x/b, 0, 1);
+//   not too small: y = log2(max(S / S_T, S / (S_min·S_rel_min))), w_small = clamp(y/b, 0, 1);
 // the weight is w_large·w_small (the exemptions of the finest and coarsest level and of unset bounds
-// give 1). Outside the band it equals the hard rule; ramp(t) + ramp(−t) = 1, so a Gaussian fading out
-// at a coverage where its replacement fades in hands its opacity over continuously. With b = 0 or
-// in the other modes it is 1 where lod_selected holds and 0 elsewhere.
+// give 1). A Gaussian fades out over the b octaves before its "too small" switch, so none is drawn
+// where the hard rule would not draw it, and a coarser one fades in over the b octaves before its
+// "too large" switch, where the hard rule still draws its members: the band adds only coarse
+// Gaussians, which are few. Outside the band the weight equals the hard rule; w_small(t) and
+// w_large(t) sum to 1, so a Gaussian fading out at a coverage where its replacement fades in hands its
+// opacity over continuously. With b = 0 or in the other modes it is 1 where lod_selected holds and 0
+// elsewhere.
 double lod_weight(const LodRule& rule, int level, double coverage, double coverage_min, double coverage_max);
 
 }  // namespace splat_lod

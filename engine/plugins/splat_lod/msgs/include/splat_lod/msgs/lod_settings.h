@@ -63,10 +63,11 @@ struct LodSettings {
     std::uint32_t splat_budget = 0;
     // Smooth level transitions (docs/lod.md, "Transitions"): a Gaussian near a switching coverage of
     // the selection rule is drawn with its opacity scaled by a weight that ramps linearly in log2
-    // coverage over this many octaves centred on the switch, so it fades out while its coarser
-    // replacement fades in. 0: the rule's hard on/off switching. Only in mode full.
+    // coverage over this many octaves before the switch, so it fades out while its coarser
+    // replacement fades in; none is drawn past its switch, so the band costs no extra fine Gaussians.
+    // 0: the rule's hard on/off switching. Only in mode full.
     float transition_band = kDefaultTransitionBand;
-    static constexpr float kDefaultTransitionBand = 1.0f;
+    static constexpr float kDefaultTransitionBand = 0.25f;
     static constexpr float kMaxTransitionBand = 4.0f;
 
     // Empty when the settings are usable, otherwise "lod_settings.<key>: <why>".

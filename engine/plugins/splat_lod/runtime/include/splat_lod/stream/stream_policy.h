@@ -18,9 +18,8 @@ namespace splat_lod::world {
 struct LodThresholds {
     float size_threshold_px = 2.0f;  // S_T
     float rel_min = 0.5f;            // S_rel_min
-    // Smooth transitions (plugin_msgs::LodSettings::transition_band): a Gaussian fades out down to
-    // 2^(−band/2) times the thresholds, so a level is needed that much farther away.
-    float transition_band = plugin_msgs::LodSettings::kDefaultTransitionBand;
+    // Smooth transitions (plugin_msgs::LodSettings::transition_band) need no more than this: a
+    // Gaussian fades out before its "too small" switch, never past it (splat_lod/core/lod_selection.h).
 };
 
 // Bytes the GPU scene stores per Gaussian slot: one 64-byte GpuGaussian (splat_lod_shared.h) plus
