@@ -34,6 +34,8 @@ struct Options {
     unsigned tile = 16, low_res_tile = 8;
     std::string raster_fetch = "automatic";
     bool bbox_tiles = false, wide_sort_keys = false;
+    std::string lod_mode = "full";
+    float transition_band = plugin_msgs::LodSettings::kDefaultTransitionBand;
 };
 
 void apply_settings(splat_lod::SplatPassSettings& settings, const Options& o) {
@@ -48,6 +50,9 @@ void apply_settings(splat_lod::SplatPassSettings& settings, const Options& o) {
                                                          : splat_lod::RasterFetch::automatic;
     settings.exact_tiles = !o.bbox_tiles;
     settings.compact_sort_keys = !o.wide_sort_keys;
+    settings.lod.mode =
+        plugin_msgs::detail::enum_from_json<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, o.lod_mode);
+    settings.lod.transition_band = o.transition_band;
 }
 
 double median(std::vector<double> v) {
@@ -126,6 +131,14 @@ int main(int argc, char** argv) {
     app.add_option("--tile", o.tile, "raster tile side at render scale 1")->check(CLI::IsMember({4u, 8u, 16u}));
     app.add_option("--low-res-tile", o.low_res_tile, "raster tile side below render scale 1")
         ->check(CLI::IsMember({4u, 8u, 16u}));
+    app.add_option("--lod-mode", o.lod_mode,
+                   "LOD selection of a baked file: baseline, filter_small, insert_large or full")
+        ->check(CLI::IsMember({"baseline", "filter_small", "insert_large", "full"}))
+        ->capture_default_str();
+    app.add_option("--transition-band", o.transition_band,
+                   "mode full: octaves of coverage over which a Gaussian fades into its coarser level (0: hard)")
+        ->check(CLI::Range(0.0f, plugin_msgs::LodSettings::kMaxTransitionBand))
+        ->capture_default_str();
     app.add_option("--raster-fetch", o.raster_fetch, "how the raster reads splats: automatic, texel or shared")
         ->check(CLI::IsMember({"automatic", "texel", "shared"}));
     app.add_flag("--bbox-tiles", o.bbox_tiles, "bin splats into every tile of their bounding box (to measure)");
