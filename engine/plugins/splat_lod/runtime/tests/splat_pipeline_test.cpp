@@ -1,4 +1,5 @@
 // The GPU splat pipeline against the double-precision CPU reference (docs/algorithms.md §1).
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -399,4 +400,54 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     hard.transition_band = 0.0f;
     harness.engine().bus().publish(hard);
     EXPECT_LT(engine::compare_images(harness.render({shared_cloud}, camera), gpu).psnr_db, 40.0);
+}
+
+// SplatComponent::dissolve (the streamer's fades): at opacity f a component draws about the fraction f of
+// its Gaussians, each at full opacity, the same subset every frame; two components cross-fading at f and
+// 1 − f draw about as many Gaussians as one of them. Without dissolve every Gaussian is drawn fainter.
+TEST_F(SplatPipelineTest, DissolveDrawsAFractionOfTheGaussians) {
+    std::vector<GaussianSpec> specs;
+    for (int i = 0; i < 2000; ++i) {
+        const float t = static_cast<float>(i);
+        specs.push_back({{1.6f * std::sin(t * 1.3f), 1.2f * std::cos(t * 0.7f), -1.5f * std::sin(t * 0.23f)},
+                         glm::vec3(-3.0f),
+                         {1, 0, 0, 0},
+                         2.0f,
+                         {0.5f + 0.5f * std::sin(t), 0.4f, 0.5f + 0.5f * std::cos(t)}});
+    }
+    // Two copies, as a streamed node and its replacement are two clouds.
+    const std::array clouds{shared(engine::test::make_cloud(specs)), shared(engine::test::make_cloud(specs))};
+    const auto camera =
+        engine::make_look_at_camera({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 160, 120, 0.1f, 100.0f);
+    auto& engine = harness.engine();
+    splat_lod::SplatRenderer pass(engine.renderer());
+    engine::RenderTarget target(160, 120);
+    // Draws one or two components of the cloud with these opacities; returns the visible count and image.
+    const auto draw = [&](std::vector<float> opacities, bool dissolve) {
+        engine::Scene scene;
+        for (std::size_t i = 0; i < opacities.size(); ++i) {
+            auto component = std::make_unique<splat_lod::SplatComponent>();
+            component->cloud = clouds[i % clouds.size()];
+            component->opacity = opacities[i];
+            component->dissolve = dissolve;
+            scene.root().add_child("s" + std::to_string(i)).attach(std::move(component));
+        }
+        engine.renderer().render(scene, camera, target);
+        pass.wait_for_statistics(engine.bus());
+        return std::pair{pass.latest_statistics()->visible, target.read_color()};
+    };
+    const auto [all, whole] = draw({1.0f}, true);
+    ASSERT_GT(all, 1500u) << "most of the cloud is in view";
+    EXPECT_EQ(draw({1.0f}, false).second.rgba, whole.rgba) << "at opacity 1 dissolve changes nothing";
+    for (const float f : {0.25f, 0.5f, 0.75f}) {
+        SCOPED_TRACE("opacity " + std::to_string(f));
+        const auto [part, image] = draw({f}, true);
+        EXPECT_NEAR(static_cast<double>(part), f * static_cast<double>(all), 0.06 * static_cast<double>(all));
+        EXPECT_EQ(draw({f}, true).second.rgba, image.rgba) << "the same subset every frame";
+        EXPECT_EQ(draw({f}, false).first, all) << "without dissolve every Gaussian is drawn, fainter";
+        const auto [both, crossfade] = draw({f, 1.0f - f}, true);
+        EXPECT_NEAR(static_cast<double>(both), static_cast<double>(all), 0.08 * static_cast<double>(all))
+            << "a cross-fade draws about one side's count, not two";
+    }
+    EXPECT_EQ(draw({0.0f}, true).first, 0u);
 }

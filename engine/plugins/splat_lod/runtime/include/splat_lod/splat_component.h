@@ -38,6 +38,10 @@ struct SplatComponent : engine::Component {
     // Multiplies the opacity of every Gaussian, clamped to [0, 1]: a streamer fades a part in as it
     // arrives and out as what replaces it takes over (chunk_streamer.h, "fades").
     float opacity = 1.0f;
+    // True: `opacity` is instead the fraction of the Gaussians drawn, each at its full opacity (a fixed
+    // pseudo-random subset while the component stays resident; deterministic). A cross-fade between two
+    // parts then draws about as many Gaussians as the larger of them, not both; the streamer's parts use it.
+    bool dissolve = false;
     // "lod": "auto" while its bake runs; null otherwise (no "lod", a cache hit, or the bake ended).
     std::shared_ptr<bake::BackgroundBake> lod_bake;
 

@@ -21,8 +21,8 @@ const mat3 VIEW_TO_CAMERA = mat3(1, 0, 0, 0, -1, 0, 0, 0, -1);
 // with lx, ly the Jacobian's clamp of x/z, y/z; z is at least the sphere's nearest depth. If for
 // every member that bound is below S_T and its ratio to S_min below S_rel_min, none is drawn.
 // Members of the coarsest level, members without S_min, and clusters reaching the near plane are
-// never skipped. With smooth transitions a member still fades out down to half the band below the
-// switch, so both thresholds are lowered by 2^(−band/2).
+// never skipped. Smooth transitions change nothing here: a member fades out before its switch, never
+// past it.
 // True when no member of the cluster can touch the image (exact: step 1b would cull every one).
 // A member at camera-space (x, y, z), z > 0, has its mean at u = cx + fx·x/z and reaches at most
 // r = √L·‖J‖₂·‖M‖₂·σ_max + √(L·dilation) pixels from it, with ‖J‖₂ ≤ j/z (the Jacobian's clamp, as in

@@ -145,10 +145,13 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 // keeps the value a normal float (no denormal flushing can change it).
 #define SPLAT_BUDGET_PACK_FLAG 0x40000000u
 
-// GpuInstance::info.z: the SH degree in the low byte; this bit set for a component that is resident
-// but not drawn (SplatComponent::visible false): step 1a drops its clusters before any other test.
+// GpuInstance::info.z: the SH degree in the low byte; SPLAT_INSTANCE_HIDDEN set for a component that is
+// resident but not drawn (SplatComponent::visible false): step 1a drops its clusters before any other
+// test; SPLAT_INSTANCE_DISSOLVE set when the opacity factor (info.x) is the fraction of the Gaussians
+// drawn rather than a factor on every opacity (SplatComponent::dissolve).
 #define SPLAT_INSTANCE_SH_DEGREE_MASK 0xFFu
 #define SPLAT_INSTANCE_HIDDEN 0x100u
+#define SPLAT_INSTANCE_DISSOLVE 0x200u
 
 // Gaussians with their 3D covariance precomputed (local space of the cloud).
 SPLAT_LOD_STRUCT(GpuGaussian) {
@@ -162,8 +165,8 @@ SPLAT_LOD_STRUCT(GpuGaussian) {
 SPLAT_LOD_STRUCT(GpuInstance) {
     mat4 model;             // local → world
     mat4 rotation_inverse;  // world → local directions (for SH)
-    uvec4 info;  // x floatBitsToUint(opacity factor, SplatComponent::opacity), y count, z SH degree used (bits 0-7) and
-                 // SPLAT_INSTANCE_HIDDEN, w floatBitsToUint(‖M‖₂), M = mat3(model)
+    uvec4 info;  // x floatBitsToUint(opacity factor, SplatComponent::opacity), y count, z SH degree used (bits 0-7),
+                 // SPLAT_INSTANCE_HIDDEN and SPLAT_INSTANCE_DISSOLVE, w floatBitsToUint(‖M‖₂), M = mat3(model)
 };
 
 // What the project pass knows about the Gaussians one of its workgroups handles (cluster c holds

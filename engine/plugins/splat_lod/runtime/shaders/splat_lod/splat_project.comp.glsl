@@ -40,6 +40,19 @@ bool extent_on_raster(vec2 mean, mat2 cov, float opacity, out vec2 lo, out vec2 
              lo.y > size.y - 1.0 || any(greaterThan(lo, hi)));
 }
 
+// A Gaussian's place in [0, 1) among its scene slot's neighbours for SplatComponent::dissolve: an
+// integer hash of the slot (xor-shift-multiply rounds), so that a fraction f of any component's
+// Gaussians, a fixed subset while it stays resident, has a rank below f.
+float dissolve_rank(uint slot) {
+    uint h = slot * 0x9E3779B9u;
+    h ^= h >> 16;
+    h *= 0x21F0AAADu;
+    h ^= h >> 15;
+    h *= 0x735A2D97u;
+    h ^= h >> 15;
+    return float(h >> 8) * (1.0 / 16777216.0);
+}
+
 // Returns the tile count; 0 means culled.
 uint project(uint index) {
     GpuGaussian g = gaussians[index];
@@ -77,7 +90,14 @@ uint project(uint index) {
     float det = cov[0][0] * cov[1][1] - cov[0][1] * cov[0][1];
     if (!(det > 0.0)) return 0u;
     if (frame.mip_filter != 0u) opacity *= sqrt(max(det_undilated, 0.0) / det);  // optional 2D mip filter
-    opacity *= uintBitsToFloat(inst.info.x);  // the component's opacity (a streamed part fading in or out)
+    // The component's opacity factor: a streamed part fading in or out draws that fraction of its
+    // Gaussians (dissolve), any other component scales every opacity by it.
+    float factor = uintBitsToFloat(inst.info.x);
+    if ((inst.info.z & SPLAT_INSTANCE_DISSOLVE) != 0u) {
+        if (!(dissolve_rank(index) < factor)) return 0u;
+    } else {
+        opacity *= factor;
+    }
     opacity *= weight;
     if (!(opacity > 1.0 / 255.0)) return 0u;
 

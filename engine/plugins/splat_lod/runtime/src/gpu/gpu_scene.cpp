@@ -438,14 +438,16 @@ void GpuScene::upload_instances(const std::vector<const SplatComponent*>& compon
         GpuInstance& inst = instances[static_cast<std::size_t>(slot_of[i])];
         inst.model = components[i]->node()->world_matrix();
         inst.rotation_inverse = inverse_rotation(inst.model);
-        // x: the component's opacity factor in [0, 1] (NaN counts as 1); at 0 it is drawn as hidden.
+        // x: the component's opacity factor in [0, 1] (NaN counts as 1), or with `dissolve` the fraction
+        // of its Gaussians drawn; at 0 it is drawn as hidden.
         const SplatComponent& component = *components[i];
         const float opacity = std::isnan(component.opacity) ? 1.0f : std::clamp(component.opacity, 0.0f, 1.0f);
         const bool hidden = !component.visible || opacity == 0.0f;
-        inst.info = glm::uvec4(
-            std::bit_cast<std::uint32_t>(opacity), static_cast<std::uint32_t>(slot.cloud->size()),
-            static_cast<std::uint32_t>(slot.sh_degree) | (hidden ? std::uint32_t{SPLAT_INSTANCE_HIDDEN} : 0u),
-            std::bit_cast<std::uint32_t>(spectral_norm(glm::mat3(inst.model))));
+        inst.info = glm::uvec4(std::bit_cast<std::uint32_t>(opacity), static_cast<std::uint32_t>(slot.cloud->size()),
+                               static_cast<std::uint32_t>(slot.sh_degree) |
+                                   (hidden ? std::uint32_t{SPLAT_INSTANCE_HIDDEN} : 0u) |
+                                   (component.dissolve ? std::uint32_t{SPLAT_INSTANCE_DISSOLVE} : 0u),
+                               std::bit_cast<std::uint32_t>(spectral_norm(glm::mat3(inst.model))));
     }
     const std::size_t bytes = std::max<std::size_t>(instances.size(), 1) * sizeof(GpuInstance);
     instances_.ensure_size(bytes, "splat instances");

@@ -21,6 +21,7 @@ void SceneResidencySink::upload(const LevelPart& part) {
     component->sh_degree_cap = sh_degree_cap_;
     component->visible = part.visible;
     component->opacity = part.opacity;
+    component->dissolve = true;  // fades draw a growing share of the Gaussians, not all of them fainter
     node.attach(std::move(component));
     nodes_[{part.chunk_id, part.level}].push_back(&node);
 }
