@@ -40,9 +40,9 @@ bool extent_on_raster(vec2 mean, mat2 cov, float opacity, out vec2 lo, out vec2 
              lo.y > size.y - 1.0 || any(greaterThan(lo, hi)));
 }
 
-// A Gaussian's place in [0, 1) among its scene slot's neighbours for SplatComponent::dissolve: an
-// integer hash of the slot (xor-shift-multiply rounds), so that a fraction f of any component's
-// Gaussians, a fixed subset while it stays resident, has a rank below f.
+// SplatComponent::dissolve: a pseudo-random rank in [0, 1) of a scene slot (an integer hash, xor-shift-
+// multiply rounds), so that about the fraction f of any component's Gaussians, a fixed subset while it
+// stays resident, rank below f.
 float dissolve_rank(uint slot) {
     uint h = slot * 0x9E3779B9u;
     h ^= h >> 16;

@@ -234,12 +234,11 @@ RasterFetch SplatPass::resolve_fetch(std::uint32_t gaussians) {
     }
     RasterFetch fetch = settings.raster_fetch;
     if (fetch == RasterFetch::automatic) fetch = *cpu_driver_ ? RasterFetch::texel : RasterFetch::shared;
-    const GLint max_texels = max_texels_;
     const std::uint64_t needed = std::max<std::uint64_t>(std::uint64_t(gaussians) * 4, key_capacity_);
-    if (fetch == RasterFetch::texel && needed > static_cast<std::uint64_t>(max_texels)) {
+    if (fetch == RasterFetch::texel && needed > static_cast<std::uint64_t>(max_texels_)) {
         if (fetch_in_use_ != RasterFetch::shared)
             engine::log_warning("splat_lod: " + std::to_string(needed) +
-                                " texels exceed the driver's buffer textures (" + std::to_string(max_texels) +
+                                " texels exceed the driver's buffer textures (" + std::to_string(max_texels_) +
                                 "); the raster stages splats in shared memory instead");
         fetch = RasterFetch::shared;
     }
