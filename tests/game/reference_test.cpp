@@ -34,7 +34,7 @@ class ReferenceTest : public engine::test::GpuTest {};
 
 // A tiny world of the reference tests alone (its reference/ folder is theirs); cached between runs.
 fs::path reference_world() {
-    const auto folder = fs::path(TEST_OUTPUT_DIR) / "sample_game" / "reference_world";
+    const auto folder = engine::test::output_root() / "sample_game" / "reference_world";
     sw::generate_world(engine::test::tiny_world_options(folder));
     return folder;
 }

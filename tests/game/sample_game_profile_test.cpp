@@ -34,7 +34,7 @@ class SampleGameTest : public engine::test::GpuTest {};
 
 // The tests' tiny world (tiny_world.h) with its terrain mesh and props; cached between runs.
 std::filesystem::path tiny_world() {
-    const auto folder = std::filesystem::path(TEST_OUTPUT_DIR) / "sample_game" / "tiny_world";
+    const auto folder = engine::test::output_root() / "sample_game" / "tiny_world";
     sw::generate_world(engine::test::tiny_world_options(folder));
     return folder;
 }

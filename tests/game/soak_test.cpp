@@ -37,7 +37,7 @@ std::string error_of(F run) {
 class SoakTest : public engine::test::GpuTest {};
 
 std::filesystem::path tiny_world() {
-    const auto folder = std::filesystem::path(TEST_OUTPUT_DIR) / "sample_game" / "tiny_world";
+    const auto folder = engine::test::output_root() / "sample_game" / "tiny_world";
     sw::generate_world(engine::test::tiny_world_options(folder));
     return folder;
 }

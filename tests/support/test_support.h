@@ -8,8 +8,14 @@
 
 namespace engine::test {
 
+// The folders below are compiled in (the build's source and build trees); each can be moved with an
+// environment variable when set and not empty, as a packed copy of the tests does (scripts/gpu-check):
+// ENGINE_TEST_SOURCE_DIR for tests/ (the repository root is its parent), ENGINE_TEST_OUTPUT_DIR for
+// build/test_output, ENGINE_SHARED_DATA_DIR for ../shared/data.
 std::filesystem::path source_dir();  // tests/
 std::filesystem::path repo_dir();    // the repository root
+// build/test_output/ (not created): the root of every test's output.
+std::filesystem::path output_root();
 // ../shared/data (may be absent on a user's clone), or $ENGINE_SHARED_DATA_DIR when that is set and
 // not empty (ENGINE_SHARED_DATA_DIR=/nonexistent runs the tests as on a clone without it).
 std::filesystem::path shared_data_dir();

@@ -10,16 +10,17 @@
 #include "engine/plugin/plugin.h"
 #include "splat_lod/msgs/lod_settings.h"
 #include "splat_lod/splat_lod_plugin.h"
+#include "test_support.h"
 
 TEST(PluginDescriptor, SaysWhatThePluginIs) {
-    std::ifstream in(SPLAT_LOD_DESCRIPTOR_FILE);
-    ASSERT_TRUE(in) << SPLAT_LOD_DESCRIPTOR_FILE;
+    const auto file = engine::test::repo_dir() / "engine/plugins/splat_lod/plugin.json";
+    std::ifstream in(file);
+    ASSERT_TRUE(in) << file;
     const auto descriptor = nlohmann::json::parse(in);
     const auto plugin = splat_lod::make_plugin();
     EXPECT_EQ(descriptor.at("name").get<std::string>(), plugin->name());
     EXPECT_EQ(descriptor.at("version").get<std::string>(), plugin->version());
-    const std::filesystem::path shaders =
-        std::filesystem::path(SPLAT_LOD_DESCRIPTOR_FILE).parent_path() / descriptor.at("shaders").get<std::string>();
+    const std::filesystem::path shaders = file.parent_path() / descriptor.at("shaders").get<std::string>();
     EXPECT_TRUE(std::filesystem::exists(shaders / "splat_lod" / "splat_tile_raster.comp.glsl")) << shaders;
     EXPECT_EQ(std::filesystem::canonical(shaders), std::filesystem::canonical(splat_lod::shader_dir()))
         << "the plugin's shader folder unless SPLAT_LOD_SHADER_DIR says otherwise";
