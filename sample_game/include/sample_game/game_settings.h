@@ -35,7 +35,7 @@ struct GameSettings {
     int retry_failed_after_frames = 120;
     // Updates over which a chunk or group that starts or stops being drawn, or a level that arrives on
     // screen, fades in or out (StreamerSettings::fade_frames; 0: at once, as before fades existed).
-    int fade_frames = 8;
+    int fade_frames = 4;
     bool sync_streaming = false;  // reads inside update() instead of on the background thread
     float fov_y_deg = 60.0f;
 };

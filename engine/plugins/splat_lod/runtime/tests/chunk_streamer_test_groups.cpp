@@ -94,7 +94,7 @@ std::vector<std::string> coverage_problems(const Harness& h, const sw::WorldMani
 
 TEST(ChunkStreamerGroups, FarViewLoadsTheRootOnly) {
     Harness h(sync_settings(), nullptr, make_grouped_world());
-    h.steps({20.0f, 400.0f, 20.0f}, 12);  // loaded, then faded in over fade_frames (8) updates
+    h.steps({20.0f, 400.0f, 20.0f}, 12);  // loaded, then faded in over fade_frames (4) updates
     EXPECT_TRUE(h.sink.drawn("group_2_+000_+000"));
     EXPECT_EQ(h.sink.total, 30u * kPerGaussian) << "only the root is resident";
     EXPECT_EQ(h.streamer.residency().drawn_groups, 1u);
@@ -243,9 +243,12 @@ TEST(ChunkStreamerFades, ANodeThatReplacesAnotherCrossFadesAndStaysUntilGone) {
 }
 
 // A finer stream level that arrives while its chunk is on screen fades in by itself: its opacity
-// climbs 1/8, 2/8, … 1 over the updates after its upload, while the chunk's level 4 stays at 1.
+// climbs 1/8, 2/8, … 1 over the updates after its upload (fade_frames 8), while the chunk's level 4
+// stays at 1.
 TEST(ChunkStreamerFades, ALevelThatArrivesOnScreenFadesIn) {
-    Harness h(sync_settings());
+    sw::StreamerSettings settings = sync_settings();
+    settings.fade_frames = 8;
+    Harness h(settings);
     h.steps(before_chunk_0_0(100.0f), 12);  // level 4 only, faded in
     ASSERT_EQ(h.sink.drawn_opacity("chunk_0_0"), 1.0f);
     ASSERT_EQ(h.sink.level_bytes.count({"chunk_0_0", 3}), 0u);
