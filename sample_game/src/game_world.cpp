@@ -217,6 +217,7 @@ double GameWorld::load_whole_world(const std::function<void(std::size_t, std::si
     s.upload_budget_bytes_per_frame = std::max<std::uint64_t>(total, s.upload_budget_bytes_per_frame);
     s.load_distance_scale = 1e9f;  // every level is wanted from anywhere
     s.group_cell_px = 0.0f;        // every chunk drawn from its own levels, no group
+    s.fade_frames = 0;             // drawn whole once resident: a fade would thin the first frames drawn
     s.background_thread = false;
     s.max_requests_in_flight = 64;
     start_streamer(s);

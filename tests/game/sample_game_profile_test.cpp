@@ -18,6 +18,7 @@
 #include "sample_game/game_world.h"
 #include "sample_game/profile_run.h"
 #include "splat_lod/eval/sheet_drawing.h"
+#include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_lod/splat_renderer.h"
 #include "splat_lod/stream/stream_policy.h"
@@ -159,6 +160,15 @@ TEST_F(SampleGameTest, WorldPutsPropsAndTerrainInTheSceneAndCanHoldAllOfIt) {
 
     world.load_whole_world({});
     EXPECT_EQ(world.streamer().resident_bytes(), whole_world_bytes(m));
+    // Drawn whole from the first frame on: no part still fading in (the baseline and the reference
+    // draw right after the load; settings.fade_frames is the game's, 4 by default).
+    std::size_t splat_parts = 0;
+    for (const auto* part : world.scene().components<splat_lod::SplatComponent>()) {
+        if (!part->visible) continue;
+        ++splat_parts;
+        EXPECT_EQ(part->opacity, 1.0f);
+    }
+    EXPECT_GT(splat_parts, m.chunks.size()) << "every chunk's levels shown";
     EXPECT_EQ(world.census().finest_resident[1], m.chunks.size());
     engine::RenderTarget target(96, 64);
     splat_lod::render_complete(engine, world.scene(), world.camera({0.0f, 60.0f, 60.0f}, {0.0f, -1.0f, -1.0f}, 96, 64),
