@@ -129,6 +129,43 @@ TEST(ChunkStreamerGroups, FlyingInAndOutNeverLeavesAHoleOrDrawsTwice) {
     EXPECT_TRUE(h.sink.violations.empty()) << h.sink.violations.front();
 }
 
+// Descending fast, the cut moves from the root to the depth-1 groups and on to the chunks before the
+// root has faded out. While the chunks load, the complete depth-1 groups stand in for them: the root,
+// still resident, must not be drawn again in their place (it was, and the walkthrough's descent drew
+// coarse groups for three frames longer, 3 dB below the reference). The depth-1 groups, replaced
+// half faded in, hand over to the chunks with the root's fade-out: every chunk's ground sums to 1.
+TEST(ChunkStreamerGroups, ACoarserNodeDoesNotComeBackOnceFinerOnesAreIn) {
+    sw::StreamerSettings settings = sync_settings();
+    settings.upload_budget_bytes_per_frame = 200 * kPerGaussian;  // levels arrive over several frames
+    const sw::WorldManifest world = make_grouped_world();
+    Harness h(settings, nullptr, world);
+    h.steps({20.0f, 400.0f, 20.0f}, 12);  // the root loaded and faded in
+    const std::vector<std::string> depth1 = {"group_1_+000_+000", "group_1_+001_+000", "group_1_+000_+001",
+                                             "group_1_+001_+001"};
+    bool depth1_drawn = false, root_left_while_shown = false, root_back = false;
+    // Two updates where the depth-1 groups are the cut (they load and are drawn), then where the chunks are.
+    for (int k = 0; k < 16; ++k) {
+        h.step(k < 2 ? glm::vec3(20.0f, 90.0f, 20.0f) : glm::vec3(20.0f, 30.0f, 20.0f));
+        bool all_depth1_complete = true;
+        for (const std::string& id : depth1) {
+            depth1_drawn = depth1_drawn || h.status(id).drawn;
+            all_depth1_complete = all_depth1_complete && h.status(id).finest_resident_level != 0;
+        }
+        const sw::ChunkStatus root = h.status("group_2_+000_+000");
+        if (depth1_drawn && !root.drawn && h.sink.drawn_opacity("group_2_+000_+000") > 0.0f)
+            root_left_while_shown = true;
+        if (depth1_drawn && root.drawn && all_depth1_complete) {
+            root_back = true;
+            ADD_FAILURE() << "step " << k << ": the root is drawn again while every depth-1 group is complete";
+        }
+        for (const std::string& problem : coverage_problems(h, world)) ADD_FAILURE() << "step " << k << ": " << problem;
+    }
+    EXPECT_TRUE(depth1_drawn);
+    EXPECT_TRUE(root_left_while_shown) << "the case: the root still fading out when the depth-1 groups are drawn";
+    EXPECT_FALSE(root_back);
+    EXPECT_TRUE(h.sink.violations.empty()) << h.sink.violations.front();
+}
+
 TEST(ChunkStreamerGroups, NearViewDrawsChunksAndReleasesGroups) {
     sw::StreamerSettings settings = sync_settings();
     Harness h(settings, nullptr, make_grouped_world());

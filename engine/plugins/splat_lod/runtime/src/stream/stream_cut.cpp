@@ -72,13 +72,14 @@ void ChunkStreamer::State::choose_cut(const StreamView& view) {
 
 void ChunkStreamer::State::decide_drawn() {
     for (ChunkSlot& slot : chunks) slot.drawn = false;
-    // ready: every node of the cut below (or at) k is complete, so k's part of the view can be drawn fine.
-    std::function<bool(std::size_t)> ready = [&](std::size_t k) {
+    // covered: k's part of the view can be drawn whole from complete nodes at or below k (k itself, or
+    // every child covered). The cut's own nodes are the finest such cover when they are complete.
+    std::function<bool(std::size_t)> covered = [&](std::size_t k) {
         const ChunkSlot& slot = chunks[k];
-        if (slot.in_cut) return level4_complete(slot);
+        if (level4_complete(slot)) return true;
         if (slot.children.empty()) return false;
         for (const std::size_t c : slot.children)
-            if (!ready(c)) return false;
+            if (!covered(c)) return false;
         return true;
     };
     // Below a cut node that is not complete: what is resident there stays drawn, coarsest first.
@@ -104,8 +105,13 @@ void ChunkStreamer::State::decide_drawn() {
                 for (const std::size_t c : slot.children) fallback(c);
             return;
         }
-        if (!ready(k) && level4_complete(slot)) {
-            slot.drawn = true;  // the coarse node stays until everything that replaces it is in
+        // Above the cut: the finest complete nodes stand in for what is not in yet. A coarse node stays
+        // only where some child's part has no complete cover: once a node's children are in, a coarser
+        // one that is still resident (fading out, or held) does not come back.
+        bool children_covered = !slot.children.empty();
+        for (const std::size_t c : slot.children) children_covered = children_covered && covered(c);
+        if (!children_covered && level4_complete(slot)) {
+            slot.drawn = true;  // the coarse node stays until what replaces it is in
             return;
         }
         for (const std::size_t c : slot.children) draw(c);

@@ -2,16 +2,74 @@
 // opacity moves one step of 1 / fade_frames toward 1 (drawn) or 0 (not drawn), and each uploaded level
 // of a node on screen fades in by itself; the sink hears of every change.
 #include <algorithm>
+#include <vector>
 
 #include "stream/stream_state.h"
 
 namespace splat_lod::world {
 
+namespace {
+
+bool fading_out(const ChunkSlot& slot) {
+    return !slot.drawn && slot.fade > 0.0f;
+}
+
+// The largest sum of fades of nodes fading out on any path down from k's children (k excluded).
+float fading_below(const std::vector<ChunkSlot>& chunks, std::size_t k) {
+    float most = 0.0f;
+    for (const std::size_t c : chunks[k].children)
+        most = std::max(most, (fading_out(chunks[c]) ? chunks[c].fade : 0.0f) + fading_below(chunks, c));
+    return most;
+}
+
+// The opacity node k (not drawn) must keep so that, with what replaces it, the ground it covers sums
+// to 1: 1 − the fade of its replacement (its nearest drawn ancestor, else the smallest of its nearest
+// drawn descendants) − the fades of the other nodes fading out beyond it on the same paths.
+// −1 when k does not hand over: nothing drawn replaces it, or a node fading out lies between them
+// (that node hands over instead).
+float handover_opacity(const std::vector<ChunkSlot>& chunks, std::size_t k) {
+    bool fading_between = false;
+    for (std::size_t a = chunks[k].parent; a != ChunkSlot::kNoSlot; a = chunks[a].parent) {
+        if (chunks[a].drawn)
+            return fading_between ? -1.0f : std::max(0.0f, 1.0f - chunks[a].fade - fading_below(chunks, k));
+        fading_between = fading_between || chunks[a].fade > 0.0f;
+    }
+    float lowest = 2.0f;
+    std::vector<std::size_t> todo(chunks[k].children.begin(), chunks[k].children.end());
+    while (!todo.empty()) {
+        const std::size_t c = todo.back();
+        todo.pop_back();
+        if (chunks[c].drawn) {
+            lowest = std::min(lowest, chunks[c].fade);
+            continue;
+        }
+        if (chunks[c].fade > 0.0f) return -1.0f;
+        todo.insert(todo.end(), chunks[c].children.begin(), chunks[c].children.end());
+    }
+    if (lowest > 1.0f) return -1.0f;
+    float above = 0.0f;
+    for (std::size_t a = chunks[k].parent; a != ChunkSlot::kNoSlot; a = chunks[a].parent)
+        above += fading_out(chunks[a]) ? chunks[a].fade : 0.0f;
+    return std::max(0.0f, 1.0f - lowest - above);
+}
+
+}  // namespace
+
 void ChunkStreamer::State::advance_fades() {
     const float step = settings.fade_frames > 0 ? 1.0f / static_cast<float>(settings.fade_frames) : 1.0f;
+    for (ChunkSlot& slot : chunks)
+        slot.fade = slot.drawn ? std::min(1.0f, slot.fade + step) : std::max(0.0f, slot.fade - step);
+    // A node that stops being drawn before it had faded in fully (the cut moved on mid-fade) would leave
+    // part of its ground uncovered while its replacements fade in: the node next to them keeps what the
+    // others on the same ground leave (handover_opacity), so the opacities there sum to 1 and nothing
+    // coarser has to come back to fill the hole.
+    std::vector<float> keep(chunks.size(), -1.0f);
+    for (std::size_t k = 0; k < chunks.size(); ++k)
+        if (!chunks[k].drawn && chunks[k].shown) keep[k] = handover_opacity(chunks, k);
+    for (std::size_t k = 0; k < chunks.size(); ++k)
+        if (keep[k] >= 0.0f) chunks[k].fade = std::max(chunks[k].fade, keep[k]);
     for (ChunkSlot& slot : chunks) {
         const bool was_visible = slot.shown;
-        slot.fade = slot.drawn ? std::min(1.0f, slot.fade + step) : std::max(0.0f, slot.fade - step);
         const bool visible = slot.fade > 0.0f;
         if (visible != slot.shown) {
             slot.shown = visible;

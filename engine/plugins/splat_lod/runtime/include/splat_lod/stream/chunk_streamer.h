@@ -45,9 +45,12 @@
 // the band, the frame delay would only hold memory that the view does not use. Level 4 of nodes
 // outside the cut ranks after every finer level (evicted first).
 //   After the uploads (step 5b) the streamer decides what is drawn, through ResidencySink::show():
-// a node of the cut is drawn when its level 4 is complete; until then what it replaces stays drawn
-// (a group whose cut descendants are not all complete is drawn instead of them, and a cut group that
-// is not complete yet leaves its resident descendants drawn), and whatever is drawn is held resident.
+// a node of the cut is drawn when its level 4 is complete; until then the finest complete nodes above
+// or below it stand in: a node outside the cut whose children each have a complete cover (complete
+// themselves, or all their children covered) draws through to them, else it is drawn itself when
+// complete, so a coarser node still resident (fading out, or held) does not come back once finer ones
+// are in; a cut group that is not complete yet leaves its resident descendants drawn. Whatever is
+// drawn is held resident.
 // So a camera that moves never sees a hole or a node drawn twice over the same ground where memory
 // allows, and a failed chunk shows its group where that is resident.
 //   The splat budget: group Gaussians are drawn whole, so the renderer's raised threshold cannot thin
@@ -61,9 +64,12 @@
 // ResidencySink::fade), and a node that stops being drawn fades out over as many, staying shown and
 // resident until its opacity reaches 0. Since decide_drawn swaps a coarse node for the finer ones
 // that replace it in one update (only once they are complete), the two cross-fade with opacities that
-// sum to 1. A finer stream level that arrives while its node is on screen fades in by itself over
-// fade_frames updates (its opacity is the node's times its own); one that arrives while the node is
-// not shown takes the node's. fade_frames = 0: every change at once.
+// sum to 1. When the cut moves on before a fade has ended (a fast camera), a node that stops being
+// drawn part-way through its fade-in keeps what its replacements and the other nodes fading out over
+// the same ground leave (at least 1 minus their opacities), so that ground still sums to 1. A finer
+// stream level that arrives while its node is on screen fades in by itself over fade_frames updates
+// (its opacity is the node's times its own); one that arrives while the node is not shown takes the
+// node's. fade_frames = 0: every change at once.
 //
 // Oversized levels: a level is read and uploaded in parts of at most
 // floor(upload_budget / bytes per Gaussian) Gaussians, so no frame ever uploads more than the
