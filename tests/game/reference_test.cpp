@@ -30,14 +30,8 @@ using namespace sample_game;
 
 namespace {
 
+// The reference tests draw a tiny world of their own ("reference_world"): its reference/ folder is theirs.
 class ReferenceTest : public engine::test::GpuTest {};
-
-// A tiny world of the reference tests alone (its reference/ folder is theirs); cached between runs.
-fs::path reference_world() {
-    const auto folder = engine::test::output_root() / "sample_game" / "reference_world";
-    sw::generate_world(engine::test::tiny_world_options(folder));
-    return folder;
-}
 
 ReferenceOptions small_reference(const fs::path& world) {
     ReferenceOptions o;
@@ -63,7 +57,7 @@ TEST_F(ReferenceTest, ATiledRenderEqualsTheUntiledOne) {
     engine.plugins().add_static(splat_lod::make_plugin());
     GameSettings settings;
     settings.sync_streaming = true;
-    GameWorld world(engine, reference_world(), settings);
+    GameWorld world(engine, engine::test::cached_tiny_world("reference_world"), settings);
     world.load_whole_world({});
     plugin_msgs::LodSettings lod;
     lod.mode = plugin_msgs::LodMode::baseline;
@@ -85,7 +79,7 @@ TEST_F(ReferenceTest, ATiledRenderEqualsTheUntiledOne) {
 }
 
 TEST_F(ReferenceTest, IsMadeCachedAndFoundAgain) {
-    const fs::path world = reference_world();
+    const fs::path world = engine::test::cached_tiny_world("reference_world");
     fs::remove_all(world / kReferenceFolderName);
     ReferenceOptions o = small_reference(world);
     const ReferenceOutcome made = make_reference(o, nullptr);
@@ -135,7 +129,7 @@ TEST_F(ReferenceTest, IsMadeCachedAndFoundAgain) {
 }
 
 TEST_F(ReferenceTest, ADamagedCachedFrameIsAnErrorNamingItUntilMadeAgain) {
-    const fs::path world = reference_world();
+    const fs::path world = engine::test::cached_tiny_world("reference_world");
     ReferenceOptions o = small_reference(world);
     const ReferenceOutcome made = make_reference(o, nullptr);  // made or cached
     const fs::path victim = reference_frame_file(made.folder, made.frames.back());
@@ -158,7 +152,7 @@ TEST_F(ReferenceTest, ADamagedCachedFrameIsAnErrorNamingItUntilMadeAgain) {
 }
 
 TEST_F(ReferenceTest, TheProfileComparesItsFramesWithTheReference) {
-    const fs::path world = reference_world();
+    const fs::path world = engine::test::cached_tiny_world("reference_world");
     const ReferenceOptions r = small_reference(world);
     const ReferenceOutcome reference = make_reference(r, nullptr);
     const std::set<std::size_t> frames(reference.frames.begin(), reference.frames.end());

@@ -33,13 +33,6 @@ namespace {
 
 class SampleGameTest : public engine::test::GpuTest {};
 
-// The tests' tiny world (tiny_world.h) with its terrain mesh and props; cached between runs.
-std::filesystem::path tiny_world() {
-    const auto folder = engine::test::output_root() / "sample_game" / "tiny_world";
-    sw::generate_world(engine::test::tiny_world_options(folder));
-    return folder;
-}
-
 // GPU bytes of the whole world at SH degree 0, every stream level in whole pages.
 std::uint64_t whole_world_bytes(const sw::WorldManifest& m) {
     std::uint64_t total = 0;
@@ -55,7 +48,7 @@ std::uint64_t whole_world_bytes(const sw::WorldManifest& m) {
 }  // namespace
 
 TEST_F(SampleGameTest, ProfileWalksThePathWithinItsBudgetsAndWritesEveryOutput) {
-    const auto world = tiny_world();
+    const auto world = engine::test::cached_tiny_world("tiny_world");
     const sw::WorldManifest manifest = sw::read_world_manifest(world / sw::kManifestFileName);
     const std::uint64_t page = sw::gpu_bytes(256, 0, sw::PageLayout{});
     ProfileOptions o;
@@ -144,7 +137,7 @@ TEST_F(SampleGameTest, ProfileWalksThePathWithinItsBudgetsAndWritesEveryOutput) 
 }
 
 TEST_F(SampleGameTest, WorldPutsPropsAndTerrainInTheSceneAndCanHoldAllOfIt) {
-    const auto world_folder = tiny_world();
+    const auto world_folder = engine::test::cached_tiny_world("tiny_world");
     engine::Engine engine;
     engine.plugins().add_static(splat_lod::make_plugin());
     GameSettings settings;

@@ -36,15 +36,9 @@ std::string error_of(F run) {
 
 class SoakTest : public engine::test::GpuTest {};
 
-std::filesystem::path tiny_world() {
-    const auto folder = engine::test::output_root() / "sample_game" / "tiny_world";
-    sw::generate_world(engine::test::tiny_world_options(folder));
-    return folder;
-}
-
 SoakOptions short_soak(const std::string& name) {
     SoakOptions o;
-    o.world = tiny_world();
+    o.world = engine::test::cached_tiny_world("tiny_world");
     o.out = engine::test::output_dir("sample_game") / name;
     o.width = 320;
     o.height = 180;

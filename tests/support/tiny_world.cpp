@@ -5,8 +5,15 @@
 #include <regex>
 
 #include "splat_lod/core/world_manifest.h"
+#include "test_support.h"
 
 namespace engine::test {
+
+std::filesystem::path cached_tiny_world(const std::string& name) {
+    const auto folder = output_root() / "sample_game" / name;
+    splat_lod::world::generate_world(tiny_world_options(folder));
+    return folder;
+}
 
 splat_lod::world::WorldOptions tiny_world_options(const std::filesystem::path& folder, std::uint64_t seed,
                                                   int threads) {

@@ -14,6 +14,10 @@ namespace engine::test {
 splat_lod::world::WorldOptions tiny_world_options(const std::filesystem::path& folder, std::uint64_t seed = 11,
                                                   int threads = 2);
 
+// The tiny world in output_root()/sample_game/<name>, generated on first use and reused after (the
+// generator keeps a world made with the same options); each name is one suite's own copy.
+std::filesystem::path cached_tiny_world(const std::string& name);
+
 // Every file below `folder` by relative path (generic form), with its bytes.
 std::map<std::string, std::string> folder_bytes(const std::filesystem::path& folder);
 

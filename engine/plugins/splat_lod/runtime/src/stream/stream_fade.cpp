@@ -32,7 +32,7 @@ float handover_opacity(const std::vector<ChunkSlot>& chunks, std::size_t k) {
     for (std::size_t a = chunks[k].parent; a != ChunkSlot::kNoSlot; a = chunks[a].parent) {
         if (chunks[a].drawn)
             return fading_between ? -1.0f : std::max(0.0f, 1.0f - chunks[a].fade - fading_below(chunks, k));
-        fading_between = fading_between || chunks[a].fade > 0.0f;
+        fading_between = fading_between || fading_out(chunks[a]);
     }
     float lowest = 2.0f;
     std::vector<std::size_t> todo(chunks[k].children.begin(), chunks[k].children.end());
@@ -43,7 +43,7 @@ float handover_opacity(const std::vector<ChunkSlot>& chunks, std::size_t k) {
             lowest = std::min(lowest, chunks[c].fade);
             continue;
         }
-        if (chunks[c].fade > 0.0f) return -1.0f;
+        if (fading_out(chunks[c])) return -1.0f;
         todo.insert(todo.end(), chunks[c].children.begin(), chunks[c].children.end());
     }
     if (lowest > 1.0f) return -1.0f;
