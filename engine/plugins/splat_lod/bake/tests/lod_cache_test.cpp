@@ -1,6 +1,9 @@
 // The drop-in LOD's cache (docs/lod.md, "Drop-in LOD"): the folder, the key, and the background bake
 // that fills it: a finished bake writes one complete entry, a cancelled or failed one writes nothing.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <cstdlib>
@@ -199,6 +202,49 @@ TEST(LodCache, DestroyingARunningBakeCancelsIt) {
                            quick_setup(), "scene.ply");
     }
     EXPECT_TRUE(entries(folder).empty());
+}
+
+// The process itself killed (SIGKILL) in the middle of its bake: nothing runs to clean up, and still no
+// entry exists under the cache name; the next bake of the same key writes one complete entry.
+TEST(LodCache, KilledBakeProcessLeavesNoEntry) {
+    const fs::path folder = engine::test::output_dir("LodCache") / "killed";
+    fs::remove_all(folder);
+    const fs::path entry = folder / "scene.lod.ply";
+    const auto fine = std::make_shared<const SplatCloud>(engine::test::lattice_cloud());
+    int pipe_fds[2];
+    ASSERT_EQ(::pipe(pipe_fds), 0);
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        // The child bakes and says once when it is part-way through the refinement; then it goes on
+        // baking until it is killed (or exits with a code the parent reports).
+        ::close(pipe_fds[0]);
+        bool told = false;
+        BackgroundBake job(fine, entry, quick_setup(), "scene.ply", [&](const std::string& stage, double) {
+            if (told || stage.find("refine level") == std::string::npos) return;
+            told = true;
+            const char byte = 'r';
+            (void)!::write(pipe_fds[1], &byte, 1);
+            ::sleep(60);  // killed here
+        });
+        job.wait(120.0);
+        ::_exit(3);
+    }
+    ::close(pipe_fds[1]);
+    char byte = 0;
+    const auto got = ::read(pipe_fds[0], &byte, 1);
+    ::close(pipe_fds[0]);
+    ::kill(child, SIGKILL);
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_EQ(got, 1) << "the child never reached the refinement";
+    ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+    EXPECT_FALSE(fs::exists(entry));
+    BackgroundBake again(fine, entry, quick_setup(), "scene.ply");
+    ASSERT_TRUE(again.wait(120.0));
+    ASSERT_EQ(again.state(), BackgroundBake::State::done) << again.error();
+    EXPECT_EQ(entries(folder), std::vector<std::string>{"scene.lod.ply"});
+    EXPECT_EQ(load_splat_file(entry).size(), again.result()->size());
 }
 
 }  // namespace
