@@ -235,7 +235,8 @@ void finish_options(Options& o, const ShapeOptions& shape) {
 int main(int argc, char** argv) {
     Options o;
     CLI::App app{"Bake levels of detail (multi-scale 3DGS) into a trained splat scene"};
-    app.add_option("--input", o.input, "trained scene (.ply, .compressed.ply, .splat, .spz, SOG meta.json)")
+    app.add_option("--input", o.input,
+                   "trained scene (.ply, .compressed.ply, .splat, .spz, SOG meta.json, .glb, .gltf)")
         ->required();
     app.add_option("--output", o.output,
                    "LOD asset to write: INRIA PLY, or glTF (KHR_gaussian_splatting) for .glb/.gltf")

@@ -171,7 +171,7 @@ int run(Options& o) {
 int main(int argc, char** argv) {
     Options o;
     CLI::App app{"Speed against error of splat rendering methods over scales and distances"};
-    app.add_option("--scene", o.scene, "splat file (.ply, .compressed.ply, .splat, .spz, SOG meta.json)");
+    app.add_option("--scene", o.scene, "splat file (.ply, .compressed.ply, .splat, .spz, SOG meta.json, .glb, .gltf)");
     app.add_option("--scene-json", o.scene_json, "engine scene JSON with splat components");
     app.add_option("--cameras", o.cameras, "orbit:N, an INRIA cameras.json, or a camera-path JSON");
     app.add_option("--methods", o.methods,

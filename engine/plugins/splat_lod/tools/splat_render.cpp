@@ -112,7 +112,8 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
     Options o;
     CLI::App app{"Render a Gaussian splat file to PNG (headless OpenGL compute)"};
-    app.add_option("--in", o.in, "splat file (.ply, .compressed.ply, .splat, .spz, SOG meta.json)")->required();
+    app.add_option("--in", o.in, "splat file (.ply, .compressed.ply, .splat, .spz, SOG meta.json, .glb, .gltf)")
+        ->required();
     app.add_option("--out", o.out, "output PNG")->required();
     app.add_option("--width", o.width, "image width")->check(CLI::Range(1, 16384));
     app.add_option("--height", o.height, "image height")->check(CLI::Range(1, 16384));
