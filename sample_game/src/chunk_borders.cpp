@@ -229,4 +229,25 @@ std::optional<double> seam_ratio_same_distance(const splat_lod::eval::FloatImage
     return actual / expected;
 }
 
+engine::Image seam_picture(const splat_lod::eval::FloatImage& image, const splat_lod::eval::FloatImage& reference,
+                           const ChunkMap& map, int radius) {
+    check_sizes("seam_picture", image, reference, map);
+    const std::vector<std::uint8_t> band = border_band(map, radius);
+    engine::Image picture{map.width, map.height, std::vector<std::uint8_t>(band.size() * 4, 255)};
+    for (std::size_t i = 0; i < band.size(); ++i) {
+        const double grey = std::min(255.0, 8.0 * 255.0 * pixel_error(image, reference, i));
+        const auto g = static_cast<std::uint8_t>(std::lround(grey));
+        std::uint8_t* px = &picture.rgba[4 * i];
+        if (map.chunk[i] < 0) {
+            px[0] = static_cast<std::uint8_t>(g / 2), px[1] = static_cast<std::uint8_t>(g / 2);
+            px[2] = static_cast<std::uint8_t>(std::min(255, 64 + g / 2));
+        } else if (band[i]) {
+            px[0] = static_cast<std::uint8_t>(std::min(255, 96 + g)), px[1] = g, px[2] = g;
+        } else {
+            px[0] = px[1] = px[2] = g;
+        }
+    }
+    return picture;
+}
+
 }  // namespace sample_game

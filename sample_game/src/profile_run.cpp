@@ -117,6 +117,9 @@ struct Run {
             chunk_map(*ground, ChunkGrid{world.manifest().size_m, world.manifest().chunk_size_m}, camera);
         r.seam_ratio = seam_ratio(image, *truth, map).value_or(-1.0);
         r.seam_ratio_same_distance = seam_ratio_same_distance(image, *truth, map).value_or(-1.0);
+        if (options.frames_png_every > 0)
+            engine::write_png(options.out / "frames" / ("seams_" + frame_name(r.run, r)),
+                              seam_picture(image, *truth, map));
         const splat_lod::eval::FloatImage* truth_before = reference_of(r.frame - 1);
         if (truth_before && previous.frame == r.frame - 1)
             r.temporal_error = temporal_error(previous.image, image, *truth_before, *truth);
@@ -246,7 +249,7 @@ std::string describe_world(const ProfileOptions& o, const GameWorld& world) {
 std::string describe_settings(const ProfileOptions& o) {
     const GameSettings& s = o.settings;
     return formatted(
-        "%dx%d, %d path frames, LOD mode %s (S_T %.2f px, rel %.2f/%.2f, transition band %.2f octaves), "
+        "%dx%d, %d path frames, LOD mode %s (S_T %.2f px, rel %.2f/%.2f, transition band %.4g octaves), "
         "streamer fades over %d updates, render scale %.3f (%s), "
         "memory budget %.0f MiB, upload budget %.2f MiB/frame, load distance x%.2f, streaming %s, fov %.0f deg",
         o.width, o.height, o.frames, std::string(plugin_msgs::to_string(s.lod.mode)).c_str(), s.lod.size_threshold_px,
@@ -266,7 +269,8 @@ void remove_previous_outputs(const std::filesystem::path& out) {
     if (!std::filesystem::is_directory(out / "frames")) return;
     for (const auto& entry : std::filesystem::directory_iterator(out / "frames")) {
         const std::string name = entry.path().filename().string();
-        if (entry.path().extension() == ".png" && (name.rfind("lod_", 0) == 0 || name.rfind("baseline_", 0) == 0))
+        if (entry.path().extension() == ".png" &&
+            (name.rfind("lod_", 0) == 0 || name.rfind("baseline_", 0) == 0 || name.rfind("seams_", 0) == 0))
             std::filesystem::remove(entry.path());
     }
 }

@@ -167,3 +167,41 @@ TEST(ChunkBorders, SeamRatioAtTheSameDistanceSeesOnlyTheBorders) {
     no_distances.distance.clear();
     EXPECT_THROW(seam_ratio_same_distance(by_distance, reference, no_distances, 4), engine::Error);
 }
+
+// The seam picture: the error in grey (×8), the band tinted red, the sky dimmed blue.
+TEST(ChunkBorders, SeamPictureShowsTheErrorAndTheBand) {
+    const auto camera = engine::make_look_at_camera({0.0f, 3.7f, 0.0f}, {10.0f, 2.0f, 0.0f}, {0.0f, 1.0f, 0.0f},
+                                                    glm::radians(60.0f), 96, 64, 0.1f, 500.0f);
+    const ChunkMap map = chunk_map(flat_ground(), kGrid, camera);
+    const std::vector<std::uint8_t> band = border_band(map, 4);
+    auto reference = splat_lod::eval::make_float_image(96, 64, 0.5f);
+    auto image = reference;
+    for (float& v : image.rgb) v += 10.0f / 255.0f;  // 10 levels everywhere: grey 80
+    const engine::Image picture = seam_picture(image, reference, map, 4);
+    ASSERT_EQ(picture.width, 96);
+    ASSERT_EQ(picture.height, 64);
+    int sky = 0, in_band = 0, plain = 0;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 96; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y * 96 + x);
+            const std::uint8_t* px = picture.pixel(x, y);
+            if (map.chunk[i] < 0) {
+                ++sky;
+                EXPECT_EQ(px[0], 40);
+                EXPECT_EQ(px[2], 104);
+            } else if (band[i]) {
+                ++in_band;
+                EXPECT_EQ(px[0], 176);
+                EXPECT_EQ(px[1], 80);
+            } else {
+                ++plain;
+                EXPECT_EQ(px[0], 80);
+                EXPECT_EQ(px[2], 80);
+            }
+            EXPECT_EQ(px[3], 255);
+        }
+    EXPECT_GT(sky, 0);
+    EXPECT_GT(in_band, 0);
+    EXPECT_GT(plain, 0);
+    EXPECT_THROW(seam_picture(splat_lod::eval::make_float_image(4, 4), reference, map, 4), engine::Error);
+}

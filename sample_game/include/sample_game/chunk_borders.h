@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/render/camera.h"
+#include "engine/render/image.h"
 #include "splat_lod/eval/image_metrics.h"
 
 namespace sample_game {
@@ -75,5 +76,11 @@ inline constexpr int kSeamDistanceBinsPerOctave = 16;
 std::optional<double> seam_ratio_same_distance(const splat_lod::eval::FloatImage& image,
                                                const splat_lod::eval::FloatImage& reference, const ChunkMap& map,
                                                int radius = kSeamBandRadiusPx);
+
+// What seam_ratio sees, as a picture: the error against the reference (mean over RGB, ×8, grey; white
+// from 32/255 on), with the border band tinted red and pixels that show no chunk (sky) dimmed blue.
+// Throws engine::Error when the sizes differ.
+engine::Image seam_picture(const splat_lod::eval::FloatImage& image, const splat_lod::eval::FloatImage& reference,
+                           const ChunkMap& map, int radius = kSeamBandRadiusPx);
 
 }  // namespace sample_game
