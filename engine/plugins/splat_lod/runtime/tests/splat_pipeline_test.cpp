@@ -361,9 +361,11 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     const auto ref_camera = ref::make_reference_camera(camera);
     const ref::ReferenceSettings settings;
     splat_lod::SplatRenderer pass(harness.engine().renderer());
-    harness.engine().bus().publish(plugin_msgs::LodSettings{});  // full, band ¼ octave
+    harness.engine().bus().publish(plugin_msgs::LodSettings{});  // full, the default band
     splat_lod::LodRule rule = pass.settings().lod;
-    ASSERT_EQ(rule.transition_band, 0.25);
+    const double band = plugin_msgs::LodSettings::kDefaultTransitionBand;
+    ASSERT_EQ(rule.transition_band, band);
+    ASSERT_GT(band, 0.0);
     rule.coarsest_level = 4;
     auto weighted = cloud;
     std::vector<std::uint8_t> keep(cloud.size());
@@ -373,9 +375,9 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
         const glm::dvec3 c = p.cov2d - glm::dvec3(settings.dilation, 0.0, settings.dilation);
         const double coverage = splat_lod::pixel_coverage(c.x, c.y, c.z, p.opacity);
         cloud.lod_level[i] = static_cast<std::uint8_t>(1 + i % 4);
-        // Switches spread from 0.075 octave past this view's coverage to 0.325 before it: the band is
-        // the quarter octave before each switch, so many are inside it.
-        const double octaves = 0.125 + 0.2 * std::sin(0.37 * static_cast<double>(i));
+        // Switches spread from 0.3 bands past this view's coverage to 1.3 bands before it: the band lies
+        // before each switch, so many are inside it.
+        const double octaves = band * (0.5 + 0.8 * std::sin(0.37 * static_cast<double>(i)));
         cloud.coverage_max[i] = static_cast<float>(coverage / (rule.rel_max * std::exp2(octaves)));
         cloud.coverage_min[i] =
             (i % 2 == 0) ? -1.0f : static_cast<float>(coverage / (rule.rel_min * std::exp2(octaves)));

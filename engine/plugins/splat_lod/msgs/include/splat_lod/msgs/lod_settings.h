@@ -67,7 +67,7 @@ struct LodSettings {
     // replacement fades in; none is drawn past its switch, so the band costs no extra fine Gaussians.
     // 0: the rule's hard on/off switching. Only in mode full.
     float transition_band = kDefaultTransitionBand;
-    static constexpr float kDefaultTransitionBand = 0.25f;
+    static constexpr float kDefaultTransitionBand = 0.0625f;
     static constexpr float kMaxTransitionBand = 4.0f;
 
     // Empty when the settings are usable, otherwise "lod_settings.<key>: <why>".
