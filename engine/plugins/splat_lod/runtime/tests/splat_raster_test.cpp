@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "engine/render/camera.h"
 #include "gpu_fixture.h"
 #include "splat_lod/core/splat_io.h"
@@ -125,18 +127,39 @@ TEST_F(SplatRasterTest, ExactFootprintDrawsTheSameBytesOnRealCaptures) {
     }
 }
 
+// With texel fetches the project and bin passes also read their inputs through buffer textures; with
+// shared-memory batches every pass reads storage buffers. Two instances (the second moved, turned and
+// scaled, with SH degree 3) so that the instance records and every SH coefficient are read both ways.
 TEST_F(SplatRasterTest, TexelAndSharedFetchDrawTheSameBytes) {
-    const Clouds clouds = footprint_cases();
+    Clouds clouds = footprint_cases();
+    splat_lod::SplatCloud with_sh = *clouds[0];
+    with_sh.set_sh_degree(3);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-0.4f, 0.4f);
+    for (float& c : with_sh.sh_rest) c = u(rng);
+    clouds.push_back(shared(std::move(with_sh)));
+    const glm::mat4 second = glm::scale(
+        glm::rotate(glm::translate(glm::mat4(1.0f), {0.3f, -0.2f, -0.5f}), 0.6f, glm::normalize(glm::vec3(1, 2, 0.5f))),
+        glm::vec3(0.7f));
+    const std::vector<glm::mat4> models{glm::mat4(1.0f), second};
+    const auto render_both = [&](const engine::CameraView& camera) {
+        Frame f{harness.render(clouds, camera, glm::vec3(0.0f), models)};
+        pass.wait_for_statistics(harness.engine().bus());
+        f.pairs = pass.latest_statistics()->tile_splat_pairs;
+        return f;
+    };
     for (const float scale : {1.0f, 0.5f}) {
         SCOPED_TRACE("render scale " + std::to_string(scale));
         pass.settings().render_scale = scale;
         pass.settings().raster_fetch = splat_lod::RasterFetch::texel;
-        const Frame texel = render(clouds, footprint_camera(200, 120));
+        const Frame texel = render_both(footprint_camera(200, 120));
         EXPECT_EQ(pass.raster_fetch_in_use(), splat_lod::RasterFetch::texel);
         pass.settings().raster_fetch = splat_lod::RasterFetch::shared;
-        const Frame staged = render(clouds, footprint_camera(200, 120));
+        const Frame staged = render_both(footprint_camera(200, 120));
         EXPECT_EQ(pass.raster_fetch_in_use(), splat_lod::RasterFetch::shared);
         EXPECT_EQ(texel.image.rgba, staged.image.rgba);
+        EXPECT_EQ(texel.pairs, staged.pairs);
+        EXPECT_GT(texel.pairs, 0u);
     }
     // Automatic: texel fetches on a CPU driver, shared-memory batches on a GPU.
     pass.settings().raster_fetch = splat_lod::RasterFetch::automatic;

@@ -8,7 +8,11 @@ const float SH_C3[7] = float[](-0.5900435899266435, 2.890611442640554, -0.457045
                                -0.4570457994644658, 1.445305721320277, -0.5900435899266435);
 
 vec3 sh_coefficient(uint base, uint k) {
+#ifdef SPLAT_SH_COEFFICIENT
+    return SPLAT_SH_COEFFICIENT(base, k);  // the including shader's own read (base is a multiple of 3)
+#else
     return vec3(sh[base + k * 3u], sh[base + k * 3u + 1u], sh[base + k * 3u + 2u]);
+#endif
 }
 
 // docs/algorithms.md §1: SH in the direction from the camera centre to the Gaussian, + 0.5, clamped at 0.

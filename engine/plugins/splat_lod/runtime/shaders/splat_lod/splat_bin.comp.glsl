@@ -20,6 +20,21 @@ layout(std430, binding = SPLAT_BINDING_STATS) readonly buffer Stats { FrameCount
 
 #include "common_splat_tiles.glsl"
 
+#ifdef SPLAT_INPUT_TEXELS
+// Texel fetches instead of storage loads on CPU drivers (as in splat_project).
+layout(binding = SPLAT_TEXTURE_PROJECTED_WORDS) uniform usamplerBuffer projected_words;  // rgba32ui, 4 per splat
+layout(binding = SPLAT_TEXTURE_KEY_OFFSETS) uniform usamplerBuffer key_offset_texels;    // r32ui
+uint key_offset(uint index) { return texelFetch(key_offset_texels, int(index)).x; }
+ProjectedSplat load_projected(uint index) {
+    int b = int(index) * 4;
+    return ProjectedSplat(uintBitsToFloat(texelFetch(projected_words, b)), uintBitsToFloat(texelFetch(projected_words, b + 1)),
+                          uintBitsToFloat(texelFetch(projected_words, b + 2)), texelFetch(projected_words, b + 3));
+}
+#else
+uint key_offset(uint index) { return key_offsets[index]; }
+ProjectedSplat load_projected(uint index) { return projected[index]; }
+#endif
+
 uint g_begin, g_end, g_next, g_index;
 uvec2 g_depth_key;  // x: the depth part of the key, y: its shift into the key (D, or 0 for uvec2 keys)
 
@@ -43,10 +58,10 @@ uvec2 depth_key(float depth) {
 void main() {
     uint index = gl_GlobalInvocationID.x;
     if (index >= frame.gaussian_count) return;
-    g_begin = key_offsets[index];
-    g_end = key_offsets[index + 1u];
+    g_begin = key_offset(index);
+    g_end = key_offset(index + 1u);
     if (g_begin == g_end) return;
-    ProjectedSplat s = projected[index];
+    ProjectedSplat s = load_projected(index);
     g_next = g_begin;
     g_index = index;
     g_depth_key = depth_key(s.mean_depth.z);

@@ -114,6 +114,15 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 // read by the raster with SplatPassSettings::raster_fetch = texel.
 #define SPLAT_TEXTURE_PROJECTED 2
 #define SPLAT_TEXTURE_VALUES 3
+// Buffer textures over the project pass's inputs, read by it with raster_fetch = texel (as rgba32ui /
+// rgb32ui, bit-exact: the Gaussians 4 texels each, the SH one texel per coefficient, the instances 9).
+#define SPLAT_TEXTURE_GAUSSIANS 4
+#define SPLAT_TEXTURE_SH 5
+#define SPLAT_TEXTURE_INSTANCES 6
+// ... and over the bin pass's inputs: the projected splats as rgba32ui (4 texels a splat, bit-exact, so
+// that the bin walks the footprint step 1b counted) and the scanned key offsets (r32ui).
+#define SPLAT_TEXTURE_PROJECTED_WORDS 7
+#define SPLAT_TEXTURE_KEY_OFFSETS 8
 // Below render scale 1 (docs/algorithms.md §5) the raster writes these low-resolution images (rgba32f:
 // premultiplied colour C and alpha A, and their ∂/∂x, ∂/∂y, ∂²/∂x∂y per low-res pixel; r32f: the
 // view depth where the transmittance first falls below ½, else the depth the texel was cut at),

@@ -15,6 +15,31 @@ layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
 layout(std430, binding = SPLAT_BINDING_BUDGET) buffer Budget { SplatBudgetState budget; };
 
+#ifdef SPLAT_INPUT_TEXELS
+// On CPU drivers a storage-buffer load is a loop over the SIMD lanes and a texel fetch one gather
+// (docs/algorithms.md §1): the same inputs read through buffer textures, as unsigned words (bit-exact).
+layout(binding = SPLAT_TEXTURE_GAUSSIANS) uniform usamplerBuffer gaussian_texels;  // rgba32ui, 4 per Gaussian
+layout(binding = SPLAT_TEXTURE_SH) uniform usamplerBuffer sh_texels;              // rgb32ui, 1 per coefficient
+layout(binding = SPLAT_TEXTURE_INSTANCES) uniform usamplerBuffer instance_texels;  // rgba32ui, 9 per instance
+vec4 fetch_vec4(usamplerBuffer t, int i) { return uintBitsToFloat(texelFetch(t, i)); }
+GpuGaussian load_gaussian(uint index) {
+    int b = int(index) * 4;
+    return GpuGaussian(fetch_vec4(gaussian_texels, b), fetch_vec4(gaussian_texels, b + 1),
+                       fetch_vec4(gaussian_texels, b + 2), fetch_vec4(gaussian_texels, b + 3));
+}
+GpuInstance load_instance(uint index) {
+    int b = int(index) * 9;
+    mat4 model = mat4(fetch_vec4(instance_texels, b), fetch_vec4(instance_texels, b + 1),
+                      fetch_vec4(instance_texels, b + 2), fetch_vec4(instance_texels, b + 3));
+    mat4 rotation_inverse = mat4(fetch_vec4(instance_texels, b + 4), fetch_vec4(instance_texels, b + 5),
+                                 fetch_vec4(instance_texels, b + 6), fetch_vec4(instance_texels, b + 7));
+    return GpuInstance(model, rotation_inverse, texelFetch(instance_texels, b + 8));
+}
+#define SPLAT_SH_COEFFICIENT(base, k) uintBitsToFloat(texelFetch(sh_texels, int((base) / 3u + (k))).rgb)
+#else
+GpuGaussian load_gaussian(uint index) { return gaussians[index]; }
+GpuInstance load_instance(uint index) { return instances[index]; }
+#endif
 #include "common_splat_sh.glsl"
 #include "common_splat_lod.glsl"
 #include "common_splat_tiles.glsl"
@@ -55,8 +80,8 @@ float dissolve_rank(uint slot) {
 
 // Returns the tile count; 0 means culled.
 uint project(uint index) {
-    GpuGaussian g = gaussians[index];
-    GpuInstance inst = instances[floatBitsToUint(g.covariance_b.w)];
+    GpuGaussian g = load_gaussian(index);
+    GpuInstance inst = load_instance(floatBitsToUint(g.covariance_b.w));
     vec3 world = (inst.model * vec4(g.position_opacity.xyz, 1.0)).xyz;
     vec3 cam = VIEW_TO_CAMERA * (frame.view * vec4(world, 1.0)).xyz;
     float z = cam.z;

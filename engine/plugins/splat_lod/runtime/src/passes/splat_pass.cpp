@@ -209,7 +209,9 @@ void SplatPass::record_selection(engine::FrameContext& frame, std::uint32_t n) {
     glUseProgram(program(frame, "splat_clusters.comp.glsl").id());
     glDispatchCompute(groups(groups(n, SPLAT_PROJECT_WORKGROUP_SIZE), SPLAT_CLUSTER_WORKGROUP_SIZE), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    glUseProgram(program(frame, "splat_project.comp.glsl").id());
+    std::vector<std::string> defines;
+    if (bind_input_texels()) defines.push_back("SPLAT_INPUT_TEXELS");
+    glUseProgram(frame.shaders.program({"splat_lod/splat_project.comp.glsl"}, defines).id());
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, cluster_list_.id());
     glDispatchComputeIndirect(0);
     barrier();
@@ -257,6 +259,46 @@ void SplatPass::bind_raster_texels() {
     glBindTextureUnit(SPLAT_TEXTURE_PROJECTED, projected_texels_.id());
     glBindTextureUnit(SPLAT_TEXTURE_VALUES, value_texels_.id());
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
+}
+
+// With texel fetches, buffer-texture views of the project pass's inputs (re-pointed each frame: the
+// scene's buffers are reallocated when they grow); false (storage loads) with the staged raster or
+// when a view would exceed the driver's buffer textures.
+bool SplatPass::bind_input_texels() {
+    if (fetch_in_use_ != RasterFetch::texel) return false;
+    const std::uint64_t limit = static_cast<std::uint64_t>(max_texels_);
+    if (scene_.gaussians().size() / 16 > limit || scene_.sh().size() / 12 > limit ||
+        scene_.instances().size() / 16 > limit)
+        return false;
+    if (!gaussian_texels_) {
+        gaussian_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat gaussian texels");
+        sh_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat sh texels");
+        instance_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat instance texels");
+    }
+    glTextureBuffer(gaussian_texels_.id(), GL_RGBA32UI, scene_.gaussians().id());
+    glTextureBuffer(sh_texels_.id(), GL_RGB32UI, scene_.sh().id());
+    glTextureBuffer(instance_texels_.id(), GL_RGBA32UI, scene_.instances().id());
+    glBindTextureUnit(SPLAT_TEXTURE_GAUSSIANS, gaussian_texels_.id());
+    glBindTextureUnit(SPLAT_TEXTURE_SH, sh_texels_.id());
+    glBindTextureUnit(SPLAT_TEXTURE_INSTANCES, instance_texels_.id());
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // uploaded as buffers, read as texels
+    return true;
+}
+
+// The same for the bin pass: the projected splats (as words) and the scanned key offsets.
+bool SplatPass::bind_bin_texels(std::uint32_t n) {
+    if (fetch_in_use_ != RasterFetch::texel || std::uint64_t(n) * 4 > static_cast<std::uint64_t>(max_texels_))
+        return false;
+    if (!projected_words_) {
+        projected_words_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat projected words");
+        key_offset_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat key offset texels");
+    }
+    glTextureBuffer(projected_words_.id(), GL_RGBA32UI, projected_.id());
+    glTextureBuffer(key_offset_texels_.id(), GL_R32UI, tile_counts_.id());
+    glBindTextureUnit(SPLAT_TEXTURE_PROJECTED_WORDS, projected_words_.id());
+    glBindTextureUnit(SPLAT_TEXTURE_KEY_OFFSETS, key_offset_texels_.id());
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
+    return true;
 }
 
 // Steps 6 and 7 of execute.
@@ -341,7 +383,9 @@ void SplatPass::record_sort(engine::FrameContext& frame, std::uint32_t n, const 
         bind_all(frame);
         glUseProgram(program(frame, "splat_dispatch_args.comp.glsl").id());
         glDispatchCompute(1, 1, 1);
-        glUseProgram(program(frame, "splat_bin.comp.glsl").id());
+        std::vector<std::string> defines;
+        if (bind_bin_texels(n)) defines.push_back("SPLAT_INPUT_TEXELS");
+        glUseProgram(frame.shaders.program({"splat_lod/splat_bin.comp.glsl"}, defines).id());
         glDispatchCompute(groups(n, SPLAT_BIN_WORKGROUP_SIZE), 1, 1);
         barrier();
     }

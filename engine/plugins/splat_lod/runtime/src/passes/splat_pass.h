@@ -82,6 +82,8 @@ private:
     void record_sort(engine::FrameContext& frame, std::uint32_t gaussians, const RasterSize& raster);
     void record_raster(engine::FrameContext& frame, const RasterSize& raster);
     RasterFetch resolve_fetch(std::uint32_t gaussians);
+    bool bind_input_texels();
+    bool bind_bin_texels(std::uint32_t n);
     void bind_raster_texels();
     void record_statistics(engine::FrameContext& frame);
     void collect_statistics(engine::MessageBus& bus, bool wait);
@@ -108,6 +110,9 @@ private:
     std::optional<bool> cpu_driver_;  // the GL renderer is a CPU rasteriser (asked once)
     GLint max_texels_ = 0;            // GL_MAX_TEXTURE_BUFFER_SIZE (asked with cpu_driver_)
     engine::gl::Texture projected_texels_{engine::gl::NoCreate}, value_texels_{engine::gl::NoCreate};
+    engine::gl::Texture gaussian_texels_{engine::gl::NoCreate}, sh_texels_{engine::gl::NoCreate},
+        instance_texels_{engine::gl::NoCreate}, projected_words_{engine::gl::NoCreate},
+        key_offset_texels_{engine::gl::NoCreate};
     std::optional<plugin_msgs::SplatStatistics> latest_;
 };
 
