@@ -79,6 +79,7 @@ struct SortRun {
     std::uint32_t count = 0;      // what the GPU count buffer says
     std::uint32_t max_count = 0;  // the capacity the CPU knows
     std::uint32_t hi_bits = 0;
+    bool texel_reads = false;  // SortJob::texel_reads
 };
 
 // Sorts `elements` (max_count of them) on the GPU with the count in a GPU buffer at byte 8.
@@ -97,7 +98,8 @@ std::vector<Element> gpu_sort(RadixSort& sort, const std::vector<Element>& eleme
                  .count_buffer = count_buffer,
                  .count_offset = 8,
                  .max_count = run.max_count,
-                 .hi_bits = run.hi_bits});
+                 .hi_bits = run.hi_bits,
+                 .texel_reads = run.texel_reads});
     keys = read_buffer<glm::uvec2>(key_buffer, elements.size());
     values = read_buffer<std::uint32_t>(value_buffer, elements.size());
     std::vector<Element> sorted(elements.size());
@@ -128,10 +130,15 @@ class SplatSortTest : public engine::test::GpuTest {
 protected:
     RadixSort sort{shader_library()};
 
-    void expect_sorted(const std::vector<Element>& elements, const SortRun& run) {
-        const auto actual = gpu_sort(sort, elements, run);
-        EXPECT_TRUE(same_elements(actual, cpu_sort(elements, std::min(run.count, run.max_count))))
-            << "count " << run.count << ", max_count " << run.max_count << ", hi_bits " << run.hi_bits;
+    // Both ways of reading the input (storage loads and buffer textures) must give the stable order.
+    void expect_sorted(const std::vector<Element>& elements, SortRun run) {
+        const auto expected = cpu_sort(elements, std::min(run.count, run.max_count));
+        for (const bool texel_reads : {false, true}) {
+            run.texel_reads = texel_reads;
+            EXPECT_TRUE(same_elements(gpu_sort(sort, elements, run), expected))
+                << "count " << run.count << ", max_count " << run.max_count << ", hi_bits " << run.hi_bits
+                << ", texel reads " << texel_reads;
+        }
     }
     void expect_sorted(std::uint32_t count, std::uint32_t hi_bits, std::uint32_t distinct_depths, std::uint32_t seed) {
         expect_sorted(random_elements(count, hi_bits, distinct_depths, seed), {count, count, hi_bits});

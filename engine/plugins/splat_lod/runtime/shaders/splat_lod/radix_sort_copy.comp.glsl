@@ -10,8 +10,8 @@ void main() {
     for (uint round = 0u; round < SORT_ELEMENTS_PER_THREAD; ++round) {
         const uint i = tile_element(round);
         if (i < count) {
-            keys_out[i] = keys_in[i];
-            values_out[i] = values_in[i];
+            keys_out[i] = load_key(i);
+            values_out[i] = load_value(i);
         }
     }
 }

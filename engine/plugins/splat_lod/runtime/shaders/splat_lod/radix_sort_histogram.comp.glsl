@@ -16,7 +16,7 @@ void main() {
     for (uint round = 0u; round < SORT_ELEMENTS_PER_THREAD; ++round) {
         const uint i = tile_element(round);
         // Counting is order-independent, so plain shared atomics are fine here.
-        if (i < count) atomicAdd(s_digit_counts[word_digit(key_words_in[2u * i + u_word])], 1u);
+        if (i < count) atomicAdd(s_digit_counts[word_digit(load_key_word(i, u_word))], 1u);
     }
     barrier();
     const uint tile_count = sort_params.tile_count;

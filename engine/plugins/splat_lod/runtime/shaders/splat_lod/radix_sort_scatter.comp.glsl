@@ -52,7 +52,7 @@ void main() {
         if (tile_element(round) - gl_LocalInvocationID.x >= count) break;
         const uint i = tile_element(round);
         const bool valid = i < count;
-        const uvec2 key = valid ? keys_in[i] : uvec2(0u);
+        const uvec2 key = valid ? load_key(i) : uvec2(0u);
         const uint digit = key_digit(key);
         const uint masks = (round & 1u) * MASKS_PER_ROUND + digit * SORT_MASK_WORDS;
         if (valid) atomicOr(s_lane_masks[masks + lane_word], lane_bit);
@@ -62,7 +62,7 @@ void main() {
         const uint destination = s_digit_next[digit] + rank;
         if (valid) {
             keys_out[destination] = key;
-            values_out[destination] = values_in[i];
+            values_out[destination] = load_value(i);
         }
         barrier();
         // The digit's last lane in this round moves the digit's position past the round and

@@ -51,6 +51,10 @@ using mat4 = glm::mat4;
 #define SORT_BINDING_HISTOGRAM 4  // per-tile digit counts, digit-major: [digit * tile_count + tile]
 #define SORT_BINDING_PARAMS 5     // SortParams
 #define SORT_BINDING_COUNT 6      // the caller's element count (radix_sort_dispatch_args only)
+// Buffer textures over the sort's input keys (rg32ui) and values (r32ui) with SortJob::texel_reads;
+// units of their own, above the splat pass's.
+#define SORT_TEXTURE_KEYS_IN 14
+#define SORT_TEXTURE_VALUES_IN 15
 
 // Scan bindings (prefix_scan_*.comp.glsl).
 #define SCAN_BINDING_DATA 0    // the level being reduced or scanned

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/core/error.h"
 #include "splat_lod/splat_lod_shared.h"
@@ -78,6 +79,7 @@ std::uint32_t RadixSort::pass_count(std::uint32_t hi_bits) {
 void RadixSort::record(const SortJob& job, engine::gl::GpuTimers* timers) {
     check_job(job);
     const OptionalSpan total_span(timers, "radix_sort");
+    texel_reads_ = job.texel_reads;
     prepare_buffers(job.max_count);
     // The keys, values and count were written by earlier passes.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -144,7 +146,7 @@ void RadixSort::record_pass(const SortJob& job, std::uint32_t index, engine::gl:
 }
 
 void RadixSort::record_histogram(const Pass& pass, const Pair& in) {
-    const auto& program = shaders_.program({"splat_lod/radix_sort_histogram.comp.glsl"});
+    const auto& program = this->program("radix_sort_histogram.comp.glsl");
     glUseProgram(program.id());
     set_uint(program, "u_word", pass.word);
     set_uint(program, "u_shift", pass.shift);
@@ -155,7 +157,7 @@ void RadixSort::record_histogram(const Pass& pass, const Pair& in) {
 }
 
 void RadixSort::record_scatter(const Pass& pass, const Pair& in, const Pair& out) {
-    const auto& program = shaders_.program({"splat_lod/radix_sort_scatter.comp.glsl"});
+    const auto& program = this->program("radix_sort_scatter.comp.glsl");
     glUseProgram(program.id());
     set_uint(program, "u_word", pass.word);
     set_uint(program, "u_shift", pass.shift);
@@ -166,14 +168,31 @@ void RadixSort::record_scatter(const Pass& pass, const Pair& in, const Pair& out
 }
 
 void RadixSort::record_copy(const Pair& in, const Pair& out) {
-    const auto& program = shaders_.program({"splat_lod/radix_sort_copy.comp.glsl"});
+    const auto& program = this->program("radix_sort_copy.comp.glsl");
     glUseProgram(program.id());
     bind_pairs(in, out);
     dispatch_tiles();
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
+const engine::gl::Program& RadixSort::program(const char* file) const {
+    std::vector<std::string> defines;
+    if (texel_reads_) defines.push_back("SORT_TEXEL_READS");
+    return shaders_.program({std::string("splat_lod/") + file}, defines);
+}
+
 void RadixSort::bind_pairs(const Pair& in, const Pair& out) {
+    if (texel_reads_) {
+        if (!key_texels_) {
+            key_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "radix_sort key texels");
+            value_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "radix_sort value texels");
+        }
+        glTextureBuffer(key_texels_.id(), GL_RG32UI, in.keys.id());
+        glTextureBuffer(value_texels_.id(), GL_R32UI, in.values.id());
+        glBindTextureUnit(SORT_TEXTURE_KEYS_IN, key_texels_.id());
+        glBindTextureUnit(SORT_TEXTURE_VALUES_IN, value_texels_.id());
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
+    }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_KEYS_IN, in.keys.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_VALUES_IN, in.values.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_KEYS_OUT, out.keys.id());

@@ -23,6 +23,9 @@ struct SortJob {
     std::uint32_t max_count = 0;             // capacity; a larger count on the GPU is clamped
     // Significant bits of the high word, 0..32: ceil(log2(tile_count)). Higher bits are ignored.
     std::uint32_t hi_bits = 0;
+    // Read the input keys and values through buffer textures instead of storage loads (faster on CPU
+    // drivers; the caller checks that max_count texels fit the driver's buffer textures). Same result.
+    bool texel_reads = false;
 };
 
 class RadixSort {
@@ -59,11 +62,14 @@ private:
     void record_scatter(const Pass& pass, const Pair& in, const Pair& out);
     void record_copy(const Pair& in, const Pair& out);
     void bind_pairs(const Pair& in, const Pair& out);
+    const engine::gl::Program& program(const char* file) const;
     void dispatch_tiles();
 
     engine::gl::ShaderLibrary& shaders_;
     PrefixScan scan_;
     std::uint32_t max_count_ = 0;
+    bool texel_reads_ = false;  // the current job's SortJob::texel_reads
+    engine::gl::Texture key_texels_{engine::gl::NoCreate}, value_texels_{engine::gl::NoCreate};
     engine::gl::Buffer params_{engine::gl::NoCreate};       // SortParams, GPU-written
     engine::gl::Buffer histogram_{engine::gl::NoCreate};    // per-tile digit counts, then offsets
     engine::gl::Buffer keys_swap_{engine::gl::NoCreate};    // ping-pong partner of job.keys

@@ -394,7 +394,8 @@ void SplatPass::record_sort(engine::FrameContext& frame, std::uint32_t n, const 
         const auto hi_bits = raster.key_depth_bits > 0
                                  ? 0u
                                  : static_cast<std::uint32_t>(std::bit_width(raster.tiles_x * raster.tiles_y));
-        sort_->record({keys_, values_, args_, 3 * sizeof(std::uint32_t), key_capacity_, hi_bits});
+        const bool texel_reads = fetch_in_use_ == RasterFetch::texel && key_capacity_ <= std::uint32_t(max_texels_);
+        sort_->record({keys_, values_, args_, 3 * sizeof(std::uint32_t), key_capacity_, hi_bits, texel_reads});
     }
     {  // 5. tile ranges in the sorted keys
         GpuTimerScope t(frame.timers, "splat.ranges");
