@@ -127,6 +127,8 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 // that the bin walks the footprint step 1b counted) and the scanned key offsets (r32ui).
 #define SPLAT_TEXTURE_PROJECTED_WORDS 7
 #define SPLAT_TEXTURE_KEY_OFFSETS 8
+// ... and the sorted keys (rg32ui) for the tile-ranges pass.
+#define SPLAT_TEXTURE_SORTED_KEYS 9
 // Below render scale 1 (docs/algorithms.md §5) the raster writes these low-resolution images (rgba32f:
 // premultiplied colour C and alpha A, and their ∂/∂x, ∂/∂y, ∂²/∂x∂y per low-res pixel; r32f: the
 // view depth where the transmittance first falls below ½, else the depth the texel was cut at),

@@ -11,12 +11,20 @@ uint key_tile(uvec2 key) {
     return frame.key_depth_bits == 0u ? key.y : key.x >> frame.key_depth_bits;
 }
 
+#ifdef SPLAT_INPUT_TEXELS
+// Texel fetches instead of storage loads on CPU drivers (as in splat_project).
+layout(binding = SPLAT_TEXTURE_SORTED_KEYS) uniform usamplerBuffer key_texels;  // rg32ui
+uvec2 load_key(uint i) { return texelFetch(key_texels, int(i)).xy; }
+#else
+uvec2 load_key(uint i) { return keys[i]; }
+#endif
+
 void main() {
     uint i = gl_GlobalInvocationID.x;
     uint count = args.w;
     if (i >= count) return;
-    uint tile = key_tile(keys[i]);
+    uint tile = key_tile(load_key(i));
     if (tile >= frame.tile_count) return;
-    if (i == 0u || key_tile(keys[i - 1u]) != tile) ranges[tile].x = i;
-    if (i + 1u == count || key_tile(keys[i + 1u]) != tile) ranges[tile].y = i + 1u;
+    if (i == 0u || key_tile(load_key(i - 1u)) != tile) ranges[tile].x = i;
+    if (i + 1u == count || key_tile(load_key(i + 1u)) != tile) ranges[tile].y = i + 1u;
 }

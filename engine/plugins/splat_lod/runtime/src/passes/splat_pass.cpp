@@ -400,7 +400,15 @@ void SplatPass::record_sort(engine::FrameContext& frame, std::uint32_t n, const 
     {  // 5. tile ranges in the sorted keys
         GpuTimerScope t(frame.timers, "splat.ranges");
         bind_all(frame);
-        glUseProgram(program(frame, "splat_tile_ranges.comp.glsl").id());
+        std::vector<std::string> defines;
+        if (fetch_in_use_ == RasterFetch::texel && key_capacity_ <= std::uint32_t(max_texels_)) {
+            if (!key_texels_) key_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat sorted key texels");
+            glTextureBuffer(key_texels_.id(), GL_RG32UI, keys_.id());
+            glBindTextureUnit(SPLAT_TEXTURE_SORTED_KEYS, key_texels_.id());
+            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // sorted through storage buffers, read as texels
+            defines.push_back("SPLAT_INPUT_TEXELS");
+        }
+        glUseProgram(frame.shaders.program({"splat_lod/splat_tile_ranges.comp.glsl"}, defines).id());
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, args_.id());
         glDispatchComputeIndirect(0);
         barrier();

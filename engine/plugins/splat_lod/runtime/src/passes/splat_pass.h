@@ -112,7 +112,7 @@ private:
     engine::gl::Texture projected_texels_{engine::gl::NoCreate}, value_texels_{engine::gl::NoCreate};
     engine::gl::Texture gaussian_texels_{engine::gl::NoCreate}, sh_texels_{engine::gl::NoCreate},
         instance_texels_{engine::gl::NoCreate}, projected_words_{engine::gl::NoCreate},
-        key_offset_texels_{engine::gl::NoCreate};
+        key_offset_texels_{engine::gl::NoCreate}, key_texels_{engine::gl::NoCreate};
     std::optional<plugin_msgs::SplatStatistics> latest_;
 };
 
