@@ -25,7 +25,8 @@ namespace splat_lod {
 class SplatPass;
 
 // How the tile raster reads the splats it blends (docs/algorithms.md §1, "Raster"); with texel the
-// project and bin passes also read their inputs through buffer textures, else storage buffers.
+// project, bin, sort and tile-range passes also read their inputs through buffer textures, else
+// storage buffers.
 enum class RasterFetch {
     automatic,  // texel on CPU drivers (Mesa llvmpipe, softpipe), shared elsewhere
     texel,      // every pixel fetches each splat through buffer textures
