@@ -27,7 +27,8 @@ layout(binding = SPLAT_TEXTURE_KEY_OFFSETS) uniform usamplerBuffer key_offset_te
 uint key_offset(uint index) { return texelFetch(key_offset_texels, int(index)).x; }
 ProjectedSplat load_projected(uint index) {
     int b = int(index) * 4;
-    return ProjectedSplat(uintBitsToFloat(texelFetch(projected_words, b)), uintBitsToFloat(texelFetch(projected_words, b + 1)),
+    return ProjectedSplat(uintBitsToFloat(texelFetch(projected_words, b)),
+                          uintBitsToFloat(texelFetch(projected_words, b + 1)),
                           uintBitsToFloat(texelFetch(projected_words, b + 2)), texelFetch(projected_words, b + 3));
 }
 #else
