@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "gpu/buffer_texture.h"
 #include "splat_lod/splat_lod_shared.h"
 
 namespace splat_lod::gpu {
@@ -183,14 +184,8 @@ const engine::gl::Program& RadixSort::program(const char* file) const {
 
 void RadixSort::bind_pairs(const Pair& in, const Pair& out) {
     if (texel_reads_) {
-        if (!key_texels_) {
-            key_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "radix_sort key texels");
-            value_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "radix_sort value texels");
-        }
-        glTextureBuffer(key_texels_.id(), GL_RG32UI, in.keys.id());
-        glTextureBuffer(value_texels_.id(), GL_R32UI, in.values.id());
-        glBindTextureUnit(SORT_TEXTURE_KEYS_IN, key_texels_.id());
-        glBindTextureUnit(SORT_TEXTURE_VALUES_IN, value_texels_.id());
+        bind_buffer_texture(key_texels_, "radix_sort key texels", GL_RG32UI, in.keys, SORT_TEXTURE_KEYS_IN);
+        bind_buffer_texture(value_texels_, "radix_sort value texels", GL_R32UI, in.values, SORT_TEXTURE_VALUES_IN);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_KEYS_IN, in.keys.id());

@@ -12,6 +12,7 @@
 #include "engine/gl/shader_library.h"
 #include "engine/render/render_target.h"
 #include "engine/scene/scene.h"
+#include "gpu/buffer_texture.h"
 #include "gpu/prefix_scan.h"
 #include "gpu/radix_sort.h"
 #include "splat_lod/core/upscale.h"
@@ -200,6 +201,18 @@ void SplatPass::bind_all(const engine::FrameContext& frame) {
     }
 }
 
+// A pass's program: with texel fetches its inputs' views bound (`bind`) and SPLAT_INPUT_TEXELS defined,
+// else the storage-buffer variant.
+const engine::gl::Program& SplatPass::texel_program(engine::FrameContext& frame, const char* file,
+                                                    void (SplatPass::*bind)()) {
+    std::vector<std::string> defines;
+    if (fetch_in_use_ == RasterFetch::texel) {
+        (this->*bind)();
+        defines.push_back("SPLAT_INPUT_TEXELS");
+    }
+    return frame.shaders.program({std::string("splat_lod/") + file}, defines);
+}
+
 // Step 1 (numbered as in execute): a: cull clusters outside the frustum, skip those too small for
 // the view; b: cull + project + SH colour, tiles touched; under a splat budget c: choose β, d: keep
 // what is selected at it.
@@ -209,9 +222,7 @@ void SplatPass::record_selection(engine::FrameContext& frame, std::uint32_t n) {
     glUseProgram(program(frame, "splat_clusters.comp.glsl").id());
     glDispatchCompute(groups(groups(n, SPLAT_PROJECT_WORKGROUP_SIZE), SPLAT_CLUSTER_WORKGROUP_SIZE), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    std::vector<std::string> defines;
-    if (bind_input_texels()) defines.push_back("SPLAT_INPUT_TEXELS");
-    glUseProgram(frame.shaders.program({"splat_lod/splat_project.comp.glsl"}, defines).id());
+    glUseProgram(texel_program(frame, "splat_project.comp.glsl", &SplatPass::bind_project_texels).id());
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, cluster_list_.id());
     glDispatchComputeIndirect(0);
     barrier();
@@ -226,7 +237,8 @@ void SplatPass::record_selection(engine::FrameContext& frame, std::uint32_t n) {
 }
 
 // settings.raster_fetch for this driver and these sizes: texel fetches need buffer textures as long
-// as the projected splats (4 texels each) and the key buffer.
+// as every buffer read through them (the scene's Gaussians, SH and instances, the projected splats at
+// 4 texels each, the keys).
 RasterFetch SplatPass::resolve_fetch(std::uint32_t gaussians) {
     if (!cpu_driver_) {  // the driver's name and limit, asked once
         const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
@@ -236,69 +248,51 @@ RasterFetch SplatPass::resolve_fetch(std::uint32_t gaussians) {
     }
     RasterFetch fetch = settings.raster_fetch;
     if (fetch == RasterFetch::automatic) fetch = *cpu_driver_ ? RasterFetch::texel : RasterFetch::shared;
-    const std::uint64_t needed = std::max<std::uint64_t>(std::uint64_t(gaussians) * 4, key_capacity_);
+    const std::uint64_t needed = std::max(
+        {std::uint64_t(gaussians) * 4, std::uint64_t(key_capacity_), std::uint64_t(scene_.gaussians().size() / 16),
+         std::uint64_t(scene_.sh().size() / 12), std::uint64_t(scene_.instances().size() / 16)});
     if (fetch == RasterFetch::texel && needed > static_cast<std::uint64_t>(max_texels_)) {
         if (fetch_in_use_ != RasterFetch::shared)
             engine::log_warning("splat_lod: " + std::to_string(needed) +
                                 " texels exceed the driver's buffer textures (" + std::to_string(max_texels_) +
-                                "); the raster stages splats in shared memory instead");
+                                "); the passes read storage buffers and the raster stages splats in shared memory");
         fetch = RasterFetch::shared;
     }
     return fetch;
 }
 
-// Buffer-texture views of the projected splats and the sorted values (re-pointed each frame: the
-// buffers are reallocated when they grow).
-void SplatPass::bind_raster_texels() {
-    if (!projected_texels_) {
-        projected_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat projected texels");
-        value_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat value texels");
-    }
-    glTextureBuffer(projected_texels_.id(), GL_RGBA32F, projected_.id());
-    glTextureBuffer(value_texels_.id(), GL_R32UI, values_.id());
-    glBindTextureUnit(SPLAT_TEXTURE_PROJECTED, projected_texels_.id());
-    glBindTextureUnit(SPLAT_TEXTURE_VALUES, value_texels_.id());
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
-}
-
-// With texel fetches, buffer-texture views of the project pass's inputs (re-pointed each frame: the
-// scene's buffers are reallocated when they grow); false (storage loads) with the staged raster or
-// when a view would exceed the driver's buffer textures.
-bool SplatPass::bind_input_texels() {
-    if (fetch_in_use_ != RasterFetch::texel) return false;
-    const std::uint64_t limit = static_cast<std::uint64_t>(max_texels_);
-    if (scene_.gaussians().size() / 16 > limit || scene_.sh().size() / 12 > limit ||
-        scene_.instances().size() / 16 > limit)
-        return false;
-    if (!gaussian_texels_) {
-        gaussian_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat gaussian texels");
-        sh_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat sh texels");
-        instance_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat instance texels");
-    }
-    glTextureBuffer(gaussian_texels_.id(), GL_RGBA32UI, scene_.gaussians().id());
-    glTextureBuffer(sh_texels_.id(), GL_RGB32UI, scene_.sh().id());
-    glTextureBuffer(instance_texels_.id(), GL_RGBA32UI, scene_.instances().id());
-    glBindTextureUnit(SPLAT_TEXTURE_GAUSSIANS, gaussian_texels_.id());
-    glBindTextureUnit(SPLAT_TEXTURE_SH, sh_texels_.id());
-    glBindTextureUnit(SPLAT_TEXTURE_INSTANCES, instance_texels_.id());
+// With texel fetches (fetch_in_use_ texel), buffer-texture views of what each pass reads, re-pointed
+// every frame. Step 1b: the Gaussians, SH and instances (unsigned words: bit-exact).
+void SplatPass::bind_project_texels() {
+    gpu::bind_buffer_texture(gaussian_texels_, "splat gaussian texels", GL_RGBA32UI, scene_.gaussians(),
+                             SPLAT_TEXTURE_GAUSSIANS);
+    gpu::bind_buffer_texture(sh_texels_, "splat sh texels", GL_RGB32UI, scene_.sh(), SPLAT_TEXTURE_SH);
+    gpu::bind_buffer_texture(instance_texels_, "splat instance texels", GL_RGBA32UI, scene_.instances(),
+                             SPLAT_TEXTURE_INSTANCES);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // uploaded as buffers, read as texels
-    return true;
 }
 
-// The same for the bin pass: the projected splats (as words) and the scanned key offsets.
-bool SplatPass::bind_bin_texels(std::uint32_t n) {
-    if (fetch_in_use_ != RasterFetch::texel || std::uint64_t(n) * 4 > static_cast<std::uint64_t>(max_texels_))
-        return false;
-    if (!projected_words_) {
-        projected_words_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat projected words");
-        key_offset_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat key offset texels");
-    }
-    glTextureBuffer(projected_words_.id(), GL_RGBA32UI, projected_.id());
-    glTextureBuffer(key_offset_texels_.id(), GL_R32UI, tile_counts_.id());
-    glBindTextureUnit(SPLAT_TEXTURE_PROJECTED_WORDS, projected_words_.id());
-    glBindTextureUnit(SPLAT_TEXTURE_KEY_OFFSETS, key_offset_texels_.id());
+// Step 3: the projected splats (as words) and the scanned key offsets.
+void SplatPass::bind_bin_texels() {
+    gpu::bind_buffer_texture(projected_words_, "splat projected words", GL_RGBA32UI, projected_,
+                             SPLAT_TEXTURE_PROJECTED_WORDS);
+    gpu::bind_buffer_texture(key_offset_texels_, "splat key offset texels", GL_R32UI, tile_counts_,
+                             SPLAT_TEXTURE_KEY_OFFSETS);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
-    return true;
+}
+
+// Step 5: the sorted keys.
+void SplatPass::bind_ranges_texels() {
+    gpu::bind_buffer_texture(key_texels_, "splat sorted key texels", GL_RG32UI, keys_, SPLAT_TEXTURE_SORTED_KEYS);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // sorted through storage buffers, read as texels
+}
+
+// Step 6: the projected splats and the sorted values.
+void SplatPass::bind_raster_texels() {
+    gpu::bind_buffer_texture(projected_texels_, "splat projected texels", GL_RGBA32F, projected_,
+                             SPLAT_TEXTURE_PROJECTED);
+    gpu::bind_buffer_texture(value_texels_, "splat value texels", GL_R32UI, values_, SPLAT_TEXTURE_VALUES);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
 }
 
 // Steps 6 and 7 of execute.
@@ -383,9 +377,7 @@ void SplatPass::record_sort(engine::FrameContext& frame, std::uint32_t n, const 
         bind_all(frame);
         glUseProgram(program(frame, "splat_dispatch_args.comp.glsl").id());
         glDispatchCompute(1, 1, 1);
-        std::vector<std::string> defines;
-        if (bind_bin_texels(n)) defines.push_back("SPLAT_INPUT_TEXELS");
-        glUseProgram(frame.shaders.program({"splat_lod/splat_bin.comp.glsl"}, defines).id());
+        glUseProgram(texel_program(frame, "splat_bin.comp.glsl", &SplatPass::bind_bin_texels).id());
         glDispatchCompute(groups(n, SPLAT_BIN_WORKGROUP_SIZE), 1, 1);
         barrier();
     }
@@ -394,21 +386,13 @@ void SplatPass::record_sort(engine::FrameContext& frame, std::uint32_t n, const 
         const auto hi_bits = raster.key_depth_bits > 0
                                  ? 0u
                                  : static_cast<std::uint32_t>(std::bit_width(raster.tiles_x * raster.tiles_y));
-        const bool texel_reads = fetch_in_use_ == RasterFetch::texel && key_capacity_ <= std::uint32_t(max_texels_);
-        sort_->record({keys_, values_, args_, 3 * sizeof(std::uint32_t), key_capacity_, hi_bits, texel_reads});
+        sort_->record({keys_, values_, args_, 3 * sizeof(std::uint32_t), key_capacity_, hi_bits,
+                       fetch_in_use_ == RasterFetch::texel});
     }
     {  // 5. tile ranges in the sorted keys
         GpuTimerScope t(frame.timers, "splat.ranges");
         bind_all(frame);
-        std::vector<std::string> defines;
-        if (fetch_in_use_ == RasterFetch::texel && key_capacity_ <= std::uint32_t(max_texels_)) {
-            if (!key_texels_) key_texels_ = engine::gl::Texture(GL_TEXTURE_BUFFER, "splat sorted key texels");
-            glTextureBuffer(key_texels_.id(), GL_RG32UI, keys_.id());
-            glBindTextureUnit(SPLAT_TEXTURE_SORTED_KEYS, key_texels_.id());
-            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // sorted through storage buffers, read as texels
-            defines.push_back("SPLAT_INPUT_TEXELS");
-        }
-        glUseProgram(frame.shaders.program({"splat_lod/splat_tile_ranges.comp.glsl"}, defines).id());
+        glUseProgram(texel_program(frame, "splat_tile_ranges.comp.glsl", &SplatPass::bind_ranges_texels).id());
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, args_.id());
         glDispatchComputeIndirect(0);
         barrier();

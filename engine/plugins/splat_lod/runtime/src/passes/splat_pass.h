@@ -82,8 +82,10 @@ private:
     void record_sort(engine::FrameContext& frame, std::uint32_t gaussians, const RasterSize& raster);
     void record_raster(engine::FrameContext& frame, const RasterSize& raster);
     RasterFetch resolve_fetch(std::uint32_t gaussians);
-    bool bind_input_texels();
-    bool bind_bin_texels(std::uint32_t n);
+    const engine::gl::Program& texel_program(engine::FrameContext& frame, const char* file, void (SplatPass::*bind)());
+    void bind_project_texels();
+    void bind_bin_texels();
+    void bind_ranges_texels();
     void bind_raster_texels();
     void record_statistics(engine::FrameContext& frame);
     void collect_statistics(engine::MessageBus& bus, bool wait);
