@@ -19,6 +19,7 @@
 // k with k mod N = I - 1 into --out/staging-<hash>/ and writes the shard's record there; shards may
 // run at once, on one machine or on several sharing the folder. `--merge`, once all are done,
 // checks every chunk against its record and commits the world: the same bytes as an unsharded run.
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cstdio>
@@ -31,6 +32,7 @@
 #include "engine/core/cli_values.h"
 #include "engine/core/error.h"
 #include "splat_lod/worldgen/world_generator.h"
+#include "splat_lod/worldgen/world_import.h"
 #include "splat_lod/worldgen/world_shards.h"
 
 namespace {
@@ -94,6 +96,9 @@ std::string merge_summary(const splat_lod::world::WorldSummary& s) {
 struct CommandLine {
     splat_lod::world::WorldOptions options;
     std::string out, seed_text = "1", shard_text;
+    // --from: a capture imported instead of the generated world (world/world_import.h).
+    std::string from, up_text = "auto", memory_text = "3G", views_text = "auto";
+    std::uint64_t max_chunk_gaussians = 65536;
     bool no_terrain_mesh = false, no_groups = false, count_only = false, merge = false;
     CLI::Option* shard_option = nullptr;  // given: bake a shard
 };
@@ -127,6 +132,60 @@ void add_world_options(CLI::App& app, CommandLine& c) {
         ->check(CLI::Range(1.0, 4.0));
 }
 
+// Importing a capture (--from) instead of generating the sample world.
+void add_import_options(CLI::App& app, CommandLine& c) {
+    app.add_option("--from", c.from,
+                   "import this capture instead of generating the sample world: a splat file, a streamed SOG "
+                   "(lod-meta.json[#level]), a folder or .txt list of tiles");
+    app.add_option("--up", c.up_text, "the capture's up direction: auto (found from the data) or X,Y,Z");
+    app.add_option("--memory", c.memory_text, "resident memory the import stays within, e.g. 2G, 512M; 3G by default");
+    app.add_option("--max-chunk-gaussians", c.max_chunk_gaussians,
+                   "the chunk size is chosen so that no chunk holds more; 65536 by default")
+        ->check(CLI::Range(std::uint64_t{1024}, std::uint64_t{1} << 26));
+    app.add_option("--views", c.views_text, "chunk bake cameras: auto, ground (eye height and above) or aerial");
+}
+
+std::uint64_t parse_memory(const std::string& text) {
+    std::uint64_t unit = 1;
+    std::string digits = text;
+    if (!digits.empty()) {
+        const char last = static_cast<char>(std::toupper(static_cast<unsigned char>(digits.back())));
+        if (last == 'G' || last == 'M' || last == 'K') {
+            unit = last == 'G' ? (1u << 30) : last == 'M' ? (1u << 20) : (1u << 10);
+            digits.pop_back();
+        }
+    }
+    return engine::parse_u64(digits, "--memory") * unit;
+}
+
+int run_import(const CommandLine& c) {
+    namespace world = splat_lod::world;
+    if (c.shard_option->count() > 0 || c.merge || c.count_only)
+        throw engine::Error("--from: sharded imports (--shard, --merge) and --count-only are not supported yet");
+    world::ImportOptions o;
+    o.capture = c.from;
+    o.output = c.out;
+    if (c.up_text != "auto") o.up = engine::parse_vec3(c.up_text, "--up");
+    o.memory_bytes = parse_memory(c.memory_text);
+    o.max_chunk_gaussians = c.max_chunk_gaussians;
+    if (c.views_text == "ground")
+        o.views = world::CaptureViews::ground;
+    else if (c.views_text == "aerial")
+        o.views = world::CaptureViews::aerial;
+    else if (c.views_text != "auto")
+        throw engine::Error("--views \"" + c.views_text + "\": expected auto, ground or aerial");
+    o.threads = c.options.threads;
+    o.bake = c.options.bake;
+    o.bake_width = c.options.bake_width;
+    o.bake_height = c.options.bake_height;
+    o.groups = !c.no_groups;
+    o.progress = print_progress;
+    const world::ImportResult result = world::import_world(o);
+    std::printf("%s", world::format_import_summary(result.summary).c_str());
+    std::printf("world: %s\n", (o.output / world::kManifestFileName).string().c_str());
+    return 0;
+}
+
 // What to do: the whole world, a count, a shard or the merge of the shards.
 void add_run_options(CLI::App& app, CommandLine& c) {
     app.add_flag("--force", c.options.force, "regenerate even when the cached world matches");
@@ -143,6 +202,7 @@ void add_run_options(CLI::App& app, CommandLine& c) {
 
 int run(CommandLine& c) {
     namespace world = splat_lod::world;
+    if (!c.from.empty()) return run_import(c);
     const auto shard = c.shard_option->count() > 0 ? std::optional(world::parse_world_shard(c.shard_text))  // first
                                                    : std::optional<world::WorldShard>();
     world::WorldOptions& options = c.options;
@@ -178,6 +238,7 @@ int main(int argc, char** argv) {
     CLI::App app{"Generate and bake the sample world of LOD splat chunks and glTF props (cached in --out)"};
     add_world_options(app, c);
     add_run_options(app, c);
+    add_import_options(app, c);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

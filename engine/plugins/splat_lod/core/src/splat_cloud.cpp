@@ -209,4 +209,47 @@ std::size_t sanitise(SplatCloud& cloud, LoadReport* report) {
     return non_finite + zero_rotation;
 }
 
+namespace {
+
+template <typename T>
+void append_values(std::vector<T>& into, std::vector<T>& part) {
+    into.insert(into.end(), part.begin(), part.end());
+}
+
+// Keeps the extras present in both clouds, in `into`'s order, with the part's values appended.
+void append_extras(SplatCloud& into, SplatCloud& part) {
+    std::vector<ExtraProperty> kept;
+    for (ExtraProperty& extra : into.extras)
+        if (ExtraProperty* other = part.find_extra(extra.name)) {
+            append_values(extra.values, other->values);
+            kept.push_back(std::move(extra));
+        }
+    into.extras = std::move(kept);
+}
+
+}  // namespace
+
+void append_cloud(SplatCloud& into, SplatCloud&& part) {
+    part.check_consistent();
+    if (into.empty() && into.extras.empty()) {
+        into = std::move(part);
+        return;
+    }
+    into.check_consistent();
+    const int degree = std::max(into.sh_degree, part.sh_degree);
+    into.set_sh_degree(degree);
+    part.set_sh_degree(degree);
+    append_extras(into, part);
+    append_values(into.positions, part.positions);
+    append_values(into.rotations, part.rotations);
+    append_values(into.log_scales, part.log_scales);
+    append_values(into.opacity_logits, part.opacity_logits);
+    append_values(into.sh_dc, part.sh_dc);
+    append_values(into.sh_rest, part.sh_rest);
+    append_values(into.lod_level, part.lod_level);
+    append_values(into.coverage_min, part.coverage_min);
+    append_values(into.coverage_max, part.coverage_max);
+    part = SplatCloud{};
+}
+
 }  // namespace splat_lod

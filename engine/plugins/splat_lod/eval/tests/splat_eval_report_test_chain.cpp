@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -43,9 +44,11 @@ TEST(SplatEvalChain, ReadsLevelFilesThroughTheTree) {
     const auto folder = chain_folder("good");
     const eval::LodChain chain = eval::read_lod_chain(write_meta(folder, kChain));
     ASSERT_EQ(chain.levels.size(), 3u);
-    EXPECT_EQ(chain.levels[0].file, folder / "0_0/meta.json");
-    EXPECT_EQ(chain.levels[1].file, folder / "1_0/meta.json");
-    EXPECT_EQ(chain.levels[2].file, folder / "2_0/meta.json");
+    using Files = std::vector<std::filesystem::path>;
+    EXPECT_EQ(chain.levels[0].files, Files{folder / "0_0/meta.json"});
+    EXPECT_EQ(chain.levels[1].files, Files{folder / "1_0/meta.json"});
+    EXPECT_EQ(chain.levels[2].files, Files{folder / "2_0/meta.json"});
+    EXPECT_EQ(chain.levels[2].source, (folder / "lod-meta.json").string() + "#2");
     EXPECT_EQ(chain.levels[0].gaussians, 1000u);
     EXPECT_EQ(chain.levels[1].gaussians, 500u);
     EXPECT_EQ(chain.levels[2].gaussians, 100u);
@@ -55,6 +58,21 @@ TEST(SplatEvalChain, ReadsLevelFilesThroughTheTree) {
     ASSERT_EQ(comparisons.size(), 3u);
     EXPECT_EQ(comparisons[1].method, "chain_L1");
     EXPECT_NE(comparisons[1].description.find("1_0/meta.json, 500 Gaussians"), std::string::npos)
+        << comparisons[1].description;
+}
+
+// splat-transform's streamed output: a level spread over several chunk files, one of them shared
+// with another level's ranges.
+TEST(SplatEvalChain, ReadsLevelsSpreadOverSeveralChunkFiles) {
+    const auto folder = chain_folder("spread");
+    std::string spread = kChain;
+    spread.replace(spread.find("\"file\": 2, \"offset\": 300"), 9, "\"file\": 1");
+    const eval::LodChain chain = eval::read_lod_chain(write_meta(folder, spread));
+    using Files = std::vector<std::filesystem::path>;
+    EXPECT_EQ(chain.levels[1].files, (Files{folder / "1_0/meta.json", folder / "2_0/meta.json"}));
+    EXPECT_EQ(chain.levels[1].gaussians, 500u);
+    const auto comparisons = eval::chain_comparisons(chain, folder / "0_0/meta.json", nullptr);
+    EXPECT_NE(comparisons[1].description.find("2 chunk files, 500 Gaussians"), std::string::npos)
         << comparisons[1].description;
 }
 
@@ -75,17 +93,18 @@ TEST(SplatEvalChain, BadFilesNameFileAndProblem) {
     expect_error([&] { eval::read_lod_chain(write_meta(folder, bad_index)); },
                  {"lod-meta.json", "tree.children[1].children[0].lods[\"2\"]", "file index 7", "3 entries"});
 
-    std::string split = kChain;
-    split.replace(split.find("\"file\": 2, \"offset\": 300"), 9, "\"file\": 1");
-    expect_error([&] { eval::read_lod_chain(write_meta(folder, split)); },
-                 {"lod-meta.json", "level 1 is split over files \"1_0/meta.json\" and \"2_0/meta.json\""});
+    std::string overlap = kChain;
+    overlap.replace(overlap.find("\"offset\": 300"), 13, "\"offset\": 299");
+    expect_error([&] { eval::read_lod_chain(write_meta(folder, overlap)); },
+                 {"lod-meta.json", "level 1", "tree.children[1].children[0] overlaps tree.children[0]", "meta.json"});
 
     std::string beyond = kChain;
     beyond.replace(beyond.find("\"2\": {\"file\": 1, \"offset\": 60"), 6, "\"5\": {");
     expect_error([&] { eval::read_lod_chain(write_meta(folder, beyond)); },
                  {"lod-meta.json", "level 5", "\"lodLevels\""});
     const char* missing_level = R"({"filenames": ["0_0/meta.json"], "tree": {"children": [
-        {"lods": {"0": {"file": 0}, "1": {"file": 0}}}, {"lods": {"0": {"file": 0}}}]}})";
+        {"lods": {"0": {"file": 0, "offset": 0, "count": 1}, "1": {"file": 0, "offset": 1, "count": 1}}},
+        {"lods": {"0": {"file": 0, "offset": 2, "count": 1}}}]}})";
     expect_error([&] { eval::read_lod_chain(write_meta(folder, missing_level)); },
                  {"lod-meta.json", "level 1 is missing from tree.children[1]"});
 

@@ -11,15 +11,14 @@ namespace {
 
 // Horizontal distance from the chunk's middle (in half-diagonals) and height above the ground
 // under the eye (metres): a walker at the chunk's edge, low flight, and a high overview.
-struct Ring {
-    float distance;
-    float height;
-};
-constexpr Ring kRings[kChunkCameraRings] = {{1.4f, 1.7f}, {3.0f, 25.0f}, {6.0f, 80.0f}};
+constexpr ChunkCameraRing kGroundRings[kChunkCameraRings] = {
+    {1.4f, 1.7f, 0.0f}, {3.0f, 25.0f, 0.0f}, {6.0f, 80.0f, 0.0f}};
+// An aerial capture has no detail at eye height: steep views from above, then oblique ones.
+constexpr ChunkCameraRing kAerialRings[kChunkCameraRings] = {
+    {1.0f, 0.0f, 1.5f}, {2.5f, 0.0f, 2.0f}, {5.0f, 0.0f, 2.5f}};
 
-}  // namespace
-
-std::vector<eval::CameraPose> chunk_camera_poses(const WorldTerrain& terrain, const ChunkSquare& square) {
+std::vector<eval::CameraPose> ring_poses(const GroundHeight& height, const ChunkSquare& square, float scale,
+                                         const ChunkCameraRing (&rings)[kChunkCameraRings]) {
     const glm::vec2 middle = 0.5f * (square.lo + square.hi);
     const glm::vec2 span = square.hi - square.lo;
     const float half_diagonal = 0.5f * std::sqrt(glm::dot(span, span));
@@ -29,9 +28,9 @@ std::vector<eval::CameraPose> chunk_camera_poses(const WorldTerrain& terrain, co
         for (int j = 0; j < 3; ++j) {
             const glm::vec2 p = square.lo + span * glm::vec2(0.25f + 0.25f * static_cast<float>(i),
                                                              0.25f + 0.25f * static_cast<float>(j));
-            ground += terrain.height(p.x, p.y) / 9.0f;
+            ground += height(p.x, p.y) / 9.0f;
         }
-    const glm::vec3 target(middle.x, ground + 1.5f, middle.y);
+    const glm::vec3 target(middle.x, ground + 1.5f * scale, middle.y);
     std::vector<eval::CameraPose> poses;
     for (int r = 0; r < kChunkCameraRings; ++r)
         for (int k = 0; k < kChunkCamerasPerRing; ++k) {
@@ -40,10 +39,12 @@ std::vector<eval::CameraPose> chunk_camera_poses(const WorldTerrain& terrain, co
                                    (static_cast<double>(k) + static_cast<double>(r) / kChunkCameraRings) /
                                    kChunkCamerasPerRing;
             const synth::SinCos sc = synth::sin_cos(azimuth);
-            const glm::vec2 at = middle + glm::vec2(sc.cos, sc.sin) * (kRings[r].distance * half_diagonal);
+            const glm::vec2 at = middle + glm::vec2(sc.cos, sc.sin) * (rings[r].distance * half_diagonal);
             eval::CameraPose pose;
             pose.name = "chunk ring " + std::to_string(r) + " view " + std::to_string(k);
-            pose.eye = glm::vec3(at.x, terrain.height(at.x, at.y) + kRings[r].height, at.y);
+            pose.eye = glm::vec3(
+                at.x, height(at.x, at.y) + rings[r].height * scale + rings[r].height_per_half_diagonal * half_diagonal,
+                at.y);
             const glm::vec3 to_target = target - pose.eye;
             pose.focus_distance = std::sqrt(glm::dot(to_target, to_target));
             pose.forward = to_target / pose.focus_distance;
@@ -53,6 +54,17 @@ std::vector<eval::CameraPose> chunk_camera_poses(const WorldTerrain& terrain, co
             poses.push_back(pose);
         }
     return poses;
+}
+
+}  // namespace
+
+std::vector<eval::CameraPose> chunk_camera_poses(const WorldTerrain& terrain, const ChunkSquare& square) {
+    return ring_poses([&](float x, float z) { return terrain.height(x, z); }, square, 1.0f, kGroundRings);
+}
+
+std::vector<eval::CameraPose> capture_chunk_camera_poses(const GroundHeight& ground, const ChunkSquare& square,
+                                                         float scale, bool aerial) {
+    return ring_poses(ground, square, scale, aerial ? kAerialRings : kGroundRings);
 }
 
 }  // namespace splat_lod::world

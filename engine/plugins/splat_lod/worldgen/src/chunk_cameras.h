@@ -4,6 +4,7 @@
 // the refinement should come from such views (docs/algorithms.md §4: coverage ranges measured from
 // the directions users view from are the ones that hold), not from an object orbit: three rings of views aimed at the
 // chunk's middle, at eye height just outside it, low flight a few chunks away, and high above far away.
+#include <functional>
 #include <vector>
 
 #include "chunk_content.h"
@@ -16,6 +17,21 @@ inline constexpr int kChunkCameraRings = 3;
 inline constexpr int kChunkCamerasPerRing = 8;
 inline constexpr float kChunkCameraFovDeg = 60.0f;
 
+// A ring of views: eyes at `distance` half-diagonals from the chunk's middle, `height` world units
+// (times the scale) plus `height_per_half_diagonal` half-diagonals above the ground under the eye.
+struct ChunkCameraRing {
+    float distance;
+    float height;
+    float height_per_half_diagonal;
+};
+using GroundHeight = std::function<float(float x, float z)>;
+
+// The generated world's rings: a walker at the chunk's edge, low flight, a high overview.
 std::vector<eval::CameraPose> chunk_camera_poses(const WorldTerrain& terrain, const ChunkSquare& square);
+
+// Rings for an imported capture at scale σ (world_import.h): the ground rings above with heights
+// times σ, or for an aerial capture views from above and oblique only.
+std::vector<eval::CameraPose> capture_chunk_camera_poses(const GroundHeight& ground, const ChunkSquare& square,
+                                                         float scale, bool aerial);
 
 }  // namespace splat_lod::world

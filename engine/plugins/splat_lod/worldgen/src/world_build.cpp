@@ -54,29 +54,15 @@ private:
 
 ChunkResult build_chunk(const WorldOptions& o, const ContentContext& context, const fs::path& generation,
                         const ChunkSlot& slot) {
-    ChunkResult result;
-    auto start = Clock::now();
-    const SplatCloud fine = make_chunk_content(context, slot.square, &result.counts);
-    result.stages.push_back({"content", seconds_since(start)});
-
-    const auto poses = chunk_camera_poses(*context.terrain, slot.square);
-    const auto cameras = bake::bake_cameras(poses, o.bake_width, o.bake_height);
-    bake::BakeOptions bake_options = o.bake;
-    bake_options.threads = 1;  // the chunks are the parallelism
-    bake_options.progress = nullptr;
-    bake::BakeSummary summary;
-    const SplatCloud baked = bake::bake_lod(fine, cameras, bake_options, &summary);
-    for (const auto& stage : summary.stages) result.stages.push_back({"bake: " + stage.stage, stage.seconds});
-    result.levels = summary.levels;
-
-    start = Clock::now();
-    const StreamLevelRule rule = stream_level_rule(o);
-    const SplatCloud ordered = baked.permuted(stream_order(baked, rule));
-    for (const std::uint8_t level : ordered.lod_level) ++result.bake_level_counts[static_cast<std::size_t>(level - 1)];
-    const fs::path file = chunk_file(generation, slot.cell);
-    write_inria_ply(o.output / file, ordered);
-    result.entry = describe_chunk(ordered, o.output, file, slot.cell, rule);
-    result.stages.push_back({"write", seconds_since(start)});
+    ContentCounts counts;
+    const auto start = Clock::now();
+    const SplatCloud fine = make_chunk_content(context, slot.square, &counts);
+    const double content_seconds = seconds_since(start);
+    const ChunkBake bake{o.bake, o.bake_width, o.bake_height, stream_level_rule(o)};
+    ChunkResult result = bake_chunk(bake, fine, chunk_camera_poses(*context.terrain, slot.square), o.output,
+                                    chunk_file(generation, slot.cell), slot.cell);
+    result.counts = counts;
+    result.stages.insert(result.stages.begin(), StageSeconds{"content", content_seconds});
     return result;
 }
 
@@ -112,6 +98,27 @@ void average_psnr(const std::vector<ChunkResult>& chunks, WorldSummary& s) {
 }
 
 }  // namespace
+
+ChunkResult bake_chunk(const ChunkBake& how, const SplatCloud& fine, const std::vector<eval::CameraPose>& poses,
+                       const fs::path& output, const fs::path& file, const glm::ivec2& cell) {
+    ChunkResult result;
+    const auto cameras = bake::bake_cameras(poses, how.width, how.height);
+    bake::BakeOptions bake_options = how.options;
+    bake_options.threads = 1;  // the chunks are the parallelism
+    bake_options.progress = nullptr;
+    bake::BakeSummary summary;
+    const SplatCloud baked = bake::bake_lod(fine, cameras, bake_options, &summary);
+    for (const auto& stage : summary.stages) result.stages.push_back({"bake: " + stage.stage, stage.seconds});
+    result.levels = summary.levels;
+
+    const auto start = Clock::now();
+    const SplatCloud ordered = baked.permuted(stream_order(baked, how.rule));
+    for (const std::uint8_t level : ordered.lod_level) ++result.bake_level_counts[static_cast<std::size_t>(level - 1)];
+    write_inria_ply(output / file, ordered);
+    result.entry = describe_chunk(ordered, output, file, cell, how.rule);
+    result.stages.push_back({"write", seconds_since(start)});
+    return result;
+}
 
 double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();

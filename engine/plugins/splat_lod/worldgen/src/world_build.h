@@ -12,6 +12,7 @@
 
 #include "chunk_content.h"
 #include "splat_lod/bake/bake.h"
+#include "splat_lod/core/camera_set.h"
 #include "splat_lod/core/world_manifest.h"
 #include "splat_lod/worldgen/world_generator.h"
 #include "world_layout.h"
@@ -44,6 +45,18 @@ struct ChunkResult {
     std::vector<bake::LevelSummary> levels;                  // the bake's per-level report
     std::array<std::uint64_t, kLevels> bake_level_counts{};  // Gaussians per bake level, [l − 1]
 };
+
+// How a chunk is baked: the recipe, the camera image size, the stream-level rule of its file.
+struct ChunkBake {
+    bake::BakeOptions options;
+    int width = 512, height = 384;
+    StreamLevelRule rule;
+};
+
+// Bakes `fine` (single-threaded) with cameras at `poses`, orders it by stream level, writes it to
+// output / file and describes it (entry, per-level counts, stage times from the bake on).
+ChunkResult bake_chunk(const ChunkBake& how, const SplatCloud& fine, const std::vector<eval::CameraPose>& poses,
+                       const std::filesystem::path& output, const std::filesystem::path& file, const glm::ivec2& cell);
 
 ContentContext content_context(const WorldOptions& options, const WorldTerrain& terrain, const WorldLayout& layout);
 

@@ -5,7 +5,9 @@
 #include <fstream>
 
 #include "io_util.h"
+#include "splat_lod/core/capture_source.h"
 #include "splat_lod/core/splat_io.h"
+#include "splat_lod/core/streamed_sog.h"
 
 namespace splat_lod {
 namespace {
@@ -37,6 +39,10 @@ bool starts_with(const std::vector<std::uint8_t>& bytes, std::initializer_list<s
 
 SplatFileFormat detect_splat_format(const fs::path& path) {
     std::error_code ec;
+    int level = -1;
+    const fs::path file = capture_file_and_level(path, &level);
+    if (level >= 0 || io::is_streamed_sog(file)) return SplatFileFormat::streamed_sog;
+    if (is_multi_part_capture(path)) return SplatFileFormat::tiles;
     if (fs::is_directory(path, ec)) return SplatFileFormat::sog;
     if (!fs::exists(path, ec)) io::fail_file(path.string(), "no such file or folder");
     const auto head = file_prefix(path, 8);
@@ -66,6 +72,9 @@ SplatCloud load_splat_file(const fs::path& path, LoadReport* report) {
             return read_sog(path, report);
         case SplatFileFormat::gltf:
             return read_gltf_splats(path, report);
+        case SplatFileFormat::streamed_sog:
+        case SplatFileFormat::tiles:
+            return read_capture(path, report);
     }
     io::fail_file(path.string(), "unrecognised splat file");
 }

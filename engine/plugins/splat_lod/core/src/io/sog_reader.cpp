@@ -36,9 +36,8 @@ fs::path meta_path_of(const fs::path& path) {
     if (fs::exists(path / "meta.json", ec)) return path / "meta.json";
     if (fs::exists(path / "lod-meta.json", ec))
         io::fail_file(path.string(),
-                      "holds lod-meta.json (a LOD chain), not meta.json: read one level's "
-                      "folder, e.g. " +
-                          (path / "0_0").string());
+                      "holds lod-meta.json (a streamed SOG), not meta.json: read it with load_splat_file or "
+                      "read_capture");
     io::fail_file(path.string(), "folder has no meta.json");
 }
 
@@ -148,11 +147,12 @@ void read_sh_n(const io::SogMeta& meta, const fs::path& folder, SplatCloud& clou
 
 }  // namespace
 
-SplatCloud read_sog(const std::filesystem::path& path, LoadReport* report) {
+namespace io {
+
+SplatCloud decode_sog(const std::filesystem::path& path, LoadReport& local) {
     const fs::path meta_file = meta_path_of(path);
     const fs::path folder = meta_file.parent_path();
     const io::SogMeta meta = io::parse_sog_meta(engine::read_text_file(meta_file), meta_file.string());
-    LoadReport local;
     local.format = "PlayCanvas SOG v" + std::to_string(meta.version);
     local.gaussians_in_file = static_cast<std::size_t>(meta.count);
     // Every texture must hold `count` texels before the cloud is allocated, so the count in
@@ -169,7 +169,15 @@ SplatCloud read_sog(const std::filesystem::path& path, LoadReport* report) {
         local.warnings.push_back(std::to_string(bad) + " quaternion texels have an invalid tag byte");
     decode_scales_and_colour(meta, scales, sh0, cloud);
     if (meta.sh_n) read_sh_n(meta, folder, cloud, local);
-    io::finish_load(cloud, local, report, meta_file.string());
+    return cloud;
+}
+
+}  // namespace io
+
+SplatCloud read_sog(const std::filesystem::path& path, LoadReport* report) {
+    LoadReport local;
+    SplatCloud cloud = io::decode_sog(path, local);
+    io::finish_load(cloud, local, report, meta_path_of(path).string());
     return cloud;
 }
 

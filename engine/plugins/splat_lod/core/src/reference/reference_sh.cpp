@@ -16,7 +16,8 @@ constexpr std::array<double, 5> kC2 = {1.0925484305920792, -1.0925484305920792, 
 constexpr std::array<double, 7> kC3 = {-0.5900435899266435, 2.890611442640554, -0.4570457994644658, 0.3731763325901154,
                                        -0.4570457994644658, 1.445305721320277, -0.5900435899266435};
 
-// The basis values Y_k(d) for k = 1..15 in 3DGS order (entry 0 unused), d a unit vector.
+}  // namespace
+
 std::array<double, 16> sh_basis(const glm::dvec3& d, int degree) {
     std::array<double, 16> basis{};
     const double x = d.x, y = d.y, z = d.z;
@@ -44,8 +45,6 @@ std::array<double, 16> sh_basis(const glm::dvec3& d, int degree) {
     }
     return basis;
 }
-
-}  // namespace
 
 glm::dvec3 sh_colour(const SplatCloud& cloud, std::size_t index, int degree, const glm::dvec3& direction) {
     return glm::max(sh_colour_unclamped(cloud, index, degree, direction), glm::dvec3(0.0));

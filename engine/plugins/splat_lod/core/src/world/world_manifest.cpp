@@ -30,6 +30,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
+#include "world_manifest_extras.h"
 
 namespace splat_lod::world {
 namespace {
@@ -263,9 +264,10 @@ WorldManifest ManifestReader::manifest(const json& document) const {
                              std::to_string(kManifestVersion) + ", got " + std::to_string(version) +
                              " (written by another version of the generator: generate the world again)");
     if (version >= 4)
-        only_keys(document, "",
-                  {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density", "generator",
-                   "stream_levels", "chunks", "props", "terrain_mesh", "groups", "group_generator"});
+        only_keys(
+            document, "",
+            {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density", "generator", "stream_levels",
+             "chunks", "props", "terrain_mesh", "groups", "group_generator", "ground", "capture"});
     else
         only_keys(document, "",
                   {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density", "generator",
@@ -301,6 +303,8 @@ WorldManifest ManifestReader::manifest(const json& document) const {
         error("gaussians", std::to_string(m.gaussians) + " but the chunks hold " + std::to_string(total));
     if (document.contains("groups")) groups(document["groups"], m);
     if (document.contains("group_generator")) m.group_generator = text(document["group_generator"], "group_generator");
+    if (document.contains("ground")) m.ground = parse_ground_grid(document["ground"], file_);
+    if (document.contains("capture")) m.capture = parse_capture_origin(document["capture"], file_);
     if (document.contains("props")) {
         const json& props = document["props"];
         if (!props.is_array()) error("props", "expected an array");
@@ -365,23 +369,26 @@ json manifest_json(const WorldManifest& m) {
                          {"translation", vec3_json(p.translation)},
                          {"rotation_euler_deg", vec3_json(p.rotation_euler_deg)},
                          {"scale", vec3_json(p.scale)}});
-    return {{"version", m.version},
-            {"seed", m.seed},
-            {"size_m", m.size_m},
-            {"chunk_size_m", m.chunk_size_m},
-            {"up", vec3_json(m.up)},
-            {"gaussians", m.gaussians},
-            {"density", m.density},
-            {"generator", m.generator},
-            {"stream_levels",
-             {{"size_threshold_px", m.stream_levels.size_threshold_px},
-              {"rel_min", m.stream_levels.rel_min},
-              {"reach_min", m.stream_levels.reach_min}}},
-            {"chunks", chunks},
-            {"props", props},
-            {"terrain_mesh", m.terrain_mesh.generic_string()},
-            {"groups", groups},
-            {"group_generator", m.group_generator}};
+    json out = {{"version", m.version},
+                {"seed", m.seed},
+                {"size_m", m.size_m},
+                {"chunk_size_m", m.chunk_size_m},
+                {"up", vec3_json(m.up)},
+                {"gaussians", m.gaussians},
+                {"density", m.density},
+                {"generator", m.generator},
+                {"stream_levels",
+                 {{"size_threshold_px", m.stream_levels.size_threshold_px},
+                  {"rel_min", m.stream_levels.rel_min},
+                  {"reach_min", m.stream_levels.reach_min}}},
+                {"chunks", chunks},
+                {"props", props},
+                {"terrain_mesh", m.terrain_mesh.generic_string()},
+                {"groups", groups},
+                {"group_generator", m.group_generator}};
+    if (!m.ground.empty()) out["ground"] = ground_grid_json(m.ground);
+    if (!m.capture.empty()) out["capture"] = capture_origin_json(m.capture);
+    return out;
 }
 
 // The stream levels' record ranges in file order (stream level 4 first): [starts[k], starts[k + 1]).

@@ -5,6 +5,7 @@
 // α ≥ 1/255 extent, and front-to-back blending with the 1e−4 transmittance stop. The camera and
 // pixel conventions are those of engine/render/camera.h. Bad input (NaN/Inf, zero quaternions,
 // degenerate covariances) is dropped and counted, never drawn, and never crashes.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -128,6 +129,9 @@ ProjectedGaussian project_gaussian(const SplatCloud& cloud, std::size_t index, c
                                    const ReferenceCamera& camera, const ReferenceSettings& settings,
                                    int sh_degree_cap = kMaxShDegree);
 
+// The real SH basis values Y_k(d) for k = 1..15 in 3DGS order up to `degree` (entry 0 unused, higher
+// entries zero), d a unit vector.
+std::array<double, 16> sh_basis(const glm::dvec3& d, int degree);
 // SH colour of Gaussian `index` seen along `direction` (in the cloud's frame, any length > 0):
 // real SH of degree `degree` with 3DGS's constants, + 0.5, clamped at 0.
 glm::dvec3 sh_colour(const SplatCloud& cloud, std::size_t index, int degree, const glm::dvec3& direction);

@@ -102,6 +102,11 @@ struct SplatCloud {
     SplatCloud permuted(const std::vector<std::uint32_t>& order) const;
 };
 
+// Appends `part` to `into` (a capture read in pieces): the result has the higher of the two SH degrees
+// (missing coefficients zero), and keeps only the extra properties both have (by name). An empty
+// `into` without extras simply becomes `part`.
+void append_cloud(SplatCloud& into, SplatCloud&& part);
+
 // Drops every Gaussian with a NaN or Inf in any attribute or a zero quaternion, normalises the
 // remaining quaternions, and records the counts in report (if given). Returns the number dropped.
 std::size_t sanitise(SplatCloud& cloud, LoadReport* report);

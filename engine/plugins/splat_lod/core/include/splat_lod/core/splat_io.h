@@ -20,10 +20,13 @@ enum class SplatFileFormat {
     spz,               // Niantic SPZ v2/v3 (gzip) or v4 (zstd streams)
     sog,               // PlayCanvas SOG: a folder (or its meta.json) with webp textures
     gltf,              // glTF 2.0 (.gltf, .glb) with KHR_gaussian_splatting primitives
+    streamed_sog,      // PlayCanvas streamed SOG: lod-meta.json (or its folder), "#L" for level L
+    tiles,             // several splat files read as one capture: a folder of them or a .txt list
 };
 
-// Decides by content first (PLY magic, gzip, NGSP, glTF magic, folder/meta.json), then by extension
-// (.splat, .gltf, .glb).
+// Decides by content first (PLY magic, gzip, NGSP, glTF magic, folder/meta.json or lod-meta.json, a
+// folder of tiles), then by extension (.splat, .gltf, .glb, .txt). Streamed SOGs and tiles are read
+// through capture_source.h.
 SplatFileFormat detect_splat_format(const std::filesystem::path& path);
 
 // Reads any supported format; the report (if given) says which one.

@@ -86,6 +86,27 @@ struct Prop {
     glm::vec3 scale{1.0f};
 };
 
+// The ground under an imported capture (world_import.h): a height per cell of a `cells` × `cells`
+// grid over the world's square (rows of increasing z, each of increasing x), where a game walks and
+// measures its height above the ground. Generated worlds compute theirs from the terrain and have none.
+struct GroundGrid {
+    int cells = 0;
+    std::vector<float> heights;
+    bool empty() const { return cells == 0; }
+    // The height of the cell holding (x, z), clamped to the grid, for a world of `size_m`.
+    float height(float x, float z, float size_m) const;
+};
+
+// Where an imported world came from: the capture as named, and the rigid map from the capture's frame
+// to the world's (p_world = rotation · p_capture + translation), so that users can place meshes
+// authored against the capture.
+struct CaptureOrigin {
+    std::string source;
+    std::array<double, 9> rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  // row-major
+    std::array<double, 3> translation{};
+    bool empty() const { return source.empty(); }
+};
+
 struct WorldManifest {
     int version = kManifestVersion;
     std::uint64_t seed = 1;
@@ -105,6 +126,8 @@ struct WorldManifest {
     std::string group_generator;
     std::vector<Prop> props;
     std::filesystem::path terrain_mesh;  // optional glTF ground under the splats (may be empty)
+    GroundGrid ground;                   // imported worlds only (may be empty)
+    CaptureOrigin capture;               // imported worlds only (may be empty)
 };
 
 // A block of records covered by one checksum: records [begin, end), record_crc32[index].

@@ -1,11 +1,8 @@
 #pragma once
-// An existing LOD chain to compare with at matched Gaussian counts: PlayCanvas's `lod-meta.json`
-// (splat-transform's LOD output), read as one whole-scene file per level:
-//   {"lodLevels": 7, "filenames": ["0_0/meta.json", "2_0/meta.json", ...],
-//    "tree": {"children": [{"lods": {"0": {"file": 0, "offset": 0, "count": 248155}, ...}}, ...]}}
-// Every leaf of the tree (a node with "lods") names, per level, the index into "filenames" of the
-// file holding that part of the level. A level is usable here only when all leaves point to the
-// same file, which then holds the whole scene at that level. Errors name the file and the problem.
+// An existing LOD chain to compare with at matched Gaussian counts: PlayCanvas's streamed SOG
+// `lod-meta.json` (splat-transform's LOD output, splat_lod/core/streamed_sog.h), each level read as the
+// whole scene at that level, whether one file holds it or its ranges are spread over many chunk files.
+// Errors name the file and the problem.
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -18,9 +15,10 @@
 namespace splat_lod::eval {
 
 struct LodChainLevel {
-    int level = 0;                // 0 is the finest
-    std::filesystem::path file;   // resolved against the folder of lod-meta.json
-    std::uint64_t gaussians = 0;  // the tree's counts for the level, summed over its leaves
+    int level = 0;                             // 0 is the finest
+    std::string source;                        // "…/lod-meta.json#L": what load_splat_file reads for it
+    std::vector<std::filesystem::path> files;  // the chunk files holding the level
+    std::uint64_t gaussians = 0;               // the tree's counts for the level, summed over its leaves
 };
 
 struct LodChain {
@@ -29,8 +27,8 @@ struct LodChain {
 };
 
 // Throws engine::Error naming `path` when it is missing, not JSON, lacks "filenames" or "tree",
-// points a level to a file index "filenames" does not have, splits a level over several files,
-// leaves a level out of some part of the tree, or names a level file that does not exist.
+// points a level to a file index "filenames" does not have, leaves a level out of some part of the
+// tree, or names a chunk file that does not exist.
 LodChain read_lod_chain(const std::filesystem::path& path);
 
 // "chain_L3": the method name a chain level's measurements carry.

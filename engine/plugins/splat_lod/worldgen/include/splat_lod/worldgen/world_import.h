@@ -1,0 +1,103 @@
+#pragma once
+// A user's capture turned into a streamed world: the same folder layout, manifest, chunk groups,
+// checksums and commit as a generated world (world_generator.h), so the streamer and the game read it
+// unchanged. Steps:
+//   1. Survey (one read of the capture, part by part; capture_source.h): a strided sample of the
+//      Gaussians gives the frame. Up: --up, or found from the data (the mean normal of flat, opaque
+//      Gaussians, the thinnest axis of the positions when there are too few; its sign towards the
+//      longer tail of heights, where trees, buildings and sky stand; within 5° of a coordinate axis it
+//      snaps to that axis). The footprint: the 1st–99th percentile box of the centres in the
+//      horizontal plane. The chunk size: the largest power-of-two fraction of the footprint at which
+//      no chunk of the sample holds more than max_chunk_gaussians.
+//   2. Binning (a second read): every Gaussian is turned into the world frame (Y up, the footprint's
+//      centre snapped to the chunk grid at the origin; SH rotated with it) and appended by its centre
+//      to its chunk's bin file on disk; buffers are flushed when they hold a quarter of the memory cap,
+//      so memory does not grow with the capture.
+//   3. Each bin is baked (the world's chunk recipe, cameras at the distances the chunk is seen from,
+//      scaled with the chunk size), ordered by stream level and written; then the chunk groups, then
+//      the manifest (the commit). Chunks are baked in parallel within the memory cap.
+// Hard cases of real captures, each counted in the summary:
+//   - NaN/Inf values or a zero quaternion: dropped by the readers;
+//   - never visible (opacity ≤ 1/255) or degenerate (largest extent below 1e−7 of the footprint):
+//     dropped;
+//   - huge Gaussians (extent above half a chunk: sky, background) and centres outside the world box
+//     (the footprint square, heights within the 1st–99th percentile widened by the footprint's size):
+//     the far layer, one splat glTF drawn as a prop wherever the world is, so no chunk's bounds grow
+//     by them; above far_layer_max the largest (by extent × opacity) are kept, the rest dropped;
+//   - a capture with nothing left, or whose kept centres have no horizontal extent (all at one point,
+//     one Gaussian), is an error naming the capture.
+// A failed import leaves the folder's previous world untouched (the generation folder and the commit
+// of world_generator.h). The unit of a capture is unknown: the import works at a scale σ = chunk size
+// / 64 (the generated world's 64 m chunks), applied to the bake cameras' heights, the groups' cells
+// and the stream levels' reaches, so a capture in any unit streams like the generated world scaled.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "splat_lod/bake/bake.h"
+#include "splat_lod/worldgen/world_generator.h"
+
+namespace splat_lod::world {
+
+enum class CaptureViews {
+    automatic,  // aerial when the capture is flat (height span below 3 % of the footprint), else ground
+    ground,     // the generated world's chunk cameras: eye height, low flight, overview
+    aerial,     // from above and oblique only
+};
+
+struct ImportOptions {
+    std::filesystem::path capture;  // any capture (capture_source.h): a file, a streamed SOG, tiles
+    std::filesystem::path output;   // the world's folder
+    std::optional<glm::vec3> up;    // none: found from the data
+    CaptureViews views = CaptureViews::automatic;
+    std::uint64_t memory_bytes = std::uint64_t{3} << 30;  // resident memory the import aims to stay within
+    std::uint64_t max_chunk_gaussians = 65536;            // the chunk size is chosen so no chunk holds more
+    std::uint64_t far_layer_max = 262144;
+    int threads = 0;  // chunks baked at once (0: all cores), lowered to fit the memory cap
+    bake::BakeOptions bake = default_world_bake_options();
+    int bake_width = 512, bake_height = 384;
+    bool groups = true;
+    // Tuning of the out-of-core path (0: from memory_bytes): the largest part of a cut PLY read at once,
+    // and how many bytes of binned Gaussians are buffered before they are appended to the bin files.
+    std::uint64_t part_records = 0, bin_flush_bytes = 0;
+    std::function<void(const WorldProgress&)> progress;
+};
+
+// What the survey found and what was done with every Gaussian.
+struct ImportSummary {
+    std::string capture_description;  // "streamed SOG level 0: 8 chunk files"
+    glm::dvec3 up{0.0, 1.0, 0.0};     // in the capture's frame
+    std::string up_source;            // "given", "flat Gaussians", "thinnest axis"
+    glm::dmat3 rotation{1.0};         // capture → world
+    glm::dvec3 translation{0.0};
+    bool aerial = false;
+    float chunk_size = 0.0f, size = 0.0f, scale = 1.0f;  // scale σ = chunk size / 64
+    std::uint64_t read = 0;                              // Gaussians the readers returned
+    std::uint64_t dropped_by_reader = 0;                 // NaN/Inf, zero quaternions
+    std::uint64_t invisible = 0, degenerate = 0;         // dropped here
+    std::uint64_t far_huge = 0, far_outside = 0;         // sent to the far layer
+    std::uint64_t far_dropped = 0;                       // beyond far_layer_max
+    std::uint64_t far_layer = 0;                         // in the far layer's file
+    std::uint64_t binned = 0;                            // in chunks
+    std::uint64_t bin_flushes = 0;                       // times the bins' buffers were written out
+    std::uint64_t peak_rss_bytes = 0;                    // the process's high-water mark at the end
+    WorldSummary world;
+};
+
+struct ImportResult {
+    WorldManifest manifest;
+    ImportSummary summary;
+};
+
+// Imports options.capture into options.output (see the top of this file). Throws engine::Error
+// naming the capture, chunk or file on any failure, after removing its own files.
+ImportResult import_world(const ImportOptions& options);
+
+// The summary's lines: frame, rejections, chunks, stage times.
+std::string format_import_summary(const ImportSummary& summary);
+
+}  // namespace splat_lod::world

@@ -1,0 +1,202 @@
+// The survey of a capture and the world frame chosen from it (capture_survey.h, world_import.h).
+#include "capture_survey.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "engine/core/error.h"
+#include "splat_lod/core/cloud_transform.h"
+#include "splat_lod/core/gaussian_extent.h"
+#include "splat_lod/core/splat_math.h"
+
+namespace splat_lod::world {
+namespace {
+
+constexpr double kSnapDegrees = 5.0;
+constexpr double kFlatRatio = 0.25;    // smallest scale below this fraction of the middle one
+constexpr double kFlatOpacity = 0.5;   // and at least this opaque: a surface element
+constexpr std::uint64_t kMinFlat = 100;
+constexpr double kAerialFlatness = 0.06;  // height span / footprint below it: an aerial capture
+
+void add_flat_normal(const SplatCloud& cloud, std::size_t i, CaptureSample& sample) {
+    glm::vec3 s = cloud.log_scales[i];
+    int smallest = 0;
+    for (int k = 1; k < 3; ++k)
+        if (s[k] < s[smallest]) smallest = k;
+    const float middle = std::min(s[(smallest + 1) % 3], s[(smallest + 2) % 3]);
+    if (!(std::exp(static_cast<double>(s[smallest]) - static_cast<double>(middle)) < kFlatRatio)) return;
+    if (!(opacity_from_logit(cloud.opacity_logits[i]) >= kFlatOpacity)) return;
+    const glm::dvec3 n = math::rotation_of(cloud.rotations[i])[smallest];
+    sample.normal_moments += glm::outerProduct(n, n);
+    ++sample.flat;
+}
+
+void thin_sample(CaptureSample& sample) {
+    std::vector<glm::vec3> kept;
+    kept.reserve(sample.positions.size() / 2 + 1);
+    for (std::size_t i = 0; i < sample.positions.size(); i += 2) kept.push_back(sample.positions[i]);
+    sample.positions = std::move(kept);
+    sample.stride *= 2;
+}
+
+double percentile(std::vector<double> values, double q) {
+    if (values.empty()) return 0.0;
+    const auto k = static_cast<std::size_t>(std::clamp(q, 0.0, 1.0) * static_cast<double>(values.size() - 1));
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+    return values[k];
+}
+
+std::vector<double> along(const std::vector<glm::vec3>& points, const glm::dvec3& axis) {
+    std::vector<double> out;
+    out.reserve(points.size());
+    for (const glm::vec3& p : points) out.push_back(glm::dot(glm::dvec3(p), axis));
+    return out;
+}
+
+// The up axis before its sign: the dominant normal of flat Gaussians, else the positions' thinnest axis.
+glm::dvec3 up_axis(const CaptureSample& sample, std::string& source) {
+    glm::dvec3 values;
+    glm::dmat3 vectors;
+    if (sample.flat >= kMinFlat) {
+        math::symmetric_eigen(sample.normal_moments, values, vectors);
+        int best = 0;
+        for (int k = 1; k < 3; ++k)
+            if (values[k] > values[best]) best = k;
+        source = "flat Gaussians (" + std::to_string(sample.flat) + ")";
+        return vectors[best];
+    }
+    glm::dvec3 mean(0.0);
+    for (const glm::vec3& p : sample.positions) mean += glm::dvec3(p);
+    mean /= static_cast<double>(sample.positions.size());
+    glm::dmat3 covariance(0.0);
+    for (const glm::vec3& p : sample.positions) covariance += glm::outerProduct(glm::dvec3(p) - mean, glm::dvec3(p) - mean);
+    math::symmetric_eigen(covariance, values, vectors);
+    int thinnest = 0;
+    for (int k = 1; k < 3; ++k)
+        if (values[k] < values[thinnest]) thinnest = k;
+    source = "thinnest axis of the centres";
+    return vectors[thinnest];
+}
+
+// Towards the longer tail of heights (what stands on the ground), snapped to a nearby coordinate axis.
+glm::dvec3 orient_up(glm::dvec3 up, const CaptureSample& sample) {
+    up = glm::normalize(up);
+    const std::vector<double> heights = along(sample.positions, up);
+    const double low = percentile(heights, 0.01), mid = percentile(heights, 0.5), high = percentile(heights, 0.99);
+    if (high - mid < mid - low) up = -up;
+    for (int k = 0; k < 3; ++k) {
+        glm::dvec3 axis(0.0);
+        axis[k] = up[k] < 0.0 ? -1.0 : 1.0;
+        if (glm::dot(up, axis) >= std::cos(kSnapDegrees * 3.14159265358979 / 180.0)) return axis;
+    }
+    return up;
+}
+
+struct Box2 {
+    double x_lo, x_hi, z_lo, z_hi;
+};
+
+// The largest power-of-two chunk (relative to the footprint's power of two) at which no cell of the
+// sample holds more than the cap; the translation snapped to that chunk.
+void choose_chunks(const std::vector<glm::vec3>& world, const Box2& box, std::uint64_t stride, std::uint64_t cap,
+                   CaptureFrame& frame) {
+    const double footprint = std::max(box.x_hi - box.x_lo, box.z_hi - box.z_lo);
+    const double top = std::exp2(std::ceil(std::log2(footprint)));
+    const glm::dvec2 centre(0.5 * (box.x_lo + box.x_hi), 0.5 * (box.z_lo + box.z_hi));
+    for (int k = 0; k <= 16; ++k) {
+        const double c = top / std::exp2(k);
+        const glm::dvec2 shift = -glm::round(centre / c) * c;
+        std::map<std::pair<long long, long long>, std::uint64_t> counts;
+        std::uint64_t most = 0;
+        for (const glm::vec3& p : world) {
+            if (p.x < box.x_lo || p.x > box.x_hi || p.z < box.z_lo || p.z > box.z_hi) continue;
+            const auto key = std::make_pair(static_cast<long long>(std::floor((p.x + shift.x) / c)),
+                                            static_cast<long long>(std::floor((p.z + shift.y) / c)));
+            most = std::max(most, counts[key] += stride);
+        }
+        if (most > cap && k < 16) continue;
+        const double reach = std::max({std::fabs(box.x_lo + shift.x), std::fabs(box.x_hi + shift.x),
+                                       std::fabs(box.z_lo + shift.y), std::fabs(box.z_hi + shift.y)});
+        frame.chunk_size = static_cast<float>(c);
+        frame.chunks_per_side = std::max(2, 2 * static_cast<int>(std::ceil(reach / c)));
+        frame.translation.x += shift.x;
+        frame.translation.z += shift.y;
+        return;
+    }
+}
+
+}  // namespace
+
+CaptureSample survey_capture(const Capture& capture, std::uint64_t sample_max,
+                             const std::function<void(std::uint64_t)>& progress) {
+    CaptureSample sample;
+    std::uint64_t index = 0;
+    std::vector<double> extents;
+    for (std::size_t p = 0; p < capture.parts.size(); ++p) {
+        LoadReport report;
+        const SplatCloud part = read_capture_part(capture.parts[p], &report);
+        sample.read += part.size();
+        sample.dropped_by_reader += report.dropped();
+        sample.sh_degree = std::max(sample.sh_degree, part.sh_degree);
+        for (std::size_t i = 0; i < part.size(); ++i) {
+            const double extent = gaussian_extent(part.log_scales[i], part.opacity_logits[i]);
+            if (!(extent > 0.0)) {
+                ++sample.invisible;
+                continue;
+            }
+            add_flat_normal(part, i, sample);
+            if (index++ % sample.stride != 0) continue;
+            sample.positions.push_back(part.positions[i]);
+            if (extents.size() < sample_max) extents.push_back(extent);
+            if (sample.positions.size() >= 2 * sample_max) thin_sample(sample);
+        }
+        if (progress) progress(p + 1);
+    }
+    sample.median_extent = percentile(extents, 0.5);
+    return sample;
+}
+
+bool CaptureFrame::cell_of(const glm::vec3& p, glm::ivec2& cell) const {
+    const float half = 0.5f * size();
+    if (!(p.x >= -half && p.x < half && p.z >= -half && p.z < half && p.y >= height_lo && p.y <= height_hi))
+        return false;
+    cell = glm::ivec2(static_cast<int>(std::floor(p.x / chunk_size)), static_cast<int>(std::floor(p.z / chunk_size)));
+    cell = glm::clamp(cell, glm::ivec2(-chunks_per_side / 2), glm::ivec2(chunks_per_side / 2 - 1));
+    return true;
+}
+
+CaptureFrame choose_frame(const CaptureSample& sample, const ImportOptions& o, const std::string& name) {
+    if (sample.positions.empty())
+        engine::fail(name + ": no visible Gaussian is left (" + std::to_string(sample.read) + " read, " +
+                     std::to_string(sample.invisible) + " never visible)");
+    CaptureFrame frame;
+    if (o.up) {
+        frame.up = glm::normalize(glm::dvec3(*o.up));
+        frame.up_source = "given";
+    } else {
+        frame.up = orient_up(up_axis(sample, frame.up_source), sample);
+    }
+    frame.rotation = rotation_between(frame.up, glm::dvec3(0.0, 1.0, 0.0));
+    std::vector<glm::vec3> world;
+    world.reserve(sample.positions.size());
+    for (const glm::vec3& p : sample.positions) world.push_back(glm::vec3(frame.rotation * glm::dvec3(p)));
+    const auto xs = along(world, {1, 0, 0}), ys = along(world, {0, 1, 0}), zs = along(world, {0, 0, 1});
+    const Box2 box{percentile(xs, 0.01), percentile(xs, 0.99), percentile(zs, 0.01), percentile(zs, 0.99)};
+    const double footprint = std::max(box.x_hi - box.x_lo, box.z_hi - box.z_lo);
+    if (!(footprint > 0.0) || !std::isfinite(footprint))
+        engine::fail(name + ": the Gaussians' centres have no horizontal extent (all at one point or on one line "
+                            "across the up axis): nothing to cut into chunks");
+    frame.footprint = static_cast<float>(footprint);
+    const double y_lo = percentile(ys, 0.01), y_hi = percentile(ys, 0.99);
+    frame.height_lo = static_cast<float>(y_lo - footprint);
+    frame.height_hi = static_cast<float>(y_hi + footprint);
+    frame.degenerate_extent = static_cast<float>(1e-7 * footprint);
+    frame.aerial = o.views == CaptureViews::aerial ||
+                   (o.views == CaptureViews::automatic && y_hi - y_lo < kAerialFlatness * footprint);
+    choose_chunks(world, box, sample.stride, o.max_chunk_gaussians, frame);
+    return frame;
+}
+
+}  // namespace splat_lod::world

@@ -1,0 +1,302 @@
+// import_world(): survey, binning, chunk bakes, far layer, groups, commit (world_import.h).
+#include "splat_lod/worldgen/world_import.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <mutex>
+#include <sstream>
+#include <system_error>
+
+#include "capture_bins.h"
+#include "capture_survey.h"
+#include "chunk_cameras.h"
+#include "engine/core/error.h"
+#include "engine/core/process_memory.h"
+#include "splat_lod/core/cloud_transform.h"
+#include "splat_lod/core/gaussian_extent.h"
+#include "splat_lod/core/parallel_for.h"
+#include "splat_lod/core/splat_io.h"
+#include "splat_lod/worldgen/world_lock.h"
+#include "world_build.h"
+#include "world_folder.h"
+
+namespace splat_lod::world {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::uint64_t kSampleMax = std::uint64_t{1} << 20;
+// Resident bytes a single-threaded chunk bake holds per Gaussian of its chunk, and per bake (camera
+// images, refinement buffers): measured peaks, rounded up (docs/world_lod.md, "Importing a capture").
+constexpr std::uint64_t kBakeBytesPerGaussian = 3072;
+constexpr std::uint64_t kBakeFixedBytes = std::uint64_t{96} << 20;
+constexpr std::uint64_t kBaseBytes = std::uint64_t{192} << 20;  // the program, the survey sample
+constexpr const char* kFarLayerMesh = "meshes/far_layer.glb";
+
+void check(const ImportOptions& o) {
+    if (o.capture.empty()) engine::fail("world import: no capture given");
+    if (o.output.empty()) engine::fail("world import: no output folder given");
+    if (o.memory_bytes < (std::uint64_t{256} << 20))
+        engine::fail("world import: --memory " + std::to_string(o.memory_bytes >> 20) + " MiB is below the 256 MiB needed");
+    if (o.max_chunk_gaussians < 1024) engine::fail("world import: at least 1024 Gaussians per chunk");
+    if (o.bake_width % 64 != 0 || o.bake_height % 64 != 0 || o.bake_width <= 0 || o.bake_height <= 0)
+        engine::fail("world import: bake camera sizes must be positive multiples of 64");
+    if (o.up && !(glm::length(*o.up) > 0.0f && std::isfinite(glm::length(*o.up))))
+        engine::fail("world import: --up must be a non-zero finite vector");
+}
+
+void report(const ImportOptions& o, const std::string& stage, std::size_t done, std::size_t total, Clock::time_point start,
+            std::uint64_t gaussians = 0) {
+    if (o.progress) o.progress({stage, done, total, gaussians, seconds_since(start), -1.0});
+}
+
+// Sorts a part's Gaussians into the bins, the far layer, or the counts of what is dropped.
+void bin_part(SplatCloud& part, const CaptureFrame& frame, ChunkBins& bins, FarLayer& far, ImportSummary& s) {
+    const float huge = 0.5f * frame.chunk_size;
+    for (std::size_t i = 0; i < part.size(); ++i) {
+        const double extent = gaussian_extent(part.log_scales[i], part.opacity_logits[i]);
+        if (!(extent > 0.0)) {
+            ++s.invisible;
+            continue;
+        }
+        const double reach = gaussian_reach(part.log_scales[i], part.opacity_logits[i]);
+        if (!(reach >= frame.degenerate_extent)) {
+            ++s.degenerate;
+            continue;
+        }
+        glm::ivec2 cell;
+        const bool huge_one = reach > huge;
+        if (huge_one || !frame.cell_of(part.positions[i], cell)) {
+            ++(huge_one ? s.far_huge : s.far_outside);
+            far.add(part, i, static_cast<float>(reach * opacity_from_logit(part.opacity_logits[i])));
+            continue;
+        }
+        bins.add(cell, part, i);
+        ++s.binned;
+    }
+}
+
+// The ground under each chunk: the 10th percentile of the sample's heights there (or over all chunks).
+GroundGrid ground_grid(const CaptureSample& sample, const CaptureFrame& frame) {
+    const int n = frame.chunks_per_side;
+    std::vector<std::vector<float>> heights(static_cast<std::size_t>(n * n));
+    std::vector<float> all;
+    for (const glm::vec3& p : sample.positions) {
+        const glm::vec3 w = glm::vec3(frame.rotation * glm::dvec3(p) + frame.translation);
+        glm::ivec2 cell;
+        if (!frame.cell_of(w, cell)) continue;
+        heights[static_cast<std::size_t>((cell.y + n / 2) * n + cell.x + n / 2)].push_back(w.y);
+        all.push_back(w.y);
+    }
+    const auto low = [](std::vector<float>& v) {
+        const auto k = v.size() / 10;
+        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+        return v[k];
+    };
+    const float fallback = all.empty() ? 0.0f : low(all);
+    GroundGrid ground;
+    ground.cells = n;
+    for (auto& cell : heights) ground.heights.push_back(cell.size() >= 8 ? low(cell) : fallback);
+    return ground;
+}
+
+// What the world's own code needs of the import (groups, stream levels, the chunk recipe) at scale σ.
+WorldOptions world_options(const ImportOptions& o, const CaptureFrame& frame, int threads) {
+    WorldOptions w;
+    w.size_m = frame.size();
+    w.chunk_size_m = frame.chunk_size;
+    w.threads = threads;
+    w.bake = o.bake;
+    w.bake_width = o.bake_width;
+    w.bake_height = o.bake_height;
+    w.terrain_mesh = false;
+    for (float& reach : w.stream_reach_min) reach *= frame.scale();
+    w.groups.enabled = o.groups;
+    w.groups.base_cell_m = frame.scale() * w.groups.base_cell_m;
+    w.output = o.output;
+    w.progress = o.progress;
+    return w;
+}
+
+int bake_threads(const ImportOptions& o, std::uint64_t largest_chunk) {
+    const std::uint64_t per_bake = kBakeFixedBytes + largest_chunk * kBakeBytesPerGaussian;
+    const std::uint64_t room = o.memory_bytes > kBaseBytes ? o.memory_bytes - kBaseBytes : 0;
+    const int fit = static_cast<int>(std::max<std::uint64_t>(1, room / per_bake));
+    return std::min(reference::detail::resolve_thread_count(o.threads), fit);
+}
+
+std::vector<ChunkResult> bake_bins(const ImportOptions& o, const WorldOptions& w, const CaptureFrame& frame,
+                                   const GroundGrid& ground, const ChunkBins& bins, const fs::path& generation,
+                                   Clock::time_point start) {
+    const std::vector<glm::ivec2> cells = bins.cells();
+    std::vector<ChunkResult> results(cells.size());
+    const ChunkBake how{w.bake, w.bake_width, w.bake_height, stream_level_rule(w)};
+    const GroundHeight height = [&](float x, float z) { return ground.height(x, z, frame.size()); };
+    std::mutex mutex;
+    std::size_t done = 0;
+    std::uint64_t gaussians = 0;
+    report(o, "chunks", 0, cells.size(), start);
+    reference::detail::parallel_for(cells.size(), w.threads, [&](std::size_t k) {
+        const glm::ivec2 cell = cells[k];
+        try {
+            const SplatCloud fine = bins.read(cell);
+            ChunkSquare square;
+            square.lo = glm::vec2(cell) * frame.chunk_size;
+            square.hi = square.lo + glm::vec2(frame.chunk_size);
+            results[k] = bake_chunk(how, fine, capture_chunk_camera_poses(height, square, frame.scale(), frame.aerial),
+                                    o.output, chunk_file(generation, cell), cell);
+            bins.remove(cell);
+        } catch (const std::exception& e) {
+            engine::fail(chunk_id(cell) + ": " + e.what());
+        }
+        const std::lock_guard lock(mutex);
+        gaussians += results[k].entry.prefix_count[0];
+        report(o, "chunks", ++done, cells.size(), start, gaussians);
+    });
+    return results;
+}
+
+std::string import_settings(const ImportOptions& o, const WorldOptions& w, const CaptureFrame& frame) {
+    std::ostringstream s;
+    s << "splat_lod capture import 1: " << (frame.aerial ? "aerial" : "ground") << " views, at most "
+      << o.max_chunk_gaussians << " per chunk, far layer <= " << o.far_layer_max << "; " << generator_settings(w);
+    return s.str();
+}
+
+CaptureOrigin capture_origin(const ImportOptions& o, const CaptureFrame& frame) {
+    CaptureOrigin origin;
+    origin.source = o.capture.string();
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) origin.rotation[static_cast<std::size_t>(3 * r + c)] = frame.rotation[c][r];
+    origin.translation = {frame.translation.x, frame.translation.y, frame.translation.z};
+    return origin;
+}
+
+// Everything below `generation`; returns the manifest that names it.
+WorldManifest build_import(const ImportOptions& o, const Capture& capture, const CaptureSample& sample,
+                           const CaptureFrame& frame, const fs::path& generation, ImportSummary& s,
+                           Clock::time_point start) {
+    ChunkBins bins(o.output / generation / "bins", sample.sh_degree,
+                   o.bin_flush_bytes > 0 ? o.bin_flush_bytes : o.memory_bytes / 4);
+    FarLayer far(sample.sh_degree, o.far_layer_max);
+    for (std::size_t p = 0; p < capture.parts.size(); ++p) {
+        SplatCloud part = read_capture_part(capture.parts[p]);
+        part.extras.clear();
+        part.set_sh_degree(sample.sh_degree);
+        transform_cloud(part, frame.rotation, frame.translation);
+        bin_part(part, frame, bins, far, s);
+        report(o, "binning", p + 1, capture.parts.size(), start, s.binned);
+    }
+    bins.flush();
+    s.bin_flushes = bins.flushes();
+    if (bins.cells().empty()) engine::fail(o.capture.string() + ": no Gaussian lies inside the world's box");
+    const int threads = bake_threads(o, bins.largest());
+    const WorldOptions w = world_options(o, frame, threads);
+    const GroundGrid ground = ground_grid(sample, frame);
+    const auto stage = Clock::now();
+    std::vector<ChunkResult> chunks = bake_bins(o, w, frame, ground, bins, generation, start);
+    s.world.stages.push_back({"chunks (bake, write) on " + std::to_string(threads) + " threads", seconds_since(stage)});
+    std::error_code ec;
+    fs::remove_all(o.output / generation / "bins", ec);
+
+    WorldManifest m;
+    m.seed = 0;
+    m.size_m = frame.size();
+    m.chunk_size_m = frame.chunk_size;
+    m.generator = import_settings(o, w, frame);
+    m.stream_levels = stream_level_rule(w);
+    m.ground = ground;
+    m.capture = capture_origin(o, frame);
+    SplatCloud far_cloud = far.finish();
+    s.far_dropped = far.dropped();
+    s.far_layer = far_cloud.size();
+    if (!far_cloud.empty()) {
+        write_gltf_splats(o.output / generation / kFarLayerMesh, far_cloud);
+        m.props.push_back({generation / kFarLayerMesh, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f)});
+    }
+    add_chunk_results(chunks, m, s.world);
+    add_groups(w, generation, m, s.world, start);
+    return m;
+}
+
+}  // namespace
+
+ImportResult import_world(const ImportOptions& o) {
+    check(o);
+    const auto start = Clock::now();
+    ImportResult result;
+    ImportSummary& s = result.summary;
+    // A part of a cut PLY takes about 512 bytes per record while it is decoded (SH degree 3).
+    const Capture capture =
+        open_capture(o.capture, o.part_records > 0 ? o.part_records : std::max<std::uint64_t>(4096, o.memory_bytes / 8 / 512));
+    s.capture_description = capture.description;
+    std::error_code ec;
+    fs::create_directories(o.output, ec);
+    if (ec) engine::fail(o.output.string() + ": cannot create the world's folder: " + ec.message());
+    const WorldFolderLock lock(o.output, WorldFolderLock::Mode::write);
+    lock.require();
+
+    auto stage = Clock::now();
+    const CaptureSample sample = survey_capture(capture, kSampleMax, [&](std::uint64_t parts) {
+        report(o, "survey", parts, capture.parts.size(), start);
+    });
+    const CaptureFrame frame = choose_frame(sample, o, o.capture.string());
+    s.world.stages.push_back({"survey", seconds_since(stage)});
+    s.read = sample.read;
+    s.dropped_by_reader = sample.dropped_by_reader;
+    s.up = frame.up;
+    s.up_source = frame.up_source;
+    s.rotation = frame.rotation;
+    s.translation = frame.translation;
+    s.aerial = frame.aerial;
+    s.chunk_size = frame.chunk_size;
+    s.size = frame.size();
+    s.scale = frame.scale();
+
+    const fs::path generation = new_generation(o.output);
+    try {
+        result.manifest = build_import(o, capture, sample, frame, generation, s, start);
+        stage = Clock::now();
+        report(o, "manifest", 0, 0, start);
+        write_world_manifest(o.output / kManifestFileName, result.manifest);  // the commit
+    } catch (...) {
+        remove_generation_unless_committed(o.output, generation);
+        throw;
+    }
+    remove_unnamed_files(o.output, result.manifest);
+    s.world.stages.push_back({"manifest and clean-up", seconds_since(stage)});
+    summarise_manifest(result.manifest, o.output, s.world);
+    s.world.seconds = seconds_since(start);
+    s.peak_rss_bytes = engine::process_memory().peak_resident_bytes;
+    return result;
+}
+
+std::string format_import_summary(const ImportSummary& s) {
+    std::ostringstream out;
+    char line[512];
+    std::snprintf(line, sizeof line, "capture: %s, %llu Gaussians read\n", s.capture_description.c_str(),
+                  static_cast<unsigned long long>(s.read));
+    out << line;
+    std::snprintf(line, sizeof line, "frame: up (%.4f, %.4f, %.4f) from %s, translation (%.3f, %.3f, %.3f), %s views\n",
+                  s.up.x, s.up.y, s.up.z, s.up_source.c_str(), s.translation.x, s.translation.y, s.translation.z,
+                  s.aerial ? "aerial" : "ground");
+    out << line;
+    std::snprintf(line, sizeof line, "grid: %.4g units square, chunks of %.4g units (scale %.4g)\n",
+                  static_cast<double>(s.size), static_cast<double>(s.chunk_size), static_cast<double>(s.scale));
+    out << line;
+    const auto n = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
+    std::snprintf(line, sizeof line,
+                  "Gaussians: %llu in chunks; dropped: %llu by the reader (NaN/Inf, zero rotation), %llu never visible, "
+                  "%llu degenerate; far layer: %llu huge + %llu outside the world box, %llu kept, %llu dropped over its cap\n",
+                  n(s.binned), n(s.dropped_by_reader), n(s.invisible), n(s.degenerate), n(s.far_huge),
+                  n(s.far_outside), n(s.far_layer), n(s.far_dropped));
+    out << line;
+    out << format_summary(s.world);
+    std::snprintf(line, sizeof line, "peak resident memory %.2f GiB\n",
+                  static_cast<double>(s.peak_rss_bytes) / (1024.0 * 1024.0 * 1024.0));
+    out << line;
+    return out.str();
+}
+
+}  // namespace splat_lod::world

@@ -1,0 +1,218 @@
+// A capture imported as a streamed world (world_import.h): the frame found from the data, the cut
+// capture drawing like the uncut file, the out-of-core path under a tiny cap giving the same bytes, the
+// hard cases counted or refused with the capture named, and a failed import keeping the previous world.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include "engine/core/error.h"
+#include "engine/core/file_io.h"
+#include "engine/render/camera.h"
+#include "splat_lod/core/capture_source.h"
+#include "splat_lod/core/cloud_transform.h"
+#include "splat_lod/core/reference_renderer.h"
+#include "splat_lod/core/splat_io.h"
+#include "splat_lod/worldgen/world_import.h"
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+namespace world = splat_lod::world;
+using splat_lod::SplatCloud;
+
+namespace {
+
+// A 40 × 30 unit patch of flat ground Gaussians (y up) with clusters of round "leaves" standing on it,
+// four huge sky Gaussians and three floaters far away: 6,000 + 1,600 + 7 Gaussians.
+SplatCloud synthetic_capture() {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    SplatCloud cloud;
+    cloud.resize(7607);
+    std::size_t k = 0;
+    for (int i = 0; i < 100; ++i)
+        for (int j = 0; j < 60; ++j, ++k) {
+            cloud.positions[k] = {-20.0f + 0.4f * static_cast<float>(i), 0.05f * unit(rng),
+                                  -15.0f + 0.5f * static_cast<float>(j)};
+            cloud.log_scales[k] = {std::log(0.3f), std::log(0.01f), std::log(0.3f)};
+            cloud.opacity_logits[k] = 3.0f;
+            cloud.sh_dc[k] = {0.5f * unit(rng), 0.8f * unit(rng), 0.2f};
+        }
+    for (int tree = 0; tree < 16; ++tree) {
+        const glm::vec3 base(-16.0f + 32.0f * unit(rng), 0.0f, -12.0f + 24.0f * unit(rng));
+        for (int leaf = 0; leaf < 100; ++leaf, ++k) {
+            cloud.positions[k] = base + glm::vec3(unit(rng) - 0.5f, 1.0f + 3.0f * unit(rng), unit(rng) - 0.5f);
+            cloud.log_scales[k] = glm::vec3(std::log(0.05f));
+            cloud.opacity_logits[k] = 1.0f;
+            cloud.sh_dc[k] = {-0.5f, 0.6f * unit(rng), -0.3f};
+        }
+    }
+    for (int sky = 0; sky < 4; ++sky, ++k) {  // far bigger than any chunk
+        cloud.positions[k] = {-10.0f + 7.0f * static_cast<float>(sky), 30.0f, 0.0f};
+        cloud.log_scales[k] = glm::vec3(std::log(40.0f));
+        cloud.opacity_logits[k] = -3.0f;
+        cloud.sh_dc[k] = {0.3f, 0.5f, 1.2f};
+    }
+    for (int floater = 0; floater < 3; ++floater, ++k) {  // far outside the footprint
+        cloud.positions[k] = {500.0f + 10.0f * static_cast<float>(floater), 2.0f, -400.0f};
+        cloud.log_scales[k] = glm::vec3(std::log(0.2f));
+        cloud.opacity_logits[k] = 2.0f;
+    }
+    return cloud;
+}
+
+// The capture as a Y-down INRIA file would hold it: a half turn about x.
+SplatCloud y_down(SplatCloud cloud) {
+    splat_lod::transform_cloud(cloud, splat_lod::rotation_between({0, 1, 0}, {0, -1, 0}), glm::dvec3(0.0));
+    return cloud;
+}
+
+fs::path fresh_dir(const std::string& name) {
+    const fs::path dir = engine::test::output_dir("world_import") / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+// A fast recipe: small chunks, small cameras, no refinement (the test is about the import, not the bake).
+world::ImportOptions fast_options(const fs::path& capture, const fs::path& output) {
+    world::ImportOptions o;
+    o.capture = capture;
+    o.output = output;
+    o.max_chunk_gaussians = 2048;
+    o.bake.refine_iterations = 0;
+    o.bake_width = 64;
+    o.bake_height = 64;
+    o.threads = 2;
+    return o;
+}
+
+double psnr(const splat_lod::reference::ReferenceImage& a, const splat_lod::reference::ReferenceImage& b) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+        const double d = std::clamp(a.rgb[i], 0.0, 1.0) - std::clamp(b.rgb[i], 0.0, 1.0);
+        sum += d * d;
+    }
+    const double mse = sum / static_cast<double>(a.rgb.size());
+    return mse == 0.0 ? 1e9 : 10.0 * std::log10(1.0 / mse);
+}
+
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const engine::Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(WorldImport, FindsTheFrameAndTheCutCaptureDrawsLikeTheUncutFile) {
+    const fs::path dir = fresh_dir("cut");
+    const SplatCloud original = y_down(synthetic_capture());
+    splat_lod::write_inria_ply(dir / "capture.ply", original);
+    const world::ImportResult result = world::import_world(fast_options(dir / "capture.ply", dir / "world"));
+    const world::ImportSummary& s = result.summary;
+    EXPECT_EQ(s.up, glm::dvec3(0.0, -1.0, 0.0)) << "the Y-down file's up, snapped to the axis";
+    EXPECT_EQ(s.far_huge, 4u) << "the sky Gaussians";
+    EXPECT_EQ(s.far_outside, 3u) << "the floaters";
+    EXPECT_EQ(s.binned + s.far_layer, original.size());
+    EXPECT_GT(result.manifest.chunks.size(), 4u);
+    for (const world::ChunkEntry& chunk : result.manifest.chunks) {
+        EXPECT_LE(chunk.prefix_count[0], 3u * 2048u) << chunk.id;  // the bake adds a few coarse ones
+        EXPECT_LT(chunk.bounds_max.x - chunk.bounds_min.x, 1.01f * result.manifest.chunk_size_m) << chunk.id;
+    }
+    ASSERT_EQ(result.manifest.props.size(), 1u) << "the far layer";
+    EXPECT_FALSE(result.manifest.ground.empty());
+
+    // The world's finest Gaussians and its far layer, drawn from a view in the world's frame, against the
+    // uncut file drawn from the same view taken back into the capture's frame.
+    const SplatCloud chunks = splat_lod::read_capture(dir / "world" / world::kManifestFileName);
+    const SplatCloud far = splat_lod::load_splat_file(dir / "world" / result.manifest.props[0].mesh);
+    EXPECT_EQ(chunks.size() + far.size(), original.size());
+    const glm::dmat4 to_world = glm::translate(glm::dmat4(1.0), s.translation) * glm::dmat4(s.rotation);
+    const auto camera = engine::make_look_at_camera({25.0f, 18.0f, 30.0f}, {0.0f, 1.0f, 0.0f}, {0, 1, 0}, 1.0f,
+                                                    160, 120, 0.2f, 1000.0f);
+    splat_lod::reference::ReferenceSettings settings;
+    settings.threads = 2;
+    const std::vector<splat_lod::reference::ReferenceInstance> imported{{&chunks, glm::dmat4(1.0)}, {&far, glm::dmat4(1.0)}};
+    const std::vector<splat_lod::reference::ReferenceInstance> uncut{{&original, to_world}};
+    const auto a = splat_lod::reference::render_reference(imported, camera, settings);
+    const auto b = splat_lod::reference::render_reference(uncut, camera, settings);
+    EXPECT_GE(psnr(a, b), 60.0);
+}
+
+TEST(WorldImport, OutOfCoreUnderATinyCapGivesTheSameBytes) {
+    const fs::path dir = fresh_dir("tiny_cap");
+    splat_lod::write_inria_ply(dir / "capture.ply", synthetic_capture());
+    world::ImportOptions roomy = fast_options(dir / "capture.ply", dir / "roomy");
+    world::ImportOptions tiny = fast_options(dir / "capture.ply", dir / "tiny");
+    tiny.memory_bytes = std::uint64_t{256} << 20;
+    tiny.part_records = 500;           // 16 parts read one at a time
+    tiny.bin_flush_bytes = 16 << 10;   // bins written out every 16 KiB
+    const auto a = world::import_world(roomy);
+    const auto b = world::import_world(tiny);
+    ASSERT_EQ(a.manifest.chunks.size(), b.manifest.chunks.size());
+    for (std::size_t k = 0; k < a.manifest.chunks.size(); ++k)
+        EXPECT_EQ(engine::read_binary_file(dir / "roomy" / a.manifest.chunks[k].file),
+                  engine::read_binary_file(dir / "tiny" / b.manifest.chunks[k].file))
+            << a.manifest.chunks[k].id;
+    EXPECT_GT(b.summary.bin_flushes, 10u);
+}
+
+TEST(WorldImport, FindsZUpAndCountsHostileGaussians) {
+    const fs::path dir = fresh_dir("hostile");
+    SplatCloud cloud = synthetic_capture();
+    splat_lod::transform_cloud(cloud, splat_lod::rotation_between({0, 1, 0}, {0, 0, 1}), glm::dvec3(100.0, 5.0, -3.0));
+    const std::size_t n = cloud.size();
+    cloud.resize(n + 3);
+    cloud.log_scales[n] = glm::vec3(-40.0f);  // zero scale
+    cloud.opacity_logits[n] = 2.0f;
+    cloud.opacity_logits[n + 1] = -20.0f;  // never visible
+    cloud.positions[n + 2] = {NAN, 0.0f, 0.0f};
+    splat_lod::write_inria_ply(dir / "capture.ply", cloud);
+    const auto result = world::import_world(fast_options(dir / "capture.ply", dir / "world"));
+    EXPECT_EQ(result.summary.up, glm::dvec3(0.0, 0.0, 1.0));
+    EXPECT_EQ(result.summary.dropped_by_reader, 1u);
+    EXPECT_EQ(result.summary.degenerate, 1u);
+    EXPECT_EQ(result.summary.invisible, 1u);
+    EXPECT_EQ(result.summary.binned + result.summary.far_layer, n);
+}
+
+TEST(WorldImport, HopelessCapturesAreRefusedAndKeepThePreviousWorld) {
+    const fs::path dir = fresh_dir("refused");
+    splat_lod::write_inria_ply(dir / "good.ply", synthetic_capture());
+    world::import_world(fast_options(dir / "good.ply", dir / "world"));
+    const std::string manifest = engine::read_text_file(dir / "world" / world::kManifestFileName);
+
+    SplatCloud point = synthetic_capture();
+    for (auto& p : point.positions) p = glm::vec3(1.0f, 2.0f, 3.0f);
+    splat_lod::write_inria_ply(dir / "point.ply", point);
+    SplatCloud giant;
+    giant.resize(1);
+    giant.log_scales[0] = glm::vec3(6.0f);
+    splat_lod::write_inria_ply(dir / "giant.ply", giant);
+    SplatCloud empty;
+    splat_lod::write_inria_ply(dir / "empty.ply", empty);
+    splat_lod::write_inria_ply(dir / "cut.ply", synthetic_capture());
+    fs::resize_file(dir / "cut.ply", fs::file_size(dir / "cut.ply") / 2);
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"point.ply", "no horizontal extent"},
+        {"giant.ply", "no horizontal extent"},
+        {"empty.ply", "no visible Gaussian"},
+        {"cut.ply", "cut.ply"},
+    };
+    for (const auto& [file, expected] : cases) {
+        const std::string message = error_of([&] { world::import_world(fast_options(dir / file, dir / "world")); });
+        EXPECT_NE(message.find(expected), std::string::npos) << file << ": " << message;
+        EXPECT_EQ(engine::read_text_file(dir / "world" / world::kManifestFileName), manifest) << file;
+    }
+    const auto m = world::read_world_manifest(dir / "world" / world::kManifestFileName);
+    for (const auto& chunk : m.chunks) EXPECT_TRUE(fs::exists(dir / "world" / chunk.file)) << chunk.id;
+}
+
+}  // namespace
