@@ -113,7 +113,7 @@ Game::Game(const WindowOptions& options) : options_(options), show_ui_(!options.
                                      options.frames == 0);
     engine_.plugins().add_static(splat_lod::make_plugin());
     world_ = std::make_unique<GameWorld>(engine_, options.world, options.settings);
-    path_ = sample_world_path(world_->terrain(), options.path_frames);
+    path_ = world_->path(options.path_frames);
     fly_.look_at(path_.front().eye, path_.front().eye + path_.front().forward);
     fly_.speed = 10.0f;
     overlay_ = std::make_unique<engine::UiOverlay>(*window_, engine_.bus());
@@ -180,7 +180,7 @@ void Game::draw_walkthrough_panel() {
     ImGui::Text("segment %s, t %.3f", std::string(to_string(pose.segment)).c_str(), static_cast<double>(pose.t));
     ImGui::Text("camera %.1f, %.1f, %.1f  (%.1f m above ground)", static_cast<double>(eye.x),
                 static_cast<double>(eye.y), static_cast<double>(eye.z),
-                static_cast<double>(eye.y - world_->terrain().height(eye.x, eye.z)));
+                static_cast<double>(eye.y - world_->ground().height(eye.x, eye.z)));
     ImGui::TextUnformatted("WASD/QE + right mouse: fly (leaves the path)");
 }
 

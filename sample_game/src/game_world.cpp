@@ -1,5 +1,8 @@
 #include "sample_game/game_world.h"
 
+#include "sample_game/path_file.h"
+#include "sample_game/world_path.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -62,7 +65,7 @@ GameWorld::GameWorld(engine::Engine& engine, const std::filesystem::path& folder
       folder_(folder),
       lock_(folder, sw::WorldFolderLock::Mode::stream),
       manifest_(read_manifest_under(lock_, folder)),
-      terrain_(manifest_.seed, manifest_.size_m),
+      ground_(WorldGround::of(manifest_)),
       scene_(std::make_unique<engine::Scene>()) {
     validate(settings_);
     pass_.emplace(engine.renderer());
@@ -79,6 +82,11 @@ GameWorld::GameWorld(engine::Engine& engine, const std::filesystem::path& folder
     const std::uint64_t page_bytes = sw::gpu_bytes(s.gpu_pages.page_gaussians, s.gpu_sh_degree, s.gpu_pages);
     pass_->reserve(s.memory_budget_bytes / page_bytes * s.gpu_pages.page_gaussians, s.gpu_sh_degree);
     publish_lod_settings();
+}
+
+std::vector<PathPose> GameWorld::path(int frames) const {
+    if (!settings_.path_file.empty()) return read_path_file(settings_.path_file, frames);
+    return sample_world_path(ground_, frames);
 }
 
 GameWorld::~GameWorld() {
@@ -112,7 +120,7 @@ void GameWorld::start_streamer(const sw::StreamerSettings& settings) {
 }
 
 engine::CameraView GameWorld::camera(const glm::vec3& eye, const glm::vec3& forward, int width, int height) const {
-    const float above = eye.y - terrain_.height(eye.x, eye.z);
+    const float above = eye.y - ground_.height(eye.x, eye.z);
     return engine::make_look_at_camera(eye, eye + forward, {0.0f, 1.0f, 0.0f}, glm::radians(settings_.fov_y_deg), width,
                                        height, near_plane_for(above), far_plane_for(manifest_.size_m));
 }
@@ -122,8 +130,8 @@ engine::CameraView GameWorld::camera(const PathPose& pose, int width, int height
         record->segment = pose.segment;
         record->t = pose.t;
         record->eye = pose.eye;
-        record->height_above_ground_m = pose.eye.y - terrain_.height(pose.eye.x, pose.eye.z);
-        record->distance_to_centre_m = glm::distance(pose.eye, world_centre(terrain_));
+        record->height_above_ground_m = pose.eye.y - ground_.height(pose.eye.x, pose.eye.z);
+        record->distance_to_centre_m = glm::distance(pose.eye, ground_.centre());
     }
     return camera(pose.eye, pose.forward, width, height);
 }
@@ -224,7 +232,7 @@ double GameWorld::load_whole_world(const std::function<void(std::size_t, std::si
     pass_->reserve(
         total / sw::gpu_bytes(s.gpu_pages.page_gaussians, s.gpu_sh_degree, s.gpu_pages) * s.gpu_pages.page_gaussians,
         s.gpu_sh_degree);
-    const glm::vec3 above = world_centre(terrain_) + glm::vec3(0.0f, manifest_.size_m, 0.0f);
+    const glm::vec3 above = ground_.centre() + glm::vec3(0.0f, manifest_.size_m, 0.0f);
     std::size_t complete = 0, stalled = 0;
     for (std::uint64_t frame = 0; complete < streamer_->chunk_count(); ++frame) {
         streamer_->update({above, 1000.0f, frame});

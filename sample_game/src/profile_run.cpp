@@ -111,7 +111,7 @@ struct Run {
         r.psnr_vs_reference = splat_lod::eval::psnr(image, *truth);
         r.ssim_vs_reference = splat_lod::eval::ssim(image, *truth);
         if (!ground)
-            ground = std::make_unique<HeightGrid>([&](float x, float z) { return world.terrain().height(x, z); },
+            ground = std::make_unique<HeightGrid>([&](float x, float z) { return world.ground().height(x, z); },
                                                   world.manifest().size_m);
         const ChunkMap map =
             chunk_map(*ground, ChunkGrid{world.manifest().size_m, world.manifest().chunk_size_m}, camera);
@@ -385,7 +385,7 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
     engine::Engine engine;
     engine.plugins().add_static(splat_lod::make_plugin());
     GameWorld world(engine, options.world, options.settings);
-    const std::vector<PathPose> poses = sample_world_path(world.terrain(), options.frames);
+    const std::vector<PathPose> poses = world.path(options.frames);
     world.warm_up(options.width, options.height);
 
     const ReferenceKey key = reference_key(options.world, options.width, options.height, poses,

@@ -71,6 +71,7 @@ std::string ReferenceKey::json() const {
     nlohmann::ordered_json j;
     j["format_version"] = version;
     j["world_chunks_crc32"] = formatted("%08x", world_checksum);
+    j["path_crc32"] = formatted("%08x", path_checksum);
     j["width"] = width;
     j["height"] = height;
     j["path_frames"] = frames;
@@ -97,6 +98,12 @@ ReferenceKey reference_key(const fs::path& world, int width, int height, const s
     key.width = width;
     key.height = height;
     key.frames = static_cast<int>(poses.size());
+    std::vector<float> values;
+    for (const PathPose& p : poses)
+        values.insert(values.end(), {p.eye.x, p.eye.y, p.eye.z, p.forward.x, p.forward.y, p.forward.z,
+                                     static_cast<float>(p.segment)});
+    key.path_checksum = splat_lod::world::checksum(
+        std::span(reinterpret_cast<const std::uint8_t*>(values.data()), values.size() * sizeof(float)));
     key.fov_y_deg = fov_y_deg;
     key.supersample = supersample;
     key.frame_indices = reference_frame_indices(poses);

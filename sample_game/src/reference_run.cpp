@@ -88,7 +88,7 @@ ReferenceOutcome make_reference(const ReferenceOptions& o, std::FILE* progress) 
     engine::Engine engine;
     engine.plugins().add_static(splat_lod::make_plugin());
     GameWorld world(engine, o.world, o.settings);
-    const std::vector<PathPose> poses = sample_world_path(world.terrain(), o.frames);
+    const std::vector<PathPose> poses = world.path(o.frames);
     const ReferenceKey key = reference_key(o.world, o.width, o.height, poses, o.settings.fov_y_deg, o.supersample);
     ReferenceOutcome outcome;
     outcome.folder = reference_folder(o.world, key);

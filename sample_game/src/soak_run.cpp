@@ -476,7 +476,7 @@ SoakOutcome run_soak(const SoakOptions& o, std::FILE* progress) {
     engine::Engine engine;
     engine.plugins().add_static(splat_lod::make_plugin());
     GameWorld world(engine, world_folder, o.settings);
-    const std::vector<PathPose> poses = sample_world_path(world.terrain(), o.frames_per_lap);
+    const std::vector<PathPose> poses = world.path(o.frames_per_lap);
     world.warm_up(o.width, o.height);
     const auto& chunks = world.manifest().chunks;
     const std::vector<std::size_t> order = chunks_by_distance(chunks, poses.front().eye);

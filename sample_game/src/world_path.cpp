@@ -6,57 +6,17 @@
 namespace sample_game {
 namespace {
 
-using splat_lod::world::WorldTerrain;
-
 constexpr float kPi = 3.14159265358979f;
 
-struct Lengths {
-    float walk;    // the ground segment along the path
-    float canopy;  // the canopy segment's first rise; it flies on 1.6× that far
-};
-
-Lengths lengths_for(float size) {
-    return {std::clamp(0.09f * size, 8.0f, 90.0f), std::clamp(0.06f * size, 6.0f, 60.0f)};
-}
-
-glm::vec3 on_path(const WorldTerrain& t, float x, float above) {
+glm::vec3 on_path(const WorldGround& t, float x, float above) {
     const float z = t.path_z(x);
     return {x, t.height(x, z) + above, z};
 }
 
 // Along the path at x, tilted down by `down` (a slope: 0 level, 1 at 45°).
-glm::vec3 along_path(const WorldTerrain& t, float x, float down) {
+glm::vec3 along_path(const WorldGround& t, float x, float down) {
     const glm::vec2 d = t.path_direction(x);
     return glm::normalize(glm::vec3(d.x, -down, d.y));
-}
-
-// Where the walk starts: the x whose walk has the most forest beside the path (10 and 20 m either
-// side: what the walker sees), its canopy flight counting half, keeping clear of the river (no
-// bridge: the camera would stand in the water), and the nearer the centre the better. Searched
-// on a grid of size/256 between −0.25 and +0.15 world sizes.
-float choose_walk_start(const WorldTerrain& t) {
-    const float size = t.size();
-    const Lengths len = lengths_for(size);
-    const float stretch = len.walk + 1.6f * len.canopy;
-    const float lowest = -0.25f * size, highest = std::min(0.15f * size, 0.5f * size - stretch - 0.05f * size);
-    float best_x = lowest, best_score = -1e30f;
-    for (float x = lowest; x <= highest; x += size / 256.0f) {
-        float score = 0.0f;
-        for (int j = 0; j <= 16; ++j) {
-            const float along = stretch * static_cast<float>(j) / 16.0f;
-            const float xs = x + along, z = t.path_z(xs);
-            if (t.river_distance(xs, z) < WorldTerrain::kRiverHalfWidth + 10.0f) score -= 100.0f;
-            float beside = 0.0f;
-            for (const float offset : {10.0f, 20.0f}) beside += t.forest(xs, z + offset) + t.forest(xs, z - offset);
-            score += (along <= len.walk ? 1.0f : 0.5f) * beside;
-        }
-        score -= 12.0f * std::sqrt(x * x + t.path_z(x) * t.path_z(x)) / size;  // distance of the start from the centre
-        if (score > best_score) {
-            best_score = score;
-            best_x = x;
-        }
-    }
-    return best_x;
 }
 
 glm::vec3 horizontal(float angle) {
@@ -65,14 +25,26 @@ glm::vec3 horizontal(float angle) {
 
 }  // namespace
 
-glm::vec3 world_centre(const WorldTerrain& terrain) {
-    return {0.0f, terrain.height(0.0f, 0.0f), 0.0f};
+glm::vec3 world_centre(const WorldGround& ground) {
+    return ground.centre();
 }
 
-std::vector<PathKey> make_world_path_keys(const WorldTerrain& t, const WorldPathShape& shape) {
+WorldPathShape path_shape_for(const WorldGround& ground) {
+    WorldPathShape shape;
+    if (!ground.imported()) return shape;
+    // A capture's unit is unknown: heights follow its scale, and never less than a small share of the
+    // world (an aerial capture has no detail at eye height: its "walk" is a low pass over it).
+    const float s = ground.scale(), size = ground.size();
+    shape.eye_height_m = std::max(shape.eye_height_m * s, 0.005f * size);
+    shape.canopy_height_m = std::max(shape.canopy_height_m * s, 0.03f * size);
+    shape.min_clearance_m *= s;
+    return shape;
+}
+
+std::vector<PathKey> make_world_path_keys(const WorldGround& t, const WorldPathShape& shape) {
     const float size = t.size();
-    const Lengths len = lengths_for(size);
-    const float x0 = choose_walk_start(t);
+    const WalkLengths len = walk_lengths(t);
+    const float x0 = t.walk_start();
     const float eye = shape.eye_height_m, canopy = shape.canopy_height_m;
     std::vector<PathKey> keys;
     auto add = [&keys](const glm::vec3& position, const glm::vec3& look, Segment segment) {
@@ -124,15 +96,17 @@ std::vector<PathKey> make_world_path_keys(const WorldTerrain& t, const WorldPath
     return keys;
 }
 
-std::vector<PathPose> sample_world_path(const WorldTerrain& terrain, int frames, const WorldPathShape& shape,
+std::vector<PathPose> sample_world_path(const WorldGround& ground, int frames,
+                                        const std::optional<WorldPathShape>& given,
                                         const std::array<float, kSegmentCount>& shares) {
-    const CameraPath path(make_world_path_keys(terrain, shape));
+    const WorldPathShape shape = given ? *given : path_shape_for(ground);
+    const CameraPath path(make_world_path_keys(ground, shape));
     std::vector<PathPose> poses = path.sample(frames, shares);
     for (PathPose& pose : poses) {
-        const float ground = terrain.height(pose.eye.x, pose.eye.z);
+        const float height = ground.height(pose.eye.x, pose.eye.z);
         // Walking follows the ground between keys; elsewhere the spline is only kept off it.
-        pose.eye.y = pose.segment == Segment::ground ? ground + shape.eye_height_m
-                                                     : std::max(pose.eye.y, ground + shape.min_clearance_m);
+        pose.eye.y = pose.segment == Segment::ground ? height + shape.eye_height_m
+                                                     : std::max(pose.eye.y, height + shape.min_clearance_m);
     }
     return poses;
 }

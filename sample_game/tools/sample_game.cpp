@@ -23,9 +23,11 @@
 #include "engine/core/error.h"
 #include "engine/platform/gl_context.h"
 #include "sample_game/game_window.h"
+#include "sample_game/path_file.h"
 #include "sample_game/profile_run.h"
 #include "sample_game/reference_run.h"
 #include "sample_game/soak_run.h"
+#include "sample_game/world_path.h"
 
 namespace {
 
@@ -40,7 +42,7 @@ struct CommandLine {
     sample_game::GameSettings settings;
     int frames_png = 0, baseline_every = 10, baseline_overview_every = 1, path_frames = 1800;
     bool no_baseline = false, no_preload = false, no_ui = false;
-    std::string screenshot, offscreen;
+    std::string screenshot, offscreen, write_path;
 };
 
 template <typename E, std::size_t N>
@@ -153,6 +155,11 @@ void add_options(CLI::App& app, CommandLine& c) {
         ->check(CLI::PositiveNumber);
     add_lod_options(app, c);
     app.add_option("--fov-y", c.settings.fov_y_deg, "Vertical field of view in degrees")->capture_default_str();
+    app.add_option("--path", c.settings.path_file,
+                   "Walk this path instead of the world's own: a JSON list of poses (one per frame) or keys "
+                   "(sampled over --frames); see sample_game/README.md");
+    app.add_option("--write-path", c.write_path,
+                   "Write the world's path over --frames poses (or --path's) as a poses file and exit");
     app.add_option("--path-frames", c.path_frames, "Window: poses of the looping path")
         ->check(CLI::Range(10, 1000000))
         ->capture_default_str();
@@ -248,6 +255,21 @@ int run_window(const CommandLine& c) {
     return 0;
 }
 
+// --write-path: the world's own path (or --path's poses) over --frames poses (the profile's default
+// 400), written without starting the engine.
+int run_write_path(const CommandLine& c) {
+    const auto manifest =
+        splat_lod::world::read_world_manifest(std::filesystem::path(c.world) / splat_lod::world::kManifestFileName);
+    const int frames = c.frames > 0 ? c.frames : 400;
+    const auto poses = c.settings.path_file.empty()
+                           ? sample_game::sample_world_path(sample_game::WorldGround::of(manifest), frames)
+                           : sample_game::read_path_file(c.settings.path_file, frames);
+    sample_game::write_path_file(c.write_path, poses);
+    std::printf("sample_game: %zu poses of %s's path written to %s\n", poses.size(), c.world.c_str(),
+                c.write_path.c_str());
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -265,6 +287,7 @@ int main(int argc, char** argv) {
         apply_common(c);
         if (int(c.profile) + int(c.soak) + int(c.reference) > 1)
             engine::fail("sample_game: --profile, --soak and --reference are different runs; give one");
+        if (!c.write_path.empty()) return run_write_path(c);
         return c.soak ? run_soak(c) : c.profile ? run_profile(c) : c.reference ? run_reference(c) : run_window(c);
     } catch (const std::exception& e) {
         // The game's own messages already start with "sample_game: "; the engine's name their file.

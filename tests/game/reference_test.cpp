@@ -62,7 +62,7 @@ TEST_F(ReferenceTest, ATiledRenderEqualsTheUntiledOne) {
     plugin_msgs::LodSettings lod;
     lod.mode = plugin_msgs::LodMode::baseline;
     engine.bus().publish(lod);
-    const std::vector<PathPose> poses = sample_world_path(world.terrain(), 20);
+    const std::vector<PathPose> poses = world.path(20);
     // A ground, a flyout and an overview view, at a size the tiles do not divide evenly.
     for (const std::size_t frame : {std::size_t(1), std::size_t(9), std::size_t(13)}) {
         SCOPED_TRACE("path frame " + std::to_string(frame));

@@ -4,6 +4,7 @@
 // disagree (the streamer loads a finer level only from where the renderer could select it;
 // splat_lod/stream/stream_policy.h). The budgets and the lens are here too.
 #include <cstdint>
+#include <filesystem>
 #include <string>
 
 #include "splat_lod/msgs/lod_settings.h"
@@ -38,6 +39,8 @@ struct GameSettings {
     int fade_frames = 4;
     bool sync_streaming = false;  // reads inside update() instead of on the background thread
     float fov_y_deg = 60.0f;
+    // The walkthrough's poses or keys from this file (path_file.h) instead of the world's own path.
+    std::filesystem::path path_file;
 };
 
 // Throws engine::Error naming the first bad setting ("sample_game: lod_settings.rel_min: ...").

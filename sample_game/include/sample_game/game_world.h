@@ -16,12 +16,12 @@
 #include "sample_game/camera_path.h"
 #include "sample_game/frame_record.h"
 #include "sample_game/game_settings.h"
+#include "sample_game/world_ground.h"
 #include "splat_lod/core/world_manifest.h"
 #include "splat_lod/splat_renderer.h"
 #include "splat_lod/stream/chunk_streamer.h"
 #include "splat_lod/stream/stream_scene_sink.h"
 #include "splat_lod/worldgen/world_lock.h"
-#include "splat_lod/worldgen/world_terrain.h"
 
 namespace sample_game {
 
@@ -42,7 +42,11 @@ public:
     GameWorld& operator=(const GameWorld&) = delete;
 
     const splat_lod::world::WorldManifest& manifest() const { return manifest_; }
-    const splat_lod::world::WorldTerrain& terrain() const { return terrain_; }
+    // The ground the walkthrough follows: the terrain of a generated world, the ground grid of an import.
+    const WorldGround& ground() const { return ground_; }
+    // The walkthrough's poses: settings().path_file's when one is named (path_file.h), else the world's
+    // own path over its ground (world_path.h).
+    std::vector<PathPose> path(int frames) const;
     const std::filesystem::path& folder() const { return folder_; }
     engine::Scene& scene() { return *scene_; }
     splat_lod::world::ChunkStreamer& streamer() { return *streamer_; }
@@ -86,7 +90,7 @@ private:
     // Held while the world streams, so that splat_world cannot regenerate it underneath (world_lock.h).
     splat_lod::world::WorldFolderLock lock_;
     splat_lod::world::WorldManifest manifest_;
-    splat_lod::world::WorldTerrain terrain_;
+    WorldGround ground_;
     std::unique_ptr<engine::Scene> scene_;
     engine::Node* chunks_root_ = nullptr;
     splat_lod::world::FileChunkSource source_;

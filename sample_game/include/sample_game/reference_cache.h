@@ -44,6 +44,7 @@ std::vector<std::size_t> reference_frame_indices(const std::vector<PathPose>& po
 
 struct ReferenceKey {
     std::uint32_t world_checksum = 0;
+    std::uint32_t path_checksum = 0;  // of every pose (eye, forward, segment): a path file makes another reference
     int width = 0, height = 0, frames = 0;
     double fov_y_deg = 0.0;
     int supersample = kDefaultReferenceSupersample;

@@ -1,6 +1,6 @@
 #pragma once
-// The walkthrough of a generated world (splat_lod/worldgen/world_terrain.h), derived from the terrain
-// alone so that it fits any seed and size without loading a chunk:
+// The walkthrough of a world, derived from its ground (world_ground.h: a generated world's terrain, an
+// imported world's ground grid) so that it fits any world without loading a chunk:
 //   ground    eye height (1.7 m) along the path, where it runs through the most forest within a
 //             quarter of the world from the centre, looking ahead along it;
 //   canopy    rising over the path to the tree tops (the trees are 4.5–9 m tall, so 11 m flies
@@ -12,8 +12,10 @@
 //             so a looping walkthrough has no jump.
 // Distances along the ground scale with the world (a 96 m test world gets a 9 m walk), heights
 // above the ground do not (eye height, tree tops).
+#include <optional>
+
 #include "sample_game/camera_path.h"
-#include "splat_lod/worldgen/world_terrain.h"
+#include "sample_game/world_ground.h"
 
 namespace sample_game {
 
@@ -27,17 +29,20 @@ struct WorldPathShape {
 };
 
 // The key poses of the walkthrough over this terrain.
-std::vector<PathKey> make_world_path_keys(const splat_lod::world::WorldTerrain& terrain,
-                                          const WorldPathShape& shape = {});
+std::vector<PathKey> make_world_path_keys(const WorldGround& ground, const WorldPathShape& shape = {});
 
 // sample() of the world's path: on the walk the eye stays at eye height above the ground, and
-// everywhere else at least shape.min_clearance_m above it (the spline between keys could
-// otherwise dip into a hill between them).
-std::vector<PathPose> sample_world_path(const splat_lod::world::WorldTerrain& terrain, int frames,
-                                        const WorldPathShape& shape = {},
+// everywhere else at least shape.min_clearance_m above it (no shape: path_shape_for(ground)) (the spline between keys
+// could otherwise dip into a hill between them).
+std::vector<PathPose> sample_world_path(const WorldGround& ground, int frames,
+                                        const std::optional<WorldPathShape>& shape = std::nullopt,
                                         const std::array<float, kSegmentCount>& shares = kDefaultSegmentShares);
 
 // The point the overview looks at: the world's centre on the ground.
-glm::vec3 world_centre(const splat_lod::world::WorldTerrain& terrain);
+glm::vec3 world_centre(const WorldGround& ground);
+
+// The default shape for this ground: as above for a generated world; for an imported one, heights at
+// its scale and at least 0.5 % (eye) and 3 % (canopy) of the world's size.
+WorldPathShape path_shape_for(const WorldGround& ground);
 
 }  // namespace sample_game

@@ -24,7 +24,9 @@ glm::dvec3 direction(int i) {
 // Solves the n × n system a·x = b for the n columns of b in place (Gaussian elimination with partial
 // pivoting; a is the well-conditioned normal matrix of a basis on spread directions).
 void solve(std::vector<double>& a, std::vector<double>& b, int n) {
-    const auto at = [n](std::vector<double>& m, int r, int c) -> double& { return m[static_cast<std::size_t>(r * n + c)]; };
+    const auto at = [n](std::vector<double>& m, int r, int c) -> double& {
+        return m[static_cast<std::size_t>(r * n + c)];
+    };
     for (int col = 0; col < n; ++col) {
         int pivot = col;
         for (int r = col + 1; r < n; ++r)
@@ -56,8 +58,10 @@ std::array<double, 49> band_rotation(const glm::dmat3& rotation, int l) {
         const auto b = reference::sh_basis(glm::transpose(rotation) * direction(d), l);
         for (int r = 0; r < n; ++r)
             for (int c = 0; c < n; ++c) {
-                ata[static_cast<std::size_t>(r * n + c)] += a[static_cast<std::size_t>(first + r)] * a[static_cast<std::size_t>(first + c)];
-                atb[static_cast<std::size_t>(r * n + c)] += a[static_cast<std::size_t>(first + r)] * b[static_cast<std::size_t>(first + c)];
+                ata[static_cast<std::size_t>(r * n + c)] +=
+                    a[static_cast<std::size_t>(first + r)] * a[static_cast<std::size_t>(first + c)];
+                atb[static_cast<std::size_t>(r * n + c)] +=
+                    a[static_cast<std::size_t>(first + r)] * b[static_cast<std::size_t>(first + c)];
             }
     }
     solve(ata, atb, n);
@@ -145,7 +149,7 @@ glm::dmat3 rotation_between(const glm::dvec3& from, const glm::dvec3& to) {
         if (c > 0.0) return glm::dmat3(1.0);
         // Opposite: a half turn about any axis normal to a (x when a is not along x).
         const glm::dvec3 normal = std::fabs(a.x) < 0.9 ? glm::normalize(glm::cross(a, glm::dvec3(1, 0, 0)))
-                                                        : glm::normalize(glm::cross(a, glm::dvec3(0, 1, 0)));
+                                                       : glm::normalize(glm::cross(a, glm::dvec3(0, 1, 0)));
         return 2.0 * glm::outerProduct(normal, normal) - glm::dmat3(1.0);
     }
     const glm::dvec3 k = axis / s;

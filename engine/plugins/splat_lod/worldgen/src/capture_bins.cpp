@@ -70,7 +70,8 @@ void ChunkBins::flush() {
         if (values.empty()) continue;
         const fs::path path = file({key.second, key.first});
         std::ofstream out(path, std::ios::binary | std::ios::app);
-        out.write(reinterpret_cast<const char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(float)));
+        out.write(reinterpret_cast<const char*>(values.data()),
+                  static_cast<std::streamsize>(values.size() * sizeof(float)));
         if (!out) engine::fail(path.string() + ": cannot write the chunk bin (disk full?)");
         values.clear();
         values.shrink_to_fit();
@@ -139,7 +140,8 @@ void FarLayer::compact(std::uint64_t keep) {
     if (scores_.size() <= keep) return;
     std::vector<std::uint32_t> order(scores_.size());
     std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return scores_[a] > scores_[b]; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return scores_[a] > scores_[b]; });
     order.resize(static_cast<std::size_t>(keep));
     std::sort(order.begin(), order.end());
     dropped_ += scores_.size() - keep;

@@ -15,8 +15,8 @@ namespace splat_lod::world {
 namespace {
 
 constexpr double kSnapDegrees = 5.0;
-constexpr double kFlatRatio = 0.25;    // smallest scale below this fraction of the middle one
-constexpr double kFlatOpacity = 0.5;   // and at least this opaque: a surface element
+constexpr double kFlatRatio = 0.25;   // smallest scale below this fraction of the middle one
+constexpr double kFlatOpacity = 0.5;  // and at least this opaque: a surface element
 constexpr std::uint64_t kMinFlat = 100;
 constexpr double kAerialFlatness = 0.06;  // height span / footprint below it: an aerial capture
 
@@ -71,7 +71,8 @@ glm::dvec3 up_axis(const CaptureSample& sample, std::string& source) {
     for (const glm::vec3& p : sample.positions) mean += glm::dvec3(p);
     mean /= static_cast<double>(sample.positions.size());
     glm::dmat3 covariance(0.0);
-    for (const glm::vec3& p : sample.positions) covariance += glm::outerProduct(glm::dvec3(p) - mean, glm::dvec3(p) - mean);
+    for (const glm::vec3& p : sample.positions)
+        covariance += glm::outerProduct(glm::dvec3(p) - mean, glm::dvec3(p) - mean);
     math::symmetric_eigen(covariance, values, vectors);
     int thinnest = 0;
     for (int k = 1; k < 3; ++k)
@@ -186,8 +187,9 @@ CaptureFrame choose_frame(const CaptureSample& sample, const ImportOptions& o, c
     const Box2 box{percentile(xs, 0.01), percentile(xs, 0.99), percentile(zs, 0.01), percentile(zs, 0.99)};
     const double footprint = std::max(box.x_hi - box.x_lo, box.z_hi - box.z_lo);
     if (!(footprint > 0.0) || !std::isfinite(footprint))
-        engine::fail(name + ": the Gaussians' centres have no horizontal extent (all at one point or on one line "
-                            "across the up axis): nothing to cut into chunks");
+        engine::fail(name +
+                     ": the Gaussians' centres have no horizontal extent (all at one point or on one line "
+                     "across the up axis): nothing to cut into chunks");
     frame.footprint = static_cast<float>(footprint);
     const double y_lo = percentile(ys, 0.01), y_hi = percentile(ys, 0.99);
     frame.height_lo = static_cast<float>(y_lo - footprint);

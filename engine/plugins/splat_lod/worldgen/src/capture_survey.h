@@ -33,10 +33,10 @@ struct CaptureFrame {
     glm::dmat3 rotation{1.0};  // capture → world
     glm::dvec3 translation{0.0};
     float chunk_size = 64.0f;
-    int chunks_per_side = 1;  // even, so that cells run from −count/2
+    int chunks_per_side = 1;                   // even, so that cells run from −count/2
     float height_lo = 0.0f, height_hi = 0.0f;  // world frame: the kept heights
-    float degenerate_extent = 0.0f;           // below it a Gaussian is degenerate
-    float footprint = 0.0f;                   // the 1–99 % square's side
+    float degenerate_extent = 0.0f;            // below it a Gaussian is degenerate
+    float footprint = 0.0f;                    // the 1–99 % square's side
     bool aerial = false;
     float size() const { return chunk_size * static_cast<float>(chunks_per_side); }
     float scale() const { return chunk_size / 64.0f; }

@@ -2,8 +2,8 @@
 #include "splat_lod/worldgen/world_import.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <mutex>
 #include <sstream>
 #include <system_error>
@@ -38,7 +38,8 @@ void check(const ImportOptions& o) {
     if (o.capture.empty()) engine::fail("world import: no capture given");
     if (o.output.empty()) engine::fail("world import: no output folder given");
     if (o.memory_bytes < (std::uint64_t{256} << 20))
-        engine::fail("world import: --memory " + std::to_string(o.memory_bytes >> 20) + " MiB is below the 256 MiB needed");
+        engine::fail("world import: --memory " + std::to_string(o.memory_bytes >> 20) +
+                     " MiB is below the 256 MiB needed");
     if (o.max_chunk_gaussians < 1024) engine::fail("world import: at least 1024 Gaussians per chunk");
     if (o.bake_width % 64 != 0 || o.bake_height % 64 != 0 || o.bake_width <= 0 || o.bake_height <= 0)
         engine::fail("world import: bake camera sizes must be positive multiples of 64");
@@ -46,8 +47,8 @@ void check(const ImportOptions& o) {
         engine::fail("world import: --up must be a non-zero finite vector");
 }
 
-void report(const ImportOptions& o, const std::string& stage, std::size_t done, std::size_t total, Clock::time_point start,
-            std::uint64_t gaussians = 0) {
+void report(const ImportOptions& o, const std::string& stage, std::size_t done, std::size_t total,
+            Clock::time_point start, std::uint64_t gaussians = 0) {
     if (o.progress) o.progress({stage, done, total, gaussians, seconds_since(start), -1.0});
 }
 
@@ -228,8 +229,8 @@ ImportResult import_world(const ImportOptions& o) {
     ImportResult result;
     ImportSummary& s = result.summary;
     // A part of a cut PLY takes about 512 bytes per record while it is decoded (SH degree 3).
-    const Capture capture =
-        open_capture(o.capture, o.part_records > 0 ? o.part_records : std::max<std::uint64_t>(4096, o.memory_bytes / 8 / 512));
+    const Capture capture = open_capture(
+        o.capture, o.part_records > 0 ? o.part_records : std::max<std::uint64_t>(4096, o.memory_bytes / 8 / 512));
     s.capture_description = capture.description;
     std::error_code ec;
     fs::create_directories(o.output, ec);
@@ -238,9 +239,8 @@ ImportResult import_world(const ImportOptions& o) {
     lock.require();
 
     auto stage = Clock::now();
-    const CaptureSample sample = survey_capture(capture, kSampleMax, [&](std::uint64_t parts) {
-        report(o, "survey", parts, capture.parts.size(), start);
-    });
+    const CaptureSample sample = survey_capture(
+        capture, kSampleMax, [&](std::uint64_t parts) { report(o, "survey", parts, capture.parts.size(), start); });
     const CaptureFrame frame = choose_frame(sample, o, o.capture.string());
     s.world.stages.push_back({"survey", seconds_since(stage)});
     s.read = sample.read;
@@ -286,11 +286,12 @@ std::string format_import_summary(const ImportSummary& s) {
                   static_cast<double>(s.size), static_cast<double>(s.chunk_size), static_cast<double>(s.scale));
     out << line;
     const auto n = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
-    std::snprintf(line, sizeof line,
-                  "Gaussians: %llu in chunks; dropped: %llu by the reader (NaN/Inf, zero rotation), %llu never visible, "
-                  "%llu degenerate; far layer: %llu huge + %llu outside the world box, %llu kept, %llu dropped over its cap\n",
-                  n(s.binned), n(s.dropped_by_reader), n(s.invisible), n(s.degenerate), n(s.far_huge),
-                  n(s.far_outside), n(s.far_layer), n(s.far_dropped));
+    std::snprintf(
+        line, sizeof line,
+        "Gaussians: %llu in chunks; dropped: %llu by the reader (NaN/Inf, zero rotation), %llu never visible, "
+        "%llu degenerate; far layer: %llu huge + %llu outside the world box, %llu kept, %llu dropped over its cap\n",
+        n(s.binned), n(s.dropped_by_reader), n(s.invisible), n(s.degenerate), n(s.far_huge), n(s.far_outside),
+        n(s.far_layer), n(s.far_dropped));
     out << line;
     out << format_summary(s.world);
     std::snprintf(line, sizeof line, "peak resident memory %.2f GiB\n",

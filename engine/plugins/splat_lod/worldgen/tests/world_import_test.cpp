@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
@@ -135,11 +135,12 @@ TEST(WorldImport, FindsTheFrameAndTheCutCaptureDrawsLikeTheUncutFile) {
     const SplatCloud far = splat_lod::load_splat_file(dir / "world" / result.manifest.props[0].mesh);
     EXPECT_EQ(chunks.size() + far.size(), original.size());
     const glm::dmat4 to_world = glm::translate(glm::dmat4(1.0), s.translation) * glm::dmat4(s.rotation);
-    const auto camera = engine::make_look_at_camera({25.0f, 18.0f, 30.0f}, {0.0f, 1.0f, 0.0f}, {0, 1, 0}, 1.0f,
-                                                    160, 120, 0.2f, 1000.0f);
+    const auto camera = engine::make_look_at_camera({25.0f, 18.0f, 30.0f}, {0.0f, 1.0f, 0.0f}, {0, 1, 0}, 1.0f, 160,
+                                                    120, 0.2f, 1000.0f);
     splat_lod::reference::ReferenceSettings settings;
     settings.threads = 2;
-    const std::vector<splat_lod::reference::ReferenceInstance> imported{{&chunks, glm::dmat4(1.0)}, {&far, glm::dmat4(1.0)}};
+    const std::vector<splat_lod::reference::ReferenceInstance> imported{{&chunks, glm::dmat4(1.0)},
+                                                                        {&far, glm::dmat4(1.0)}};
     const std::vector<splat_lod::reference::ReferenceInstance> uncut{{&original, to_world}};
     const auto a = splat_lod::reference::render_reference(imported, camera, settings);
     const auto b = splat_lod::reference::render_reference(uncut, camera, settings);
@@ -152,8 +153,8 @@ TEST(WorldImport, OutOfCoreUnderATinyCapGivesTheSameBytes) {
     world::ImportOptions roomy = fast_options(dir / "capture.ply", dir / "roomy");
     world::ImportOptions tiny = fast_options(dir / "capture.ply", dir / "tiny");
     tiny.memory_bytes = std::uint64_t{256} << 20;
-    tiny.part_records = 500;           // 16 parts read one at a time
-    tiny.bin_flush_bytes = 16 << 10;   // bins written out every 16 KiB
+    tiny.part_records = 500;          // 16 parts read one at a time
+    tiny.bin_flush_bytes = 16 << 10;  // bins written out every 16 KiB
     const auto a = world::import_world(roomy);
     const auto b = world::import_world(tiny);
     ASSERT_EQ(a.manifest.chunks.size(), b.manifest.chunks.size());

@@ -196,8 +196,9 @@ SplatCloud read_ply_records(const CapturePart& part, LoadReport* report) {
     in.seekg(static_cast<std::streamoff>(offset));
     in.read(reinterpret_cast<char*>(bytes.data() + header.size()), static_cast<std::streamsize>(size));
     if (static_cast<std::uint64_t>(in.gcount()) != size)
-        io::fail_at(name, offset, "the file ends before record " + std::to_string(part.end) + " of " +
-                                      std::to_string(layout.vertex_count) + " (truncated)");
+        io::fail_at(name, offset,
+                    "the file ends before record " + std::to_string(part.end) + " of " +
+                        std::to_string(layout.vertex_count) + " (truncated)");
     return read_ply(bytes, name + " records " + std::to_string(part.begin) + ".." + std::to_string(part.end), report);
 }
 

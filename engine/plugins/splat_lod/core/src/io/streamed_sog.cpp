@@ -67,7 +67,8 @@ struct Leaf {
 void collect_leaves(const json& node, const std::string& where, int depth, const fs::path& path,
                     std::vector<Leaf>& leaves) {
     if (!node.is_object()) meta_error(path, where + " must be an object");
-    if (depth > kMaxTreeDepth) meta_error(path, where + ": the tree is nested deeper than " + std::to_string(kMaxTreeDepth));
+    if (depth > kMaxTreeDepth)
+        meta_error(path, where + ": the tree is nested deeper than " + std::to_string(kMaxTreeDepth));
     if (node.contains("lods")) {
         if (!node["lods"].is_object()) meta_error(path, where + ".lods must be an object");
         leaves.push_back({&node["lods"], where});
@@ -143,8 +144,8 @@ StreamedSogLevel read_level(int level, const std::vector<Leaf>& leaves, const st
         if (index >= filenames.size())
             meta_error(path, where + ": file index " + std::to_string(index) + ", but \"filenames\" has only " +
                                  std::to_string(filenames.size()) + " entries");
-        const StreamedSogRange range{nonnegative(entry, "offset", where, path), nonnegative(entry, "count", where, path),
-                                     leaf.where};
+        const StreamedSogRange range{nonnegative(entry, "offset", where, path),
+                                     nonnegative(entry, "count", where, path), leaf.where};
         if (range.offset > (std::uint64_t{1} << 40) || range.count > (std::uint64_t{1} << 40))
             meta_error(path, where + ": offset or count beyond any real file");
         auto [slot, added] = slot_of_file.try_emplace(index, out.files.size());

@@ -34,11 +34,11 @@ struct CapturePart {
     };
     Kind kind = Kind::whole_file;
     std::filesystem::path file;
-    std::uint64_t begin = 0, end = 0;  // ply_records
-    io::StreamedSogFile sog;           // sog_ranges
+    std::uint64_t begin = 0, end = 0;                // ply_records
+    io::StreamedSogFile sog;                         // sog_ranges
     std::shared_ptr<const world::ChunkEntry> chunk;  // world_chunk
-    std::uint64_t gaussians = 0;       // expected (header or tree counts); 0 when not known before reading
-    std::string label() const;         // "tile.ply records 0..1048576", for progress and messages
+    std::uint64_t gaussians = 0;  // expected (header or tree counts); 0 when not known before reading
+    std::string label() const;    // "tile.ply records 0..1048576", for progress and messages
 };
 
 struct Capture {
