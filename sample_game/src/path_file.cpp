@@ -37,7 +37,8 @@ Segment segment_of(const json& entry, const std::filesystem::path& file, const s
     if (it == entry.end() || !it->is_string()) fail(file, where + ".segment", "expected a segment name");
     for (std::size_t k = 0; k < kSegmentCount; ++k)
         if (to_string(static_cast<Segment>(k)) == it->get<std::string>()) return static_cast<Segment>(k);
-    fail(file, where + ".segment", "\"" + it->get<std::string>() + "\" is not ground, canopy, flyout, overview or return");
+    fail(file, where + ".segment",
+         "\"" + it->get<std::string>() + "\" is not ground, canopy, flyout, overview or return");
 }
 
 }  // namespace
@@ -62,8 +63,8 @@ std::vector<PathPose> read_path_file(const std::filesystem::path& file, int fram
         if (!(glm::length(direction) > 1e-6f)) fail(file, where, "the view direction is zero");
         const Segment segment = segment_of(doc[i], file, where);
         if (poses)
-            out.push_back({eye, glm::normalize(direction), segment,
-                           static_cast<float>(i) / static_cast<float>(doc.size() - 1)});
+            out.push_back(
+                {eye, glm::normalize(direction), segment, static_cast<float>(i) / static_cast<float>(doc.size() - 1)});
         else
             keys.push_back({eye, direction, segment});
     }

@@ -13,6 +13,7 @@
 // folder ("<output>.tmp-<pid>-<n>", synced to disk) and a rename (engine::write_file_atomic), so a
 // failed or killed bake leaves any previous output byte for byte. A bake killed during that write
 // leaves its temporary behind; the next successful bake to the same output removes it.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -27,6 +28,7 @@
 #include "engine/core/file_io.h"
 #include "splat_lod/bake/bake.h"
 #include "splat_lod/bake/bake_setup.h"
+#include "splat_lod/bake/capture_shape.h"
 #include "splat_lod/core/splat_io.h"
 
 namespace {
@@ -36,7 +38,7 @@ struct Options {
                                pooling = "mean";
     int width = 512;
     int height = 384;
-    bool keep_ranges = false, no_member_ranges = false;
+    bool keep_ranges = false, no_member_ranges = false, single_file = false;
     splat_lod::bake::BakeOptions bake;
     splat_lod::bake::GivenSettings given;
 };
@@ -114,6 +116,10 @@ int run(Options& o) {
     if (report.dropped() > 0) std::fprintf(stderr, ", %zu dropped (NaN/Inf or zero rotation)", report.dropped());
     std::fprintf(stderr, "\n");
     if (fine.empty()) engine::fail(o.input + ": the scene has no Gaussians to bake");
+    if (const std::string why = splat_lod::bake::streamed_world_advice(fine); !why.empty() && !o.single_file)
+        engine::fail(o.input + ": " + why + ": make it a streamed world instead, `splat_world --from " + o.input +
+                     " --out <folder>` (docs/world_lod.md, \"Importing a capture\"), or give --single-file to bake "
+                     "one file anyway");
 
     const auto cameras = prepare_cameras(o, fine);
 
@@ -241,6 +247,8 @@ int main(int argc, char** argv) {
     app.add_option("--output", o.output,
                    "LOD asset to write: INRIA PLY, or glTF (KHR_gaussian_splatting) for .glb/.gltf")
         ->required();
+    app.add_flag("--single-file", o.single_file,
+                 "bake one file even for a capture that a streamed world serves better (large or flat aerial)");
     add_camera_options(app, o);
     const ShapeOptions shape = add_bake_options(app, o);
     CLI11_PARSE(app, argc, argv);

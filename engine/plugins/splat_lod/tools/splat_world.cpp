@@ -179,6 +179,7 @@ int run_import(const CommandLine& c) {
     o.bake_width = c.options.bake_width;
     o.bake_height = c.options.bake_height;
     o.groups = !c.no_groups;
+    o.force = c.options.force;
     o.progress = print_progress;
     const world::ImportResult result = world::import_world(o);
     std::printf("%s", world::format_import_summary(result.summary).c_str());

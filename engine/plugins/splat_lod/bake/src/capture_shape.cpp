@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "engine/core/error.h"
 
@@ -107,6 +108,40 @@ BakeOptions capture_defaults(BakeOptions options, CaptureShape shape) {
     options.member_ranges = true;
     options.refine_cameras = 0;  // all of them
     return options;
+}
+
+namespace {
+
+// The 1st–99th percentile extent of the centres along each axis (every 16th centre).
+glm::dvec3 robust_extent(const SplatCloud& cloud) {
+    glm::dvec3 extent(0.0);
+    for (int k = 0; k < 3; ++k) {
+        std::vector<float> values;
+        for (std::size_t i = 0; i < cloud.size(); i += 16) values.push_back(cloud.positions[i][k]);
+        std::sort(values.begin(), values.end());
+        if (!values.empty()) extent[k] = values[values.size() * 99 / 100] - values[values.size() / 100];
+    }
+    return extent;
+}
+
+}  // namespace
+
+std::string streamed_world_advice(const SplatCloud& cloud) {
+    char text[256];
+    if (cloud.size() >= kWorldCaptureGaussians) {
+        std::snprintf(text, sizeof text, "%zu Gaussians (one LOD file serves captures of %llu or more badly)",
+                      cloud.size(), static_cast<unsigned long long>(kWorldCaptureGaussians));
+        return text;
+    }
+    const glm::dvec3 e = robust_extent(cloud);
+    const double thinnest = std::min({e.x, e.y, e.z}), widest = std::max({e.x, e.y, e.z});
+    if (cloud.size() >= kFlatCaptureGaussians && thinnest > 0.0 && widest >= kFlatCaptureRatio * thinnest) {
+        std::snprintf(text, sizeof text,
+                      "a flat capture of %zu Gaussians, %.0f times wider than it is thin (an aerial capture)",
+                      cloud.size(), widest / thinnest);
+        return text;
+    }
+    return "";
 }
 
 }  // namespace splat_lod::bake

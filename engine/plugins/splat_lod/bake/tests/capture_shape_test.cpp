@@ -186,3 +186,22 @@ TEST(BakeGrid, DefaultForwardIsTheViewOfACameraWithRightAlongX) {
     EXPECT_NE(error_of([] { bake::default_forward({1, 0, 0}); }).find("--forward"), std::string::npos);
     EXPECT_NE(error_of([] { bake::default_forward({0, 0, 0}); }).find("up direction"), std::string::npos);
 }
+
+// A large capture, or a flat one of a million Gaussians, is pointed to a streamed world; a small or a
+// thick one is not.
+TEST(StreamedWorldAdvice, LargeOrFlatCapturesAreBetterAsAWorld) {
+    SplatCloud cloud;
+    cloud.resize(bake::kFlatCaptureGaussians);
+    for (std::size_t i = 0; i < cloud.size(); ++i)  // 100 × 2 × 60 units: flat
+        cloud.positions[i] = {static_cast<float>(i % 1000) * 0.1f, static_cast<float>(i % 7) * 0.3f,
+                              static_cast<float>(i / 1000) * 0.06f};
+    EXPECT_NE(bake::streamed_world_advice(cloud).find("flat capture"), std::string::npos);
+    for (std::size_t i = 0; i < cloud.size(); ++i) cloud.positions[i].y *= 20.0f;  // 36 units thick
+    EXPECT_EQ(bake::streamed_world_advice(cloud), "");
+    cloud.resize(bake::kWorldCaptureGaussians);
+    EXPECT_NE(bake::streamed_world_advice(cloud).find("2000000 Gaussians"), std::string::npos);
+    SplatCloud small;
+    small.resize(1000);
+    for (std::size_t i = 0; i < small.size(); ++i) small.positions[i] = {static_cast<float>(i), 0.0f, 0.0f};
+    EXPECT_EQ(bake::streamed_world_advice(small), "") << "a small capture, however flat, is one file";
+}

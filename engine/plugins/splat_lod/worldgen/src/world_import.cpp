@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <mutex>
+#include <optional>
+#include <span>
 #include <sstream>
 #include <system_error>
 
@@ -136,7 +138,9 @@ std::vector<ChunkResult> bake_bins(const ImportOptions& o, const WorldOptions& w
     const GroundHeight height = [&](float x, float z) { return ground.height(x, z, frame.size()); };
     std::mutex mutex;
     std::size_t done = 0;
-    std::uint64_t gaussians = 0;
+    std::uint64_t gaussians = 0, baked = 0, total = 0;
+    for (const glm::ivec2& cell : cells) total += bins.count(cell);
+    const auto chunks_start = Clock::now();
     report(o, "chunks", 0, cells.size(), start);
     reference::detail::parallel_for(cells.size(), w.threads, [&](std::size_t k) {
         const glm::ivec2 cell = cells[k];
@@ -153,15 +157,22 @@ std::vector<ChunkResult> bake_bins(const ImportOptions& o, const WorldOptions& w
         }
         const std::lock_guard lock(mutex);
         gaussians += results[k].entry.prefix_count[0];
-        report(o, "chunks", ++done, cells.size(), start, gaussians);
+        baked += bins.count(cell);
+        ++done;
+        // The ETA from the Gaussians baked so far: chunks differ in size by orders of magnitude.
+        const double seconds = seconds_since(chunks_start);
+        if (o.progress)
+            o.progress({"chunks", done, cells.size(), gaussians, seconds_since(start),
+                        seconds * static_cast<double>(total - baked) /
+                            static_cast<double>(std::max<std::uint64_t>(baked, 1))});
     });
     return results;
 }
 
 std::string import_settings(const ImportOptions& o, const WorldOptions& w, const CaptureFrame& frame) {
     std::ostringstream s;
-    s << "splat_lod capture import 1: " << (frame.aerial ? "aerial" : "ground") << " views, at most "
-      << o.max_chunk_gaussians << " per chunk, far layer <= " << o.far_layer_max << "; " << generator_settings(w);
+    s << ": " << (frame.aerial ? "aerial" : "ground") << " views, at most " << o.max_chunk_gaussians
+      << " per chunk, far layer <= " << o.far_layer_max << "; " << generator_settings(w);
     return s.str();
 }
 
@@ -221,6 +232,52 @@ WorldManifest build_import(const ImportOptions& o, const Capture& capture, const
     return m;
 }
 
+// A checksum of what the import's bytes depend on: every file of the capture (path, size, modification
+// time; a SOG chunk's whole folder) and every option.
+std::string capture_fingerprint(const Capture& capture, const ImportOptions& o) {
+    std::ostringstream text;
+    std::error_code ec;
+    const auto describe = [&](const fs::path& file) {
+        text << file.string() << ' ' << fs::file_size(file, ec) << ' '
+             << fs::last_write_time(file, ec).time_since_epoch().count() << '\n';
+    };
+    for (const CapturePart& part : capture.parts) {
+        text << part.label() << '\n';
+        if (part.kind == CapturePart::Kind::sog_ranges) {
+            for (const auto& entry : fs::directory_iterator(part.file.parent_path(), ec)) describe(entry.path());
+        } else {
+            describe(part.file);
+        }
+    }
+    text << (o.up ? glm::length(*o.up) : 0.0f) << ' ' << (o.up ? o.up->x : 0.0f) << ' ' << (o.up ? o.up->y : 0.0f)
+         << ' ' << (o.up ? o.up->z : 0.0f) << ' ' << static_cast<int>(o.views) << ' ' << o.max_chunk_gaussians << ' '
+         << o.far_layer_max << ' ' << o.bake_width << 'x' << o.bake_height << ' ' << o.bake.refine_iterations << ' '
+         << o.groups;
+    const std::string all = text.str();
+    char hex[16];
+    std::snprintf(hex, sizeof hex, "%08x",
+                  checksum(std::span(reinterpret_cast<const std::uint8_t*>(all.data()), all.size())));
+    return hex;
+}
+
+constexpr const char* kImportGenerator = "splat_lod capture import 1";
+
+std::optional<WorldManifest> cached_import(const ImportOptions& o, const std::string& fingerprint) {
+    std::error_code ec;
+    const fs::path path = o.output / kManifestFileName;
+    if (o.force || !fs::exists(path, ec)) return std::nullopt;
+    try {
+        WorldManifest m = read_world_manifest(path);
+        if (m.generator.rfind(std::string(kImportGenerator) + " [" + fingerprint + "]", 0) != 0) return std::nullopt;
+        for (const auto* list : {&m.chunks, &m.groups})
+            for (const ChunkEntry& c : *list)
+                if (fs::file_size(o.output / c.file, ec) != c.file_bytes || ec) return std::nullopt;
+        return m;
+    } catch (const engine::Error&) {
+        return std::nullopt;
+    }
+}
+
 }  // namespace
 
 ImportResult import_world(const ImportOptions& o) {
@@ -236,6 +293,15 @@ ImportResult import_world(const ImportOptions& o) {
     fs::create_directories(o.output, ec);
     if (ec) engine::fail(o.output.string() + ": cannot create the world's folder: " + ec.message());
     const WorldFolderLock lock(o.output, WorldFolderLock::Mode::write);
+    const std::string fingerprint = capture_fingerprint(capture, o);
+    if (auto cached = cached_import(o, fingerprint)) {
+        result.manifest = std::move(*cached);
+        s.cached = true;
+        summarise_manifest(result.manifest, o.output, s.world);
+        s.world.cached = true;
+        s.world.seconds = seconds_since(start);
+        return result;
+    }
     lock.require();
 
     auto stage = Clock::now();
@@ -257,6 +323,8 @@ ImportResult import_world(const ImportOptions& o) {
     const fs::path generation = new_generation(o.output);
     try {
         result.manifest = build_import(o, capture, sample, frame, generation, s, start);
+        result.manifest.generator =
+            std::string(kImportGenerator) + " [" + fingerprint + "]" + result.manifest.generator;
         stage = Clock::now();
         report(o, "manifest", 0, 0, start);
         write_world_manifest(o.output / kManifestFileName, result.manifest);  // the commit
@@ -275,6 +343,13 @@ ImportResult import_world(const ImportOptions& o) {
 std::string format_import_summary(const ImportSummary& s) {
     std::ostringstream out;
     char line[512];
+    if (s.cached) {
+        std::snprintf(line, sizeof line,
+                      "cached import: %zu chunks, %llu Gaussians on disk (the capture's files and "
+                      "the options are unchanged; --force imports again)\n",
+                      s.world.chunks, static_cast<unsigned long long>(s.world.gaussians));
+        return line;
+    }
     std::snprintf(line, sizeof line, "capture: %s, %llu Gaussians read\n", s.capture_description.c_str(),
                   static_cast<unsigned long long>(s.read));
     out << line;

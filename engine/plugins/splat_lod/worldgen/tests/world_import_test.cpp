@@ -165,6 +165,23 @@ TEST(WorldImport, OutOfCoreUnderATinyCapGivesTheSameBytes) {
     EXPECT_GT(b.summary.bin_flushes, 10u);
 }
 
+TEST(WorldImport, TheSameCaptureAndOptionsAreNotImportedTwice) {
+    const fs::path dir = fresh_dir("cached");
+    splat_lod::write_inria_ply(dir / "capture.ply", synthetic_capture());
+    world::ImportOptions o = fast_options(dir / "capture.ply", dir / "world");
+    const auto first = world::import_world(o);
+    EXPECT_FALSE(first.summary.cached);
+    const auto second = world::import_world(o);
+    EXPECT_TRUE(second.summary.cached);
+    EXPECT_EQ(second.manifest.chunks.size(), first.manifest.chunks.size());
+    o.max_chunk_gaussians = 4096;  // another option: imported again
+    EXPECT_FALSE(world::import_world(o).summary.cached);
+    splat_lod::write_inria_ply(dir / "capture.ply", y_down(synthetic_capture()));  // another file
+    EXPECT_FALSE(world::import_world(o).summary.cached);
+    o.force = true;
+    EXPECT_FALSE(world::import_world(o).summary.cached);
+}
+
 TEST(WorldImport, FindsZUpAndCountsHostileGaussians) {
     const fs::path dir = fresh_dir("hostile");
     SplatCloud cloud = synthetic_capture();

@@ -5,6 +5,7 @@
 //   - forward: a forward-facing sweep, cameras on one side of the scene looking across it, all within
 //              a cone of view directions (a grid of eyes on the capture side);
 //   - world:   a large world with the cameras inside the content, looking out in many directions.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,5 +56,16 @@ CaptureDetection detect_capture_shape(const std::vector<eval::CameraPose>& camer
 // Gaussians no thinner than 0.3 of their largest axis, coverage_max capped where the members stop
 // being drawn, and every bake camera in the refinement. Orbit and world: unchanged.
 BakeOptions capture_defaults(BakeOptions options, CaptureShape shape);
+
+// Above kWorldCaptureGaussians Gaussians, or for a flat capture of at least kFlatCaptureGaussians whose
+// centres (1st–99th percentile box) are kFlatCaptureRatio times wider than the box is thin (an aerial
+// capture: a single file's bake cameras orbit it from far away, so its coarse levels serve only the
+// overview), one LOD file serves a capture badly; a streamed world (splat_world --from) is what it needs.
+// Measured on a 4.2M aerial capture: a single-file bake added 0.13 % coarse Gaussians and still drew 3.2M
+// of 4.25M from four times the overview's distance. Returns why, or "" when one file is fine.
+inline constexpr std::uint64_t kWorldCaptureGaussians = 2'000'000;
+inline constexpr std::uint64_t kFlatCaptureGaussians = 1'000'000;
+inline constexpr double kFlatCaptureRatio = 15.0;
+std::string streamed_world_advice(const SplatCloud& cloud);
 
 }  // namespace splat_lod::bake

@@ -26,10 +26,11 @@
 //     by them; above far_layer_max the largest (by extent × opacity) are kept, the rest dropped;
 //   - a capture with nothing left, or whose kept centres have no horizontal extent (all at one point,
 //     one Gaussian), is an error naming the capture.
-// A failed import leaves the folder's previous world untouched (the generation folder and the commit
-// of world_generator.h). The unit of a capture is unknown: the import works at a scale σ = chunk size
-// / 64 (the generated world's 64 m chunks), applied to the bake cameras' heights, the groups' cells
-// and the stream levels' reaches, so a capture in any unit streams like the generated world scaled.
+// An import whose capture files and options are those of the world already in the folder is not done
+// again (ImportOptions::force). A failed import leaves the folder's previous world untouched (the generation folder and
+// the commit of world_generator.h). The unit of a capture is unknown: the import works at a scale σ = chunk size / 64
+// (the generated world's 64 m chunks), applied to the bake cameras' heights, the groups' cells and the stream levels'
+// reaches, so a capture in any unit streams like the generated world scaled.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -64,11 +65,15 @@ struct ImportOptions {
     // Tuning of the out-of-core path (0: from memory_bytes): the largest part of a cut PLY read at once,
     // and how many bytes of binned Gaussians are buffered before they are appended to the bin files.
     std::uint64_t part_records = 0, bin_flush_bytes = 0;
+    // Import again even when the folder holds this capture's world already (same files by path, size and
+    // modification time, same options: the manifest's generator names their checksum).
+    bool force = false;
     std::function<void(const WorldProgress&)> progress;
 };
 
 // What the survey found and what was done with every Gaussian.
 struct ImportSummary {
+    bool cached = false;              // the folder's world was this import already: nothing was done
     std::string capture_description;  // "streamed SOG level 0: 8 chunk files"
     glm::dvec3 up{0.0, 1.0, 0.0};     // in the capture's frame
     std::string up_source;            // "given", "flat Gaussians", "thinnest axis"
