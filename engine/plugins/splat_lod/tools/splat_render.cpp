@@ -112,7 +112,9 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
     Options o;
     CLI::App app{"Render a Gaussian splat file to PNG (headless OpenGL compute)"};
-    app.add_option("--in", o.in, "splat file (.ply, .compressed.ply, .splat, .spz, SOG meta.json, .glb, .gltf)")
+    app.add_option("--in", o.in,
+                   "splat file (.ply, .compressed.ply, .splat, .spz, SOG meta.json, .glb, .gltf), a streamed SOG "
+                   "lod-meta.json[#level], or a folder or .txt list of tiles")
         ->required();
     app.add_option("--out", o.out, "output PNG")->required();
     app.add_option("--width", o.width, "image width")->check(CLI::Range(1, 16384));

@@ -98,7 +98,7 @@ struct CommandLine {
     std::string out, seed_text = "1", shard_text;
     // --from: a capture imported instead of the generated world (world/world_import.h).
     std::string from, up_text = "auto", memory_text = "3G", views_text = "auto";
-    std::uint64_t max_chunk_gaussians = 65536;
+    std::uint64_t max_chunk_gaussians = 131072;
     bool no_terrain_mesh = false, no_groups = false, count_only = false, merge = false;
     CLI::Option* shard_option = nullptr;  // given: bake a shard
 };
@@ -140,7 +140,8 @@ void add_import_options(CLI::App& app, CommandLine& c) {
     app.add_option("--up", c.up_text, "the capture's up direction: auto (found from the data) or X,Y,Z");
     app.add_option("--memory", c.memory_text, "resident memory the import stays within, e.g. 2G, 512M; 3G by default");
     app.add_option("--max-chunk-gaussians", c.max_chunk_gaussians,
-                   "the chunk size is chosen so that no chunk holds more; 65536 by default")
+                   "the chunk size is chosen so that no chunk holds more; 131072 by default (the generated world's 64 "
+                   "m chunks hold up to 106k)")
         ->check(CLI::Range(std::uint64_t{1024}, std::uint64_t{1} << 26));
     app.add_option("--views", c.views_text, "chunk bake cameras: auto, ground (eye height and above) or aerial");
 }

@@ -56,7 +56,7 @@ struct ImportOptions {
     std::optional<glm::vec3> up;    // none: found from the data
     CaptureViews views = CaptureViews::automatic;
     std::uint64_t memory_bytes = std::uint64_t{3} << 30;  // resident memory the import aims to stay within
-    std::uint64_t max_chunk_gaussians = 65536;            // the chunk size is chosen so no chunk holds more
+    std::uint64_t max_chunk_gaussians = 131072;           // the chunk size is chosen so no chunk holds more
     std::uint64_t far_layer_max = 262144;
     int threads = 0;  // chunks baked at once (0: all cores), lowered to fit the memory cap
     bake::BakeOptions bake = default_world_bake_options();
