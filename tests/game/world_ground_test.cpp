@@ -11,11 +11,14 @@
 #include "sample_game/path_file.h"
 #include "sample_game/world_ground.h"
 #include "sample_game/world_path.h"
+#include "splat_io_test_helpers.h"
 #include "test_support.h"
 
 namespace sw = splat_lod::world;
 using sample_game::PathPose;
 using sample_game::Segment;
+
+using splat_io_test::error_of;
 
 namespace {
 
@@ -66,15 +69,6 @@ TEST(WorldGround, AGeneratedWorldKeepsItsTerrainPath) {
     ASSERT_EQ(from_manifest.size(), from_terrain.size());
     for (std::size_t i = 0; i < from_terrain.size(); ++i) EXPECT_EQ(from_manifest[i].eye, from_terrain[i].eye);
     EXPECT_FLOAT_EQ(from_terrain[0].eye.y, terrain.height(from_terrain[0].eye.x, from_terrain[0].eye.z) + 1.7f);
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const engine::Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 TEST(PathFile, PosesAreTakenAsGivenKeysAreSampledAndBadEntriesNamed) {

@@ -19,11 +19,14 @@
 #include "splat_lod/core/reference_renderer.h"
 #include "splat_lod/core/splat_io.h"
 #include "splat_lod/worldgen/world_import.h"
+#include "splat_io_test_helpers.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
 namespace world = splat_lod::world;
 using splat_lod::SplatCloud;
+
+using splat_io_test::error_of;
 
 namespace {
 
@@ -100,15 +103,6 @@ double psnr(const splat_lod::reference::ReferenceImage& a, const splat_lod::refe
     }
     const double mse = sum / static_cast<double>(a.rgb.size());
     return mse == 0.0 ? 1e9 : 10.0 * std::log10(1.0 / mse);
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const engine::Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 TEST(WorldImport, FindsTheFrameAndTheCutCaptureDrawsLikeTheUncutFile) {
