@@ -37,6 +37,7 @@ struct CaptureFrame {
     float height_lo = 0.0f, height_hi = 0.0f;  // world frame: the kept heights
     float degenerate_extent = 0.0f;            // below it a Gaussian is degenerate
     float footprint = 0.0f;                    // the 1–99 % square's side
+    float height_span = 0.0f;                  // the 1–99 % span of the heights
     bool aerial = false;
     float size() const { return chunk_size * static_cast<float>(chunks_per_side); }
     float scale() const { return chunk_size / 64.0f; }

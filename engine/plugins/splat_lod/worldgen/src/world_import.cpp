@@ -316,6 +316,8 @@ ImportResult import_world(const ImportOptions& o) {
     s.rotation = frame.rotation;
     s.translation = frame.translation;
     s.aerial = frame.aerial;
+    s.flatness = frame.height_span / frame.footprint;
+    s.coarseness = sample.median_extent / frame.footprint;
     s.chunk_size = frame.chunk_size;
     s.size = frame.size();
     s.scale = frame.scale();
@@ -353,9 +355,12 @@ std::string format_import_summary(const ImportSummary& s) {
     std::snprintf(line, sizeof line, "capture: %s, %llu Gaussians read\n", s.capture_description.c_str(),
                   static_cast<unsigned long long>(s.read));
     out << line;
-    std::snprintf(line, sizeof line, "frame: up (%.4f, %.4f, %.4f) from %s, translation (%.3f, %.3f, %.3f), %s views\n",
-                  s.up.x, s.up.y, s.up.z, s.up_source.c_str(), s.translation.x, s.translation.y, s.translation.z,
-                  s.aerial ? "aerial" : "ground");
+    std::snprintf(
+        line, sizeof line,
+        "frame: up (%.4f, %.4f, %.4f) from %s, translation (%.3f, %.3f, %.3f), %s views (height span %.2f %%, "
+        "median extent %.2g of the footprint)\n",
+        s.up.x, s.up.y, s.up.z, s.up_source.c_str(), s.translation.x, s.translation.y, s.translation.z,
+        s.aerial ? "aerial" : "ground", 100.0 * s.flatness, s.coarseness);
     out << line;
     std::snprintf(line, sizeof line, "grid: %.4g units square, chunks of %.4g units (scale %.4g)\n",
                   static_cast<double>(s.size), static_cast<double>(s.chunk_size), static_cast<double>(s.scale));

@@ -14,12 +14,12 @@
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
 #include "engine/render/camera.h"
+#include "splat_io_test_helpers.h"
 #include "splat_lod/core/capture_source.h"
 #include "splat_lod/core/cloud_transform.h"
 #include "splat_lod/core/reference_renderer.h"
 #include "splat_lod/core/splat_io.h"
 #include "splat_lod/worldgen/world_import.h"
-#include "splat_io_test_helpers.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

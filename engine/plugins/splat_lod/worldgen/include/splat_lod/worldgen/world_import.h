@@ -45,7 +45,8 @@
 namespace splat_lod::world {
 
 enum class CaptureViews {
-    automatic,  // aerial when the capture is flat (height span below 3 % of the footprint), else ground
+    automatic,  // aerial when the capture is flat and coarse (capture_survey.cpp: height span below 6 % and
+                // median Gaussian extent above 2.5e-4 of the footprint), else ground
     ground,     // the generated world's chunk cameras: eye height, low flight, overview
     aerial,     // from above and oblique only
 };
@@ -80,6 +81,7 @@ struct ImportSummary {
     glm::dmat3 rotation{1.0};         // capture → world
     glm::dvec3 translation{0.0};
     bool aerial = false;
+    double flatness = 0.0, coarseness = 0.0;             // height span and median extent over the footprint
     float chunk_size = 0.0f, size = 0.0f, scale = 1.0f;  // scale σ = chunk size / 64
     std::uint64_t read = 0;                              // Gaussians the readers returned
     std::uint64_t dropped_by_reader = 0;                 // NaN/Inf, zero quaternions
