@@ -175,6 +175,14 @@ TEST(CaptureSource, BrokenCapturesAreNamedWithTheirProblem) {
     splat_lod::write_inria_ply(dir / "one.ply", make_cloud(4, 0, 1));
     expect_error([&] { splat_lod::load_splat_file(dir.string() + "/one.ply#1"); }, {"one.ply", "#level"});
     expect_error([&] { splat_lod::load_splat_file(dir.string() + "/lod-meta.json#x"); }, {"#x", "not a level"});
+    // A header that claims far more records than the file holds is not cut into parts without end.
+    {
+        std::string bytes = engine::read_text_file(dir / "one.ply");
+        bytes.replace(bytes.find("element vertex 4"), 16, "element vertex 1125899906842624");
+        std::ofstream(dir / "lying.ply", std::ios::binary) << bytes;
+    }
+    EXPECT_EQ(splat_lod::open_capture(dir / "lying.ply", 1000).parts.size(), 1u);
+    expect_error([&] { splat_lod::read_capture(dir / "lying.ply"); }, {"lying.ply"});
     std::ofstream(dir / "self.txt") << "self.txt\n";
     expect_error([&] { splat_lod::load_splat_file(dir / "self.txt"); }, {"self.txt", "nest deeper"});
 }

@@ -55,6 +55,13 @@ void add_file_parts(const fs::path& file, std::uint64_t max_records, std::vector
         } catch (const engine::Error&) {
             single_element = false;  // compressed or ascii PLY: the whole-file reader says what is wrong
         }
+        // Only a file exactly as long as its header says is cut (a lying count would make parts without
+        // end); any other is read whole, and that reader names the problem.
+        std::uint64_t records = 0, expected = 0;
+        if (single_element && (__builtin_mul_overflow(layout.vertex_count, layout.vertex_bytes, &records) ||
+                               __builtin_add_overflow(records, layout.header_bytes, &expected) ||
+                               expected != layout.file_bytes))
+            single_element = false;
         if (single_element && layout.vertex_count > max_records) {
             for (std::uint64_t begin = 0; begin < layout.vertex_count; begin += max_records) {
                 CapturePart part;
