@@ -232,7 +232,11 @@ WorldManifest build_import(const ImportOptions& o, const Capture& capture, const
     return m;
 }
 
-// A checksum of what the import's bytes depend on: every file of the capture (path, size, modification
+// Raised whenever the import makes other bytes from the same capture and options (a cached import of an
+// older version is made again).
+constexpr int kImportVersion = 2;
+
+// A checksum of what the import's bytes depend on: the import's version, every file of the capture (path, size, modification
 // time; a SOG chunk's whole folder) and every option.
 std::string capture_fingerprint(const Capture& capture, const ImportOptions& o) {
     std::ostringstream text;
@@ -249,7 +253,7 @@ std::string capture_fingerprint(const Capture& capture, const ImportOptions& o) 
             describe(part.file);
         }
     }
-    text << (o.up ? glm::length(*o.up) : 0.0f) << ' ' << (o.up ? o.up->x : 0.0f) << ' ' << (o.up ? o.up->y : 0.0f)
+    text << kImportVersion << ' ' << (o.up ? glm::length(*o.up) : 0.0f) << ' ' << (o.up ? o.up->x : 0.0f) << ' ' << (o.up ? o.up->y : 0.0f)
          << ' ' << (o.up ? o.up->z : 0.0f) << ' ' << static_cast<int>(o.views) << ' ' << o.max_chunk_gaussians << ' '
          << o.far_layer_max << ' ' << o.bake_width << 'x' << o.bake_height << ' ' << o.bake.refine_iterations << ' '
          << o.groups;
