@@ -377,7 +377,14 @@ std::string format_import_summary(const ImportSummary& s) {
         n(s.binned), n(s.dropped_by_reader), n(s.invisible), n(s.degenerate), n(s.far_huge), n(s.far_outside),
         n(s.far_layer), n(s.far_dropped));
     out << line;
-    out << format_summary(s.world);
+    std::string world = format_summary(s.world);
+    // The world's own summary speaks of generated content; an import has none.
+    if (world.rfind("generated world:", 0) == 0) world.replace(0, 15, "imported world");
+    if (const auto none = world.find(" (0 generated)"); none != std::string::npos)
+        world.replace(none, 14, " (" + std::to_string(s.binned) + " from the capture)");
+    const auto generated_line = world.find("  generated: ");
+    if (generated_line != std::string::npos) world.erase(generated_line, world.find('\n', generated_line) + 1 - generated_line);
+    out << world;
     std::snprintf(line, sizeof line, "peak resident memory %.2f GiB\n",
                   static_cast<double>(s.peak_rss_bytes) / (1024.0 * 1024.0 * 1024.0));
     out << line;
