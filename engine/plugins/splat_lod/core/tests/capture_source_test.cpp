@@ -175,6 +175,12 @@ TEST(CaptureSource, BrokenCapturesAreNamedWithTheirProblem) {
     splat_lod::write_inria_ply(dir / "one.ply", make_cloud(4, 0, 1));
     expect_error([&] { splat_lod::load_splat_file(dir.string() + "/one.ply#1"); }, {"one.ply", "#level"});
     expect_error([&] { splat_lod::load_splat_file(dir.string() + "/lod-meta.json#x"); }, {"#x", "not a level"});
+    int level = -1;
+    EXPECT_EQ(splat_lod::capture_file_and_level("lod-meta.json#2", &level), std::filesystem::path("lod-meta.json"));
+    EXPECT_EQ(level, 2) << "a bare file name with a level";
+    EXPECT_EQ(splat_lod::capture_file_and_level("a#b/lod-meta.json", &level),
+              std::filesystem::path("a#b/lod-meta.json"));
+    EXPECT_EQ(level, -1) << "a '#' in a folder name is not a level";
     // A header that claims far more records than the file holds is not cut into parts without end.
     {
         std::string bytes = engine::read_text_file(dir / "one.ply");

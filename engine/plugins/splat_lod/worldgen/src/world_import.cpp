@@ -236,8 +236,8 @@ WorldManifest build_import(const ImportOptions& o, const Capture& capture, const
 // older version is made again).
 constexpr int kImportVersion = 2;
 
-// A checksum of what the import's bytes depend on: the import's version, every file of the capture (path, size, modification
-// time; a SOG chunk's whole folder) and every option.
+// A checksum of what the import's bytes depend on: the import's version, every file of the capture (path, size,
+// modification time; a SOG chunk's whole folder) and every option.
 std::string capture_fingerprint(const Capture& capture, const ImportOptions& o) {
     std::ostringstream text;
     std::error_code ec;
@@ -253,10 +253,10 @@ std::string capture_fingerprint(const Capture& capture, const ImportOptions& o) 
             describe(part.file);
         }
     }
-    text << kImportVersion << ' ' << (o.up ? glm::length(*o.up) : 0.0f) << ' ' << (o.up ? o.up->x : 0.0f) << ' ' << (o.up ? o.up->y : 0.0f)
-         << ' ' << (o.up ? o.up->z : 0.0f) << ' ' << static_cast<int>(o.views) << ' ' << o.max_chunk_gaussians << ' '
-         << o.far_layer_max << ' ' << o.bake_width << 'x' << o.bake_height << ' ' << o.bake.refine_iterations << ' '
-         << o.groups;
+    text << kImportVersion << ' ' << (o.up ? glm::length(*o.up) : 0.0f) << ' ' << (o.up ? o.up->x : 0.0f) << ' '
+         << (o.up ? o.up->y : 0.0f) << ' ' << (o.up ? o.up->z : 0.0f) << ' ' << static_cast<int>(o.views) << ' '
+         << o.max_chunk_gaussians << ' ' << o.far_layer_max << ' ' << o.bake_width << 'x' << o.bake_height << ' '
+         << o.bake.refine_iterations << ' ' << o.groups;
     const std::string all = text.str();
     char hex[16];
     std::snprintf(hex, sizeof hex, "%08x",
@@ -383,7 +383,8 @@ std::string format_import_summary(const ImportSummary& s) {
     if (const auto none = world.find(" (0 generated)"); none != std::string::npos)
         world.replace(none, 14, " (" + std::to_string(s.binned) + " from the capture)");
     const auto generated_line = world.find("  generated: ");
-    if (generated_line != std::string::npos) world.erase(generated_line, world.find('\n', generated_line) + 1 - generated_line);
+    if (generated_line != std::string::npos)
+        world.erase(generated_line, world.find('\n', generated_line) + 1 - generated_line);
     out << world;
     std::snprintf(line, sizeof line, "peak resident memory %.2f GiB\n",
                   static_cast<double>(s.peak_rss_bytes) / (1024.0 * 1024.0 * 1024.0));

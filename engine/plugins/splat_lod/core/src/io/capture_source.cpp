@@ -58,9 +58,9 @@ void add_file_parts(const fs::path& file, std::uint64_t max_records, std::vector
         // Only a file exactly as long as its header says is cut (a lying count would make parts without
         // end); any other is read whole, and that reader names the problem.
         std::uint64_t records = 0, expected = 0;
-        if (single_element && (__builtin_mul_overflow(layout.vertex_count, layout.vertex_bytes, &records) ||
-                               __builtin_add_overflow(records, layout.header_bytes, &expected) ||
-                               expected != layout.file_bytes))
+        if (single_element &&
+            (__builtin_mul_overflow(layout.vertex_count, layout.vertex_bytes, &records) ||
+             __builtin_add_overflow(records, layout.header_bytes, &expected) || expected != layout.file_bytes))
             single_element = false;
         if (single_element && layout.vertex_count > max_records) {
             for (std::uint64_t begin = 0; begin < layout.vertex_count; begin += max_records) {
@@ -233,8 +233,8 @@ std::uint64_t Capture::gaussians() const {
 fs::path capture_file_and_level(const fs::path& path, int* level) {
     *level = -1;
     const std::string text = path.string();
-    const auto hash = text.rfind('#');
-    if (hash == std::string::npos || hash < text.rfind('/')) return path;
+    const auto hash = text.rfind('#'), slash = text.rfind('/');
+    if (hash == std::string::npos || (slash != std::string::npos && hash < slash)) return path;
     std::error_code ec;
     if (fs::exists(path, ec)) return path;  // a file whose name holds '#'
     const std::string digits = text.substr(hash + 1);
