@@ -39,12 +39,14 @@ TEST(CloudTransform, ColoursCentresAndCovariancesTurnWithTheFrame) {
             for (int k = 0; k < 3; ++k) EXPECT_NEAR(turned.positions[i][k], moved[k], 1e-5);
             const glm::dmat3 expected = r * covariance(original, i) * glm::transpose(r), got = covariance(turned, i);
             for (int c = 0; c < 3; ++c)
-                for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[c][k], expected[c][k], 1e-5 + 1e-5 * std::fabs(expected[c][k]));
+                for (int k = 0; k < 3; ++k)
+                    EXPECT_NEAR(got[c][k], expected[c][k], 1e-5 + 1e-5 * std::fabs(expected[c][k]));
             for (int d = 0; d < 6; ++d) {
                 const glm::dvec3 direction = glm::normalize(glm::dvec3(normal(rng), normal(rng), normal(rng)));
                 const glm::dvec3 before = splat_lod::reference::sh_colour_unclamped(original, i, 3, direction);
                 const glm::dvec3 after = splat_lod::reference::sh_colour_unclamped(turned, i, 3, r * direction);
-                for (int c = 0; c < 3; ++c) ASSERT_NEAR(after[c], before[c], 1e-5) << "Gaussian " << i << " trial " << trial;
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_NEAR(after[c], before[c], 1e-5) << "Gaussian " << i << " trial " << trial;
             }
         }
     }

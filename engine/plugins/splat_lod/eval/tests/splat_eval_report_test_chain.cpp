@@ -108,6 +108,11 @@ TEST(SplatEvalChain, BadFilesNameFileAndProblem) {
     expect_error([&] { eval::read_lod_chain(write_meta(folder, missing_level)); },
                  {"lod-meta.json", "level 1 is missing from tree.children[1]"});
 
+    std::string outside = kChain;
+    outside.replace(outside.find("\"2_0/meta.json\""), 15, "\"../2_0/meta.json\"");
+    expect_error([&] { eval::read_lod_chain(write_meta(folder, outside)); },
+                 {"lod-meta.json", "\"filenames\"[1]", "leaves the folder"});
+
     std::string no_tree = kChain;
     no_tree.replace(no_tree.find("\"tree\""), 6, "\"bush\"");
     expect_error([&] { eval::read_lod_chain(write_meta(folder, no_tree)); }, {"lod-meta.json", "missing \"tree\""});

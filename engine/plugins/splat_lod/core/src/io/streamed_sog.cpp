@@ -53,6 +53,13 @@ std::vector<std::string> read_filenames(const json& doc, const fs::path& path) {
     for (std::size_t i = 0; i < names.size(); ++i) {
         if (!names[i].is_string() || names[i].get<std::string>().empty())
             meta_error(path, "\"filenames\"[" + std::to_string(i) + "] must be a non-empty string");
+        // Chunk files lie below the folder of lod-meta.json: a hostile file cannot point elsewhere.
+        const fs::path name(names[i].get<std::string>());
+        bool inside = !name.is_absolute() && !name.has_root_name();
+        for (const fs::path& part : name) inside = inside && part != "..";
+        if (!inside)
+            meta_error(path, "\"filenames\"[" + std::to_string(i) + "] \"" + name.string() +
+                                 "\" leaves the folder of lod-meta.json");
         out.push_back(names[i].get<std::string>());
     }
     return out;

@@ -50,7 +50,8 @@ struct StreamedSog {
 bool is_streamed_sog(const std::filesystem::path& path);
 
 // Parses and checks lod-meta.json (or the folder holding it). Throws engine::Error naming the file
-// when it is missing, not JSON, lacks "filenames" or "tree", points a range to a file index that
+// when it is missing, not JSON, lacks "filenames" or "tree", names a chunk file outside its folder
+// (an absolute path or a ".." component), points a range to a file index that
 // "filenames" does not have, has overlapping ranges in one file, levels beyond "lodLevels", or names a
 // chunk file that does not exist (reported for the first level that uses it).
 StreamedSog read_streamed_sog_meta(const std::filesystem::path& path);
