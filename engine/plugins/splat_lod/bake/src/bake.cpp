@@ -2,13 +2,17 @@
 #include "splat_lod/bake/bake.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <limits>
+#include <mutex>
 #include <optional>
 #include <sstream>
+#include <thread>
 #include <utility>
 
 #include "bake_steps.h"
@@ -216,16 +220,39 @@ SplatCloud bake_lod(const SplatCloud& fine, const std::vector<reference::Referen
     const detail::Refiner refiner(fine, cameras, options);
     const double targets_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - targets_start).count();
-    double seconds = 0.0;
-    for (BakeOptions* candidate : {&adaptive, &grid}) {
-        const std::string name = recipe_name(*candidate);
+    // The two recipes bake side by side, each on half the threads (a bake's bytes do not depend on its
+    // thread count), sharing the refinement targets; their progress lines are serialised.
+    const int threads = std::max(1, reference::detail::resolve_thread_count(options.threads) / 2);
+    std::mutex progress_mutex;
+    std::array<BakeOptions*, 2> candidates{&adaptive, &grid};
+    std::array<SplatCloud, 2> results;
+    std::array<BakeSummary, 2> summaries;
+    std::array<std::exception_ptr, 2> errors;
+    for (BakeOptions* candidate : candidates) {
+        candidate->threads = threads;
         if (options.progress) {
-            candidate->progress = [&](const std::string& stage, double fraction) {
+            candidate->progress = [&, name = recipe_name(*candidate)](const std::string& stage, double fraction) {
+                const std::lock_guard lock(progress_mutex);
                 options.progress(name + ": " + stage, fraction);
             };
         }
-        BakeSummary summary;
-        SplatCloud result = bake_once(fine, cameras, *candidate, &refiner, &summary);
+    }
+    const auto bake_candidate = [&](std::size_t k) {
+        try {
+            results[k] = bake_once(fine, cameras, *candidates[k], &refiner, &summaries[k]);
+        } catch (...) {
+            errors[k] = std::current_exception();
+        }
+    };
+    std::thread second(bake_candidate, 1);
+    bake_candidate(0);
+    second.join();
+    for (const auto& error : errors)
+        if (error) std::rethrow_exception(error);
+    double seconds = 0.0;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+        const std::string name = recipe_name(*candidates[k]);
+        BakeSummary& summary = summaries[k];
         double score = 0.0;
         for (const auto& level : summary.levels) score += level.final_psnr / static_cast<double>(summary.levels.size());
         for (const auto& stage : summary.stages) seconds += stage.seconds;
@@ -235,7 +262,7 @@ SplatCloud bake_lod(const SplatCloud& fine, const std::vector<reference::Referen
         // views at 16×).
         if (score > best_score + (best_score > -std::numeric_limits<double>::infinity() ? kRecipeMargin : 0.0)) {
             best_score = score;
-            best = std::move(result);
+            best = std::move(results[k]);
             best_summary = std::move(summary);
             best_summary.recipe = name;
         }
