@@ -24,6 +24,7 @@ constexpr std::uint64_t kMinFlat = 100;
 // world (seen from eye height, centimetre leaves) 1.6 % and 1.3e-4. Height alone cannot tell them apart.
 constexpr double kAerialFlatness = 0.06;
 constexpr double kAerialCoarseness = 2.5e-4;
+constexpr double kHugeTimesMedian = 64.0;
 
 void add_flat_normal(const SplatCloud& cloud, std::size_t i, CaptureSample& sample) {
     glm::vec3 s = cloud.log_scales[i];
@@ -105,7 +106,10 @@ struct Box2 {
 };
 
 // The largest power-of-two chunk (relative to the footprint's power of two) at which no cell of the
-// sample holds more than the cap; the translation snapped to that chunk.
+// sample holds more than the cap, with at most kMaxChunksPerSide chunks per side (a capture denser than
+// that gets fuller chunks); the translation snapped to that chunk.
+constexpr int kMaxChunksPerSide = 1024;
+
 void choose_chunks(const std::vector<glm::vec3>& world, const Box2& box, std::uint64_t stride, std::uint64_t cap,
                    CaptureFrame& frame) {
     const double footprint = std::max(box.x_hi - box.x_lo, box.z_hi - box.z_lo);
@@ -122,11 +126,13 @@ void choose_chunks(const std::vector<glm::vec3>& world, const Box2& box, std::ui
                                             static_cast<long long>(std::floor((p.z + shift.y) / c)));
             most = std::max(most, counts[key] += stride);
         }
-        if (most > cap && k < 16) continue;
         const double reach = std::max({std::fabs(box.x_lo + shift.x), std::fabs(box.x_hi + shift.x),
                                        std::fabs(box.z_lo + shift.y), std::fabs(box.z_hi + shift.y)});
+        const int per_side = std::max(2, 2 * static_cast<int>(std::ceil(reach / c)));
+        const bool finer_fits = k < 16 && 2 * per_side + 2 <= kMaxChunksPerSide;
+        if (most > cap && finer_fits) continue;
         frame.chunk_size = static_cast<float>(c);
-        frame.chunks_per_side = std::max(2, 2 * static_cast<int>(std::ceil(reach / c)));
+        frame.chunks_per_side = per_side;
         frame.translation.x += shift.x;
         frame.translation.z += shift.y;
         return;
@@ -205,6 +211,10 @@ CaptureFrame choose_frame(const CaptureSample& sample, const ImportOptions& o, c
                    (o.views == CaptureViews::automatic && y_hi - y_lo < kAerialFlatness * footprint &&
                     sample.median_extent > kAerialCoarseness * footprint);
     choose_chunks(world, box, sample.stride, o.max_chunk_gaussians, frame);
+    // Huge: wider than half a chunk (its bounds would grow past its neighbours') and far wider than the
+    // capture's typical Gaussian (sky and background are 100–1000× the median; a capture denser than any
+    // chunk has small chunks, and its ordinary Gaussians must stay in them).
+    frame.huge_extent = static_cast<float>(std::max(0.5 * frame.chunk_size, kHugeTimesMedian * sample.median_extent));
     return frame;
 }
 

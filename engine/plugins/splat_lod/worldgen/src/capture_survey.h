@@ -38,6 +38,7 @@ struct CaptureFrame {
     float degenerate_extent = 0.0f;            // below it a Gaussian is degenerate
     float footprint = 0.0f;                    // the 1–99 % square's side
     float height_span = 0.0f;                  // the 1–99 % span of the heights
+    float huge_extent = 0.0f;                  // above it a Gaussian goes to the far layer
     bool aerial = false;
     float size() const { return chunk_size * static_cast<float>(chunks_per_side); }
     float scale() const { return chunk_size / 64.0f; }

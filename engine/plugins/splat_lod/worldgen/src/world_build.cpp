@@ -111,13 +111,18 @@ ChunkResult bake_chunk(const ChunkBake& how, const SplatCloud& fine, const std::
     for (const auto& stage : summary.stages) result.stages.push_back({"bake: " + stage.stage, stage.seconds});
     result.levels = summary.levels;
 
+    write_chunk(how, baked, output, file, cell, result);
+    return result;
+}
+
+void write_chunk(const ChunkBake& how, const SplatCloud& baked, const fs::path& output, const fs::path& file,
+                 const glm::ivec2& cell, ChunkResult& result) {
     const auto start = Clock::now();
     const SplatCloud ordered = baked.permuted(stream_order(baked, how.rule));
     for (const std::uint8_t level : ordered.lod_level) ++result.bake_level_counts[static_cast<std::size_t>(level - 1)];
     write_inria_ply(output / file, ordered);
     result.entry = describe_chunk(ordered, output, file, cell, how.rule);
     result.stages.push_back({"write", seconds_since(start)});
-    return result;
 }
 
 double seconds_since(Clock::time_point start) {

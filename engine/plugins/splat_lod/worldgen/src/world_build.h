@@ -44,6 +44,7 @@ struct ChunkResult {
     std::vector<StageSeconds> stages;
     std::vector<bake::LevelSummary> levels;                  // the bake's per-level report
     std::array<std::uint64_t, kLevels> bake_level_counts{};  // Gaussians per bake level, [l − 1]
+    bool unbaked = false;  // an import's chunk that no bake camera sees, written as it is
 };
 
 // How a chunk is baked: the recipe, the camera image size, the stream-level rule of its file.
@@ -57,6 +58,11 @@ struct ChunkBake {
 // output / file and describes it (entry, per-level counts, stage times from the bake on).
 ChunkResult bake_chunk(const ChunkBake& how, const SplatCloud& fine, const std::vector<eval::CameraPose>& poses,
                        const std::filesystem::path& output, const std::filesystem::path& file, const glm::ivec2& cell);
+
+// The tail of bake_chunk: orders `baked` by stream level, writes it to output / file and describes it
+// into `result` (entry, per-level counts, the write's time).
+void write_chunk(const ChunkBake& how, const SplatCloud& baked, const std::filesystem::path& output,
+                 const std::filesystem::path& file, const glm::ivec2& cell, ChunkResult& result);
 
 ContentContext content_context(const WorldOptions& options, const WorldTerrain& terrain, const WorldLayout& layout);
 

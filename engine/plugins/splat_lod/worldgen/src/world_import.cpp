@@ -58,7 +58,6 @@ void report(const ImportOptions& o, const std::string& stage, std::size_t done, 
 
 // Sorts a part's Gaussians into the bins, the far layer, or the counts of what is dropped.
 void bin_part(SplatCloud& part, const CaptureFrame& frame, ChunkBins& bins, FarLayer& far, ImportSummary& s) {
-    const float huge = 0.5f * frame.chunk_size;
     for (std::size_t i = 0; i < part.size(); ++i) {
         const double extent = gaussian_extent(part.log_scales[i], part.opacity_logits[i]);
         if (!(extent > 0.0)) {
@@ -71,7 +70,7 @@ void bin_part(SplatCloud& part, const CaptureFrame& frame, ChunkBins& bins, FarL
             continue;
         }
         glm::ivec2 cell;
-        const bool huge_one = reach > huge;
+        const bool huge_one = reach > frame.huge_extent;
         if (huge_one || !frame.cell_of(part.positions[i], cell)) {
             ++(huge_one ? s.far_huge : s.far_outside);
             far.add(part, i, static_cast<float>(reach * opacity_from_logit(part.opacity_logits[i])));
@@ -113,6 +112,7 @@ WorldOptions world_options(const ImportOptions& o, const CaptureFrame& frame, in
     w.chunk_size_m = frame.chunk_size;
     w.threads = threads;
     w.bake = o.bake;
+    w.bake.znear = o.bake.znear * frame.scale();  // the near plane scales with the cameras' distances
     w.bake_width = o.bake_width;
     w.bake_height = o.bake_height;
     w.terrain_mesh = false;
@@ -122,6 +122,23 @@ WorldOptions world_options(const ImportOptions& o, const CaptureFrame& frame, in
     w.output = o.output;
     w.progress = o.progress;
     return w;
+}
+
+// Whether some camera has some Gaussian's centre in front of it and inside its image: a bake needs one.
+// A chunk of a few stray Gaussians far above or below the ground grid can be out of every ring's view.
+bool any_camera_sees(const SplatCloud& fine, const std::vector<eval::CameraPose>& poses, float aspect, float znear) {
+    for (const eval::CameraPose& pose : poses) {
+        const glm::vec3 right = glm::normalize(glm::cross(pose.forward, pose.up));
+        const glm::vec3 up = glm::cross(right, pose.forward);
+        const float tan_y = std::tan(0.5f * pose.fov_y), tan_x = tan_y * aspect;
+        for (const glm::vec3& p : fine.positions) {
+            const glm::vec3 d = p - pose.eye;
+            const float z = glm::dot(d, pose.forward);
+            if (z > znear && std::fabs(glm::dot(d, right)) <= tan_x * z && std::fabs(glm::dot(d, up)) <= tan_y * z)
+                return true;
+        }
+    }
+    return false;
 }
 
 int bake_threads(const ImportOptions& o, std::uint64_t largest_chunk) {
@@ -151,8 +168,14 @@ std::vector<ChunkResult> bake_bins(const ImportOptions& o, const WorldOptions& w
             ChunkSquare square;
             square.lo = glm::vec2(cell) * frame.chunk_size;
             square.hi = square.lo + glm::vec2(frame.chunk_size);
-            results[k] = bake_chunk(how, fine, capture_chunk_camera_poses(height, square, frame.scale(), frame.aerial),
-                                    o.output, chunk_file(generation, cell), cell);
+            const auto poses = capture_chunk_camera_poses(height, square, frame.scale(), frame.aerial);
+            const float aspect = static_cast<float>(w.bake_width) / static_cast<float>(w.bake_height);
+            if (any_camera_sees(fine, poses, aspect, w.bake.znear)) {
+                results[k] = bake_chunk(how, fine, poses, o.output, chunk_file(generation, cell), cell);
+            } else {  // kept as it is: its Gaussians are drawn from any distance, like a prop's
+                write_chunk(how, fine, o.output, chunk_file(generation, cell), cell, results[k]);
+                results[k].unbaked = true;
+            }
             bins.remove(cell);
         } catch (const std::exception& e) {
             engine::fail(chunk_id(cell) + ": " + e.what());
@@ -210,6 +233,7 @@ WorldManifest build_import(const ImportOptions& o, const Capture& capture, const
     const GroundGrid ground = ground_grid(sample, frame);
     const auto stage = Clock::now();
     std::vector<ChunkResult> chunks = bake_bins(o, w, frame, ground, bins, generation, start);
+    for (const ChunkResult& chunk : chunks) s.unbaked_chunks += chunk.unbaked ? 1 : 0;
     s.world.stages.push_back({"chunks (bake, write) on " + std::to_string(threads) + " threads", seconds_since(stage)});
     std::error_code ec;
     fs::remove_all(o.output / generation / "bins", ec);
@@ -236,7 +260,7 @@ WorldManifest build_import(const ImportOptions& o, const Capture& capture, const
 
 // Raised whenever the import makes other bytes from the same capture and options (a cached import of an
 // older version is made again).
-constexpr int kImportVersion = 2;
+constexpr int kImportVersion = 4;
 
 // A checksum of what the import's bytes depend on: the import's version, every file of the capture (path, size,
 // modification time; a SOG chunk's whole folder) and every option.
@@ -375,9 +399,10 @@ std::string format_import_summary(const ImportSummary& s) {
     std::snprintf(
         line, sizeof line,
         "Gaussians: %llu in chunks; dropped: %llu by the reader (NaN/Inf, zero rotation), %llu never visible, "
-        "%llu degenerate; far layer: %llu huge + %llu outside the world box, %llu kept, %llu dropped over its cap\n",
+        "%llu degenerate; far layer: %llu huge + %llu outside the world box, %llu kept, %llu dropped over its cap; "
+        "%zu chunks seen by no bake camera, kept unbaked\n",
         n(s.binned), n(s.dropped_by_reader), n(s.invisible), n(s.degenerate), n(s.far_huge), n(s.far_outside),
-        n(s.far_layer), n(s.far_dropped));
+        n(s.far_layer), n(s.far_dropped), s.unbaked_chunks);
     out << line;
     std::string world = format_summary(s.world);
     // The world's own summary speaks of generated content; an import has none.

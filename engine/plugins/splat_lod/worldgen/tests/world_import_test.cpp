@@ -195,6 +195,26 @@ TEST(WorldImport, FindsZUpAndCountsHostileGaussians) {
     EXPECT_EQ(result.summary.binned + result.summary.far_layer, n);
 }
 
+TEST(WorldImport, ACaptureDenserThanAnyChunkKeepsTheGridBounded) {
+    const fs::path dir = fresh_dir("dense_spot");
+    // 3,000 ground Gaussians on one spot and 300 of the leaves spread over the patch: the spot holds more
+    // than any chunk may at every chunk size.
+    const SplatCloud patch = synthetic_capture();
+    std::vector<std::uint32_t> kept;
+    for (std::uint32_t i = 0; i < 3000; ++i) kept.push_back(i);
+    for (std::uint32_t i = 6000; i < 6300; ++i) kept.push_back(i);
+    SplatCloud cloud = patch.permuted(kept);
+    for (std::size_t i = 0; i < 3000; ++i) cloud.positions[i] = {3.0f, 0.02f, 2.0f};
+    splat_lod::write_inria_ply(dir / "capture.ply", cloud);
+    const auto result = world::import_world(fast_options(dir / "capture.ply", dir / "world"));
+    const float per_side = result.manifest.size_m / result.manifest.chunk_size_m;
+    EXPECT_LE(per_side, 1024.0f);
+    EXPECT_GT(per_side, 64.0f) << "it did split as far as the grid allows";
+    EXPECT_GT(result.summary.unbaked_chunks, 0u) << "chunks of stray leaves far above the ground grid";
+    EXPECT_LT(result.summary.unbaked_chunks, result.manifest.chunks.size());
+    EXPECT_EQ(result.summary.binned + result.summary.far_layer, cloud.size());
+}
+
 TEST(WorldImport, HopelessCapturesAreRefusedAndKeepThePreviousWorld) {
     const fs::path dir = fresh_dir("refused");
     splat_lod::write_inria_ply(dir / "good.ply", synthetic_capture());

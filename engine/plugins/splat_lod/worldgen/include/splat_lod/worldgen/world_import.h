@@ -20,10 +20,13 @@
 //   - NaN/Inf values or a zero quaternion: dropped by the readers;
 //   - never visible (opacity ≤ 1/255) or degenerate (largest extent below 1e−7 of the footprint):
 //     dropped;
-//   - huge Gaussians (extent above half a chunk: sky, background) and centres outside the world box
+//   - huge Gaussians (extent above half a chunk and above 64 times the capture's median: sky, background)
+//     and centres outside the world box
 //     (the footprint square, heights within the 1st–99th percentile widened by the footprint's size):
 //     the far layer, one splat glTF drawn as a prop wherever the world is, so no chunk's bounds grow
 //     by them; above far_layer_max the largest (by extent × opacity) are kept, the rest dropped;
+//   - a chunk that no bake camera sees (a few stray Gaussians far above or below the ground grid): written
+//     as it is, every Gaussian level 1 and drawn from any distance;
 //   - a capture with nothing left, or whose kept centres have no horizontal extent (all at one point,
 //     one Gaussian), is an error naming the capture.
 // An import whose capture files and options are those of the world already in the folder is not done
@@ -91,6 +94,7 @@ struct ImportSummary {
     std::uint64_t far_layer = 0;                         // in the far layer's file
     std::uint64_t binned = 0;                            // in chunks
     std::uint64_t bin_flushes = 0;                       // times the bins' buffers were written out
+    std::size_t unbaked_chunks = 0;                      // chunks no bake camera sees, written as they are
     std::uint64_t peak_rss_bytes = 0;                    // the process's high-water mark at the end
     WorldSummary world;
 };
