@@ -61,6 +61,12 @@ std::uint32_t float_bits(float v) {
 
 }  // namespace
 
+void create_world_folder(const std::filesystem::path& output) {
+    std::error_code ec;
+    std::filesystem::create_directories(output, ec);
+    if (ec) engine::fail(output.string() + ": cannot create the world's folder: " + ec.message());
+}
+
 std::uint64_t generation_number(const std::string& name) {
     if (name.size() <= kGenerationPrefix.size() || name.compare(0, kGenerationPrefix.size(), kGenerationPrefix) != 0)
         return 0;

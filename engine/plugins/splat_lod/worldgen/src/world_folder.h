@@ -10,6 +10,9 @@
 
 namespace splat_lod::world {
 
+// Creates the world's folder (and its parents) if missing; throws engine::Error naming it otherwise.
+void create_world_folder(const std::filesystem::path& output);
+
 // n of a folder named "gen-<n>" (n >= 1, as std::to_string writes it); 0 for any other name.
 std::uint64_t generation_number(const std::string& name);
 

@@ -162,8 +162,7 @@ WorldResult generate_world(const WorldOptions& o) {
     WorldResult result;
     WorldSummary& s = result.summary;
     std::error_code ec;
-    fs::create_directories(o.output, ec);
-    if (ec) engine::fail(o.output.string() + ": cannot create the world's folder: " + ec.message());
+    create_world_folder(o.output);
     // Held while this run writes or removes files (world_lock.h); a cached world needs no lock.
     const WorldFolderLock lock(o.output, WorldFolderLock::Mode::write);
     if (!o.force) {

@@ -308,6 +308,22 @@ std::optional<WorldManifest> cached_import(const ImportOptions& o, const std::st
     }
 }
 
+// What the survey found, for the summary.
+void record_survey(const CaptureSample& sample, const CaptureFrame& frame, ImportSummary& s) {
+    s.read = sample.read;
+    s.dropped_by_reader = sample.dropped_by_reader;
+    s.up = frame.up;
+    s.up_source = frame.up_source;
+    s.rotation = frame.rotation;
+    s.translation = frame.translation;
+    s.aerial = frame.aerial;
+    s.flatness = frame.height_span / frame.footprint;
+    s.coarseness = sample.median_extent / frame.footprint;
+    s.chunk_size = frame.chunk_size;
+    s.size = frame.size();
+    s.scale = frame.scale();
+}
+
 }  // namespace
 
 ImportResult import_world(const ImportOptions& o) {
@@ -319,9 +335,7 @@ ImportResult import_world(const ImportOptions& o) {
     const Capture capture = open_capture(
         o.capture, o.part_records > 0 ? o.part_records : std::max<std::uint64_t>(4096, o.memory_bytes / 8 / 512));
     s.capture_description = capture.description;
-    std::error_code ec;
-    fs::create_directories(o.output, ec);
-    if (ec) engine::fail(o.output.string() + ": cannot create the world's folder: " + ec.message());
+    create_world_folder(o.output);
     const WorldFolderLock lock(o.output, WorldFolderLock::Mode::write);
     const std::string fingerprint = capture_fingerprint(capture, o);
     if (auto cached = cached_import(o, fingerprint)) {
@@ -339,18 +353,7 @@ ImportResult import_world(const ImportOptions& o) {
         capture, kSampleMax, [&](std::uint64_t parts) { report(o, "survey", parts, capture.parts.size(), start); });
     const CaptureFrame frame = choose_frame(sample, o, o.capture.string());
     s.world.stages.push_back({"survey", seconds_since(stage)});
-    s.read = sample.read;
-    s.dropped_by_reader = sample.dropped_by_reader;
-    s.up = frame.up;
-    s.up_source = frame.up_source;
-    s.rotation = frame.rotation;
-    s.translation = frame.translation;
-    s.aerial = frame.aerial;
-    s.flatness = frame.height_span / frame.footprint;
-    s.coarseness = sample.median_extent / frame.footprint;
-    s.chunk_size = frame.chunk_size;
-    s.size = frame.size();
-    s.scale = frame.scale();
+    record_survey(sample, frame, s);
 
     const fs::path generation = new_generation(o.output);
     try {

@@ -61,8 +61,9 @@ BakeOptions capture_defaults(BakeOptions options, CaptureShape shape);
 // centres (1st–99th percentile box) are kFlatCaptureRatio times wider than the box is thin (an aerial
 // capture: a single file's bake cameras orbit it from far away, so its coarse levels serve only the
 // overview), one LOD file serves a capture badly; a streamed world (splat_world --from) is what it needs.
-// Measured on a 4.2M aerial capture: a single-file bake added 0.13 % coarse Gaussians and still drew 3.2M
-// of 4.25M from four times the overview's distance. Returns why, or "" when one file is fine.
+// (Reported for a 4.2M aerial capture: a single-file bake added 0.13 % coarse Gaussians and still drew 3.2M
+// of 4.25M from four times the overview's distance; docs/results.md, "Captures of your own".) The
+// thresholds themselves are judgement, not measured optima. Returns why, or "" when one file is fine.
 inline constexpr std::uint64_t kWorldCaptureGaussians = 2'000'000;
 inline constexpr std::uint64_t kFlatCaptureGaussians = 1'000'000;
 inline constexpr double kFlatCaptureRatio = 15.0;
