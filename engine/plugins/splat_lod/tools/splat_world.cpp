@@ -19,6 +19,9 @@
 // k with k mod N = I - 1 into --out/staging-<hash>/ and writes the shard's record there; shards may
 // run at once, on one machine or on several sharing the folder. `--merge`, once all are done,
 // checks every chunk against its record and commits the world: the same bytes as an unsharded run.
+// With --from CAPTURE (world/world_import.h) the shards are an import's: each reads the whole capture
+// and bakes its chunks into --out/staging-import-<fingerprint>/; --merge with the same --from and
+// options commits the imported world.
 #include <cctype>
 #include <charconv>
 #include <chrono>
@@ -98,7 +101,7 @@ struct CommandLine {
     std::string out, seed_text = "1", shard_text;
     // --from: a capture imported instead of the generated world (world/world_import.h).
     std::string from, up_text = "auto", memory_text = "3G", views_text = "auto";
-    std::uint64_t max_chunk_gaussians = 131072;
+    std::uint64_t max_chunk_gaussians = 262144;
     bool no_terrain_mesh = false, no_groups = false, count_only = false, merge = false;
     CLI::Option* shard_option = nullptr;  // given: bake a shard
 };
@@ -140,7 +143,7 @@ void add_import_options(CLI::App& app, CommandLine& c) {
     app.add_option("--up", c.up_text, "the capture's up direction: auto (found from the data) or X,Y,Z");
     app.add_option("--memory", c.memory_text, "resident memory the import stays within, e.g. 2G, 512M; 3G by default");
     app.add_option("--max-chunk-gaussians", c.max_chunk_gaussians,
-                   "the chunk size is chosen so that no chunk holds more; 131072 by default (the generated world's 64 "
+                   "the chunk size is chosen so that no chunk holds more; 262144 by default (the generated world's 64 "
                    "m chunks hold up to 106k)")
         ->check(CLI::Range(std::uint64_t{1024}, std::uint64_t{1} << 26));
     app.add_option("--views", c.views_text, "chunk bake cameras: auto, ground (eye height and above) or aerial");
@@ -161,8 +164,7 @@ std::uint64_t parse_memory(const std::string& text) {
 
 int run_import(const CommandLine& c) {
     namespace world = splat_lod::world;
-    if (c.shard_option->count() > 0 || c.merge || c.count_only)
-        throw engine::Error("--from: sharded imports (--shard, --merge) and --count-only are not supported yet");
+    if (c.count_only) throw engine::Error("--from: --count-only is for generated worlds (an import reads the capture)");
     world::ImportOptions o;
     o.capture = c.from;
     o.output = c.out;
@@ -182,9 +184,16 @@ int run_import(const CommandLine& c) {
     o.groups = !c.no_groups;
     o.force = c.options.force;
     o.progress = print_progress;
-    const world::ImportResult result = world::import_world(o);
+    const auto shard =
+        c.shard_option->count() > 0 ? std::optional(world::parse_world_shard(c.shard_text)) : std::nullopt;
+    const world::ImportResult result = shard     ? world::import_world_shard(o, *shard)
+                                       : c.merge ? world::merge_import_shards(o)
+                                                 : world::import_world(o);
     std::printf("%s", world::format_import_summary(result.summary).c_str());
-    std::printf("world: %s\n", (o.output / world::kManifestFileName).string().c_str());
+    if (shard && !result.summary.cached)
+        std::printf("shard %zu/%zu: %s\n", shard->index, shard->count, result.record.string().c_str());
+    else
+        std::printf("world: %s\n", (o.output / world::kManifestFileName).string().c_str());
     return 0;
 }
 

@@ -13,6 +13,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
+#include "shard_staging.h"
 #include "splat_lod/worldgen/world_lock.h"
 #include "splat_lod/worldgen/world_meshes.h"
 #include "world_build.h"
@@ -24,63 +25,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The staging folder's generation: renamed to gen-<n> by the merge.
-constexpr const char* kStagedGeneration = "gen";
-
 void check_shard(const WorldShard& shard) {
     if (shard.count < 1 || shard.count > kMaxShards || shard.index < 1 || shard.index > shard.count)
         engine::fail("shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) +
                      ": expected 1 <= I <= N <= " + std::to_string(kMaxShards) + " (I is 1-based)");
-}
-
-std::optional<std::size_t> whole_number(const std::string& text) {
-    std::size_t n = 0;
-    const char* const last = text.data() + text.size();
-    const auto [end, error] = std::from_chars(text.data(), last, n);
-    if (text.empty() || error != std::errc() || end != last) return std::nullopt;
-    return n;
-}
-
-// I and N of a record's name "shard-<I>-of-<N>.json"; nullopt for any other name.
-std::optional<WorldShard> record_shard(const std::string& name) {
-    const std::string prefix = "shard-", middle = "-of-", suffix = ".json";
-    if (name.size() <= prefix.size() + middle.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
-        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
-        return std::nullopt;
-    const std::string numbers = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
-    const std::size_t split = numbers.find(middle);
-    if (split == std::string::npos) return std::nullopt;
-    const auto index = whole_number(numbers.substr(0, split)),
-               count = whole_number(numbers.substr(split + middle.size()));
-    if (!index || !count) return std::nullopt;
-    const WorldShard shard{*index, *count};
-    if (shard.count < 1 || shard.count > kMaxShards || shard.index < 1 || shard.index > shard.count ||
-        shard_record_name(shard) != name)
-        return std::nullopt;
-    return shard;
-}
-
-// Throws unless the file holds exactly what the entry records: its size, the header's and every
-// record block's checksum (world_manifest.h).
-void check_chunk_file(const fs::path& path, const ChunkEntry& entry) {
-    std::error_code ec;
-    const auto size = fs::file_size(path, ec);
-    if (ec) engine::fail(path.string() + ": missing (" + ec.message() + ")");
-    if (size != entry.file_bytes)
-        engine::fail(path.string() + ": " + std::to_string(size) + " bytes, the shard's record says " +
-                     std::to_string(entry.file_bytes));
-    const std::vector<std::uint8_t> bytes = engine::read_binary_file(path);
-    const std::span<const std::uint8_t> all(bytes);
-    if (checksum(all.first(entry.header_bytes)) != entry.header_crc32)
-        engine::fail(path.string() + ": the header's checksum is not the one its shard recorded");
-    for (const RecordBlock& block : record_blocks(entry, 0, entry.prefix_count[0])) {
-        const std::uint64_t begin = entry.header_bytes + block.begin * entry.vertex_bytes;
-        if (checksum(all.subspan(begin, (block.end - block.begin) * entry.vertex_bytes)) !=
-            entry.record_crc32[block.index])
-            engine::fail(path.string() + ": byte " + std::to_string(begin) + ": records [" +
-                         std::to_string(block.begin) + ", " + std::to_string(block.end) +
-                         ") do not match the checksum its shard recorded");
-    }
 }
 
 // The chunk entries of a shard's record (paths relative to the staging folder), each checked: made
@@ -103,23 +51,6 @@ std::vector<ChunkEntry> read_shard_record(const WorldOptions& o, const fs::path&
     }
     if (!cells.empty()) engine::fail(path.string() + ": does not list every chunk of the shard");
     return record.chunks;
-}
-
-// The shards' records in the staging folder, by name.
-std::vector<WorldShard> shard_records(const fs::path& staging) {
-    std::vector<WorldShard> shards;
-    std::error_code ec;
-    for (fs::directory_iterator it(staging, ec), end; !ec && it != end; it.increment(ec))
-        if (const auto shard = record_shard(it->path().filename().string())) shards.push_back(*shard);
-    if (ec) engine::fail(staging.string() + ": cannot list the staging folder: " + ec.message());
-    return shards;
-}
-
-std::string listed(const std::vector<std::string>& items, std::size_t most = 8) {
-    std::string text;
-    for (std::size_t i = 0; i < items.size() && i < most; ++i) text += (i ? ", " : "") + items[i];
-    if (items.size() > most) text += " and " + std::to_string(items.size() - most) + " more";
-    return text;
 }
 
 // The error for chunks that no record lists: which chunks, and which shards of every shard count
@@ -174,36 +105,6 @@ void prune_staged_generation(const fs::path& staging, const WorldManifest& m) {
     for (const fs::path& path : remove) fs::remove(path, ec);
 }
 
-// Whether the world.json in `output` names files in `generation` (unreadable: assumed so, to keep them).
-bool manifest_names(const fs::path& output, const fs::path& generation) {
-    std::error_code ec;
-    if (!fs::exists(output / kManifestFileName, ec)) return false;
-    try {
-        const WorldManifest current = read_world_manifest(output / kManifestFileName);
-        return !current.chunks.empty() && *current.chunks.front().file.begin() == generation;
-    } catch (const engine::Error&) {
-        return true;
-    }
-}
-
-// Renames the staged generation to `generation` and commits `m` (naming it); on failure before the
-// commit the staged files go back to the staging folder, for another merge.
-void commit_staged(const WorldOptions& o, const fs::path& staging, const fs::path& generation, const WorldManifest& m) {
-    std::error_code ec;
-    fs::rename(staging / kStagedGeneration, o.output / generation, ec);
-    if (ec)
-        engine::fail((staging / kStagedGeneration).string() + ": cannot rename to " + (o.output / generation).string() +
-                     ": " + ec.message());
-    try {
-        engine::sync_folder(o.output);
-        engine::sync_folder(staging);
-        write_world_manifest(o.output / kManifestFileName, m);  // the commit
-    } catch (...) {
-        if (!manifest_names(o.output, generation)) fs::rename(o.output / generation, staging / kStagedGeneration, ec);
-        throw;
-    }
-}
-
 WorldResult cached_result(WorldManifest manifest, const fs::path& folder, Clock::time_point start) {
     WorldResult result;
     result.manifest = std::move(manifest);
@@ -211,20 +112,6 @@ WorldResult cached_result(WorldManifest manifest, const fs::path& folder, Clock:
     summarise_manifest(result.manifest, folder, result.summary);
     result.summary.seconds = seconds_since(start);
     return result;
-}
-
-// Takes the staging folder's lock for the merge, which no shard may hold (a shard still baking).
-void lock_staging(const WorldOptions& o, const fs::path& staging, std::optional<FolderFlock>& staging_lock) {
-    std::error_code ec;
-    if (!fs::is_directory(staging, ec))
-        engine::fail(o.output.string() + ": cannot merge: no shard of these options has run here (no " +
-                     staging.string() + ")");
-    staging_lock.emplace(staging, true);
-    if (!staging_lock->held())
-        engine::fail(staging_lock->busy() ? staging.string() +
-                                                ": a shard is still baking into it (it holds the staging "
-                                                "folder's lock); wait for every shard to finish, then merge"
-                                          : staging_lock->problem());
 }
 
 // The meshes go into the staged generation, which then keeps nothing but them and `staged`'s chunks.
@@ -264,7 +151,7 @@ void commit_merge(const WorldOptions& o, const fs::path& staging, const WorldLay
         m.groups.push_back(std::move(g));
     }
     m.group_generator = group_generator_settings(o.groups);
-    commit_staged(o, staging, generation, m);
+    commit_staged(o.output, staging, generation, m);
     staging_lock.reset();  // the clean-up takes it again to remove the staging folder
     if (o.progress) o.progress({"clean-up", m.chunks.size(), m.chunks.size(), 0, seconds_since(start), 0.0});
     remove_unnamed_files(o.output, m);
@@ -372,7 +259,7 @@ WorldResult merge_world_shards(const WorldOptions& o) {
     lock.require();
     const fs::path staging = o.output / staging_folder(o);
     std::optional<FolderFlock> staging_lock;
-    lock_staging(o, staging, staging_lock);
+    lock_staging(o.output, staging, staging_lock);
 
     WorldResult result;
     WorldSummary& s = result.summary;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -157,6 +158,48 @@ TEST(WorldImport, OutOfCoreUnderATinyCapGivesTheSameBytes) {
                   engine::read_binary_file(dir / "tiny" / b.manifest.chunks[k].file))
             << a.manifest.chunks[k].id;
     EXPECT_GT(b.summary.bin_flushes, 10u);
+}
+
+// Every file world.json names, by its path relative to the world's folder (world.json itself included).
+std::map<fs::path, std::vector<std::uint8_t>> world_files(const fs::path& folder) {
+    std::map<fs::path, std::vector<std::uint8_t>> files;
+    const auto m = world::read_world_manifest(folder / world::kManifestFileName);
+    files[world::kManifestFileName] = engine::read_binary_file(folder / world::kManifestFileName);
+    for (const auto* list : {&m.chunks, &m.groups})
+        for (const auto& c : *list) files[c.file] = engine::read_binary_file(folder / c.file);
+    for (const auto& p : m.props) files[p.mesh] = engine::read_binary_file(folder / p.mesh);
+    return files;
+}
+
+TEST(WorldImport, ShardedImportsGiveTheSameBytesAndTheMergeChecksThem) {
+    const fs::path dir = fresh_dir("sharded");
+    splat_lod::write_inria_ply(dir / "capture.ply", synthetic_capture());
+    world::import_world(fast_options(dir / "capture.ply", dir / "whole"));
+    const world::ImportOptions o = fast_options(dir / "capture.ply", dir / "sharded");
+    const auto first = world::import_world_shard(o, {1, 3});
+    EXPECT_TRUE(fs::exists(first.record));
+    world::import_world_shard(o, {2, 3});
+    const std::string early = error_of([&] { world::merge_import_shards(o); });
+    EXPECT_NE(early.find("missing shards 3/3"), std::string::npos) << early;
+    EXPECT_FALSE(fs::exists(dir / "sharded" / world::kManifestFileName));
+
+    const auto third = world::import_world_shard(o, {3, 3});
+    ASSERT_FALSE(third.manifest.chunks.empty());
+    const fs::path staged = third.record.parent_path() / third.manifest.chunks.front().file;
+    const auto bytes = engine::read_binary_file(staged);
+    auto broken = bytes;
+    broken[broken.size() / 2] ^= 0x40;
+    engine::write_file_atomic(staged, broken);
+    const std::string tampered = error_of([&] { world::merge_import_shards(o); });
+    EXPECT_NE(tampered.find(staged.filename().string()), std::string::npos) << tampered;
+    EXPECT_FALSE(fs::exists(dir / "sharded" / world::kManifestFileName));
+    EXPECT_FALSE(world::import_world_shard(o, {3, 3}).summary.cached) << "a record its files do not match is rebaked";
+
+    const auto merged = world::merge_import_shards(o);
+    EXPECT_FALSE(merged.summary.cached);
+    EXPECT_EQ(world_files(dir / "sharded"), world_files(dir / "whole"));
+    EXPECT_FALSE(fs::exists(first.record.parent_path())) << "the staging folder goes with the merge";
+    EXPECT_TRUE(world::import_world_shard(o, {2, 3}).summary.cached) << "the folder's world is this import";
 }
 
 TEST(WorldImport, TheSameCaptureAndOptionsAreNotImportedTwice) {

@@ -44,6 +44,7 @@
 
 #include "splat_lod/bake/bake.h"
 #include "splat_lod/worldgen/world_generator.h"
+#include "splat_lod/worldgen/world_shards.h"
 
 namespace splat_lod::world {
 
@@ -60,7 +61,7 @@ struct ImportOptions {
     std::optional<glm::vec3> up;    // none: found from the data
     CaptureViews views = CaptureViews::automatic;
     std::uint64_t memory_bytes = std::uint64_t{3} << 30;  // resident memory the import aims to stay within
-    std::uint64_t max_chunk_gaussians = 131072;           // the chunk size is chosen so no chunk holds more
+    std::uint64_t max_chunk_gaussians = 262144;           // the chunk size is chosen so no chunk holds more
     std::uint64_t far_layer_max = 262144;
     int threads = 0;  // chunks baked at once (0: all cores), lowered to fit the memory cap
     bake::BakeOptions bake = default_world_bake_options();
@@ -77,11 +78,12 @@ struct ImportOptions {
 
 // What the survey found and what was done with every Gaussian.
 struct ImportSummary {
-    bool cached = false;              // the folder's world was this import already: nothing was done
-    std::string capture_description;  // "streamed SOG level 0: 8 chunk files"
-    glm::dvec3 up{0.0, 1.0, 0.0};     // in the capture's frame
-    std::string up_source;            // "given", "flat Gaussians", "thinnest axis"
-    glm::dmat3 rotation{1.0};         // capture → world
+    std::string run = "imported world";  // or "shard I/N", "merged world": how the summary names its chunks
+    bool cached = false;                 // the folder's world was this import already: nothing was done
+    std::string capture_description;     // "streamed SOG level 0: 8 chunk files"
+    glm::dvec3 up{0.0, 1.0, 0.0};        // in the capture's frame
+    std::string up_source;               // "given", "flat Gaussians", "thinnest axis"
+    glm::dmat3 rotation{1.0};            // capture → world
     glm::dvec3 translation{0.0};
     bool aerial = false;
     double flatness = 0.0, coarseness = 0.0;             // height span and median extent over the footprint
@@ -100,13 +102,31 @@ struct ImportSummary {
 };
 
 struct ImportResult {
-    WorldManifest manifest;
+    WorldManifest manifest;  // a shard's: its record
     ImportSummary summary;
+    std::filesystem::path record;  // a shard's record file (empty for a whole import or a merge)
 };
 
 // Imports options.capture into options.output (see the top of this file). Throws engine::Error
 // naming the capture, chunk or file on any failure, after removing its own files.
 ImportResult import_world(const ImportOptions& options);
+
+// Sharded imports, for batch schedulers as sharded generated worlds (world_shards.h), the same bytes as
+// import_world(). Shard I of N reads the whole capture (survey and binning), keeps the chunks whose
+// grid index k (rows of increasing z, each of increasing x, over the whole grid) has k mod N = I − 1,
+// bakes them into <output>/staging-import-<fingerprint>/gen/ and writes its record there
+// (shard-<I>-of-<N>.json: a manifest of its chunks, checksums included; shard 1's also names the far
+// layer). Shards hold the staging folder's lock shared and touch nothing else, so they may run at once
+// while a game streams the folder's current world. A shard whose record is there and matches its files is
+// not baked again (without options.force); nothing is done when the folder's world is this import.
+ImportResult import_world_shard(const ImportOptions& options, const WorldShard& shard);
+
+// The merge, under the folder's lock and the staging folder's exclusive one (refused while a shard
+// writes): needs the records of all N shards of one N, checks each chunk file against its record,
+// pools the chunk groups in the staging folder, renames the staged generation to the next gen-<n>,
+// commits world.json and removes the staging folder. An error (a shard missing, a file not matching)
+// names it and leaves the folder's world as it was.
+ImportResult merge_import_shards(const ImportOptions& options);
 
 // The summary's lines: frame, rejections, chunks, stage times.
 std::string format_import_summary(const ImportSummary& summary);

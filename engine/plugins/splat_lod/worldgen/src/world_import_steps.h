@@ -1,0 +1,73 @@
+#pragma once
+// Internal to the world import (world_import.h): the steps a whole import, a shard of one and their merge
+// share, so that all make the same bytes: the capture opened with its fingerprint, the survey, the
+// binning (of every chunk or of a shard's), the bakes into a folder, the manifest without its chunks.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "capture_bins.h"
+#include "capture_survey.h"
+#include "splat_lod/core/capture_source.h"
+#include "splat_lod/core/world_manifest.h"
+#include "splat_lod/worldgen/world_import.h"
+#include "world_build.h"
+
+namespace splat_lod::world {
+
+// What every run of an import finds first.
+struct ImportPlan {
+    Capture capture;
+    std::string fingerprint;  // of the capture's files, the options and the import's version
+    CaptureSample sample;     // after survey_import()
+    CaptureFrame frame;
+};
+
+// Checks the options, opens the capture and takes its fingerprint (no survey yet).
+ImportPlan open_import(const ImportOptions& options, ImportSummary& summary);
+
+// The world in options.output when it is this import (same fingerprint, every file of its size).
+std::optional<WorldManifest> cached_import(const ImportOptions& options, const std::string& fingerprint);
+
+// Reads the capture once for the sample and chooses the frame (plan.sample, plan.frame).
+void survey_import(const ImportOptions& options, ImportPlan& plan, ImportSummary& summary, Clock::time_point start);
+
+// Which chunk cells a run bakes: every cell, or a shard's (empty function: every cell).
+using CellFilter = std::function<bool(const glm::ivec2& cell)>;
+
+// Reads every part again, turns it into the world frame and sorts each Gaussian into `bins` (only the
+// cells `keep` accepts), the far layer or the counts of what is dropped.
+void bin_capture(const ImportOptions& options, const ImportPlan& plan, ChunkBins& bins, FarLayer& far,
+                 ImportSummary& summary, Clock::time_point start, const CellFilter& keep);
+
+// The world's options for the chunk bakes and groups at the frame's scale, writing below `root`, with as
+// many bakes at once as the memory cap allows for chunks of up to `largest_chunk` Gaussians.
+WorldOptions import_world_options(const ImportOptions& options, const CaptureFrame& frame,
+                                  std::uint64_t largest_chunk, const std::filesystem::path& root);
+
+// The ground under each chunk, from the survey's sample.
+GroundGrid ground_grid(const CaptureSample& sample, const CaptureFrame& frame);
+
+// Bakes every bin (w.threads at once) into w.output / generation, removing each bin once it is written.
+std::vector<ChunkResult> bake_bins(const ImportOptions& options, const WorldOptions& w, const CaptureFrame& frame,
+                                   const GroundGrid& ground, const ChunkBins& bins,
+                                   const std::filesystem::path& generation, Clock::time_point start);
+
+// The manifest without chunks, props or groups: sizes, the generator (with the fingerprint), stream
+// levels, ground grid and the capture's frame.
+WorldManifest import_manifest(const ImportOptions& options, const WorldOptions& w, const ImportPlan& plan,
+                              const GroundGrid& ground);
+
+// Writes the far layer (when not empty) to root / generation / meshes and names it as a prop in `m`.
+void add_far_layer(const SplatCloud& far_cloud, const std::filesystem::path& root,
+                   const std::filesystem::path& generation, WorldManifest& m);
+
+// The grid-order index of a chunk cell: rows of increasing z, each of increasing x.
+std::size_t cell_index(const CaptureFrame& frame, const glm::ivec2& cell);
+
+}  // namespace splat_lod::world
