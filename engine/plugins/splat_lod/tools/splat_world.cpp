@@ -102,6 +102,7 @@ struct CommandLine {
     // --from: a capture imported instead of the generated world (world/world_import.h).
     std::string from, up_text = "auto", memory_text = "3G", views_text = "auto";
     std::uint64_t max_chunk_gaussians = 262144;
+    std::string cameras;
     bool no_terrain_mesh = false, no_groups = false, count_only = false, merge = false;
     CLI::Option* shard_option = nullptr;  // given: bake a shard
 };
@@ -141,6 +142,9 @@ void add_import_options(CLI::App& app, CommandLine& c) {
                    "import this capture instead of generating the sample world: a splat file, a streamed SOG "
                    "(lod-meta.json[#level]), a folder or .txt list of tiles");
     app.add_option("--up", c.up_text, "the capture's up direction: auto (found from the data) or X,Y,Z");
+    app.add_option("--cameras", c.cameras,
+                   "with --from: the capture's training cameras (cameras.json, COLMAP images.txt, or a folder with "
+                   "either): chunks that 4 or more of them see are baked from those instead of the rings");
     app.add_option("--memory", c.memory_text, "resident memory the import stays within, e.g. 2G, 512M; 3G by default");
     app.add_option("--max-chunk-gaussians", c.max_chunk_gaussians,
                    "the chunk size is chosen so that no chunk holds more; 262144 by default (the generated world's 64 "
@@ -171,6 +175,7 @@ int run_import(const CommandLine& c) {
     if (c.up_text != "auto") o.up = engine::parse_vec3(c.up_text, "--up");
     o.memory_bytes = parse_memory(c.memory_text);
     o.max_chunk_gaussians = c.max_chunk_gaussians;
+    o.cameras = c.cameras;
     if (c.views_text == "ground")
         o.views = world::CaptureViews::ground;
     else if (c.views_text == "aerial")

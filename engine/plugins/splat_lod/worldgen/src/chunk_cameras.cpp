@@ -3,6 +3,7 @@
 
 #include "chunk_cameras.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -65,6 +66,51 @@ std::vector<eval::CameraPose> chunk_camera_poses(const WorldTerrain& terrain, co
 std::vector<eval::CameraPose> capture_chunk_camera_poses(const GroundHeight& ground, const ChunkSquare& square,
                                                          float scale, bool aerial) {
     return ring_poses(ground, square, scale, aerial ? kAerialRings : kGroundRings);
+}
+
+std::size_t points_seen(const eval::CameraPose& pose, const std::vector<glm::vec3>& points, float aspect, float znear) {
+    const glm::vec3 right = glm::normalize(glm::cross(pose.forward, pose.up));
+    const glm::vec3 up = glm::cross(right, pose.forward);
+    const float tan_y = std::tan(0.5f * pose.fov_y), tan_x = tan_y * aspect;
+    std::size_t seen = 0;
+    for (const glm::vec3& p : points) {
+        const glm::vec3 d = p - pose.eye;
+        const float z = glm::dot(d, pose.forward);
+        if (z > znear && std::fabs(glm::dot(d, right)) <= tan_x * z && std::fabs(glm::dot(d, up)) <= tan_y * z) ++seen;
+    }
+    return seen;
+}
+
+std::vector<eval::CameraPose> chunk_training_poses(const std::vector<eval::CameraPose>& cameras,
+                                                   const std::vector<glm::vec3>& fine, const ChunkSquare& square,
+                                                   float aspect, float znear, std::size_t most) {
+    if (cameras.empty() || fine.empty() || most == 0) return {};
+    std::vector<glm::vec3> sample;
+    const std::size_t stride = std::max<std::size_t>(1, fine.size() / 64);
+    glm::vec3 middle(0.0f);
+    for (std::size_t i = 0; i < fine.size(); i += stride) {
+        sample.push_back(fine[i]);
+        middle += fine[i];
+    }
+    middle /= static_cast<float>(sample.size());
+    const float reach = 8.0f * glm::length(square.hi - square.lo);
+    std::vector<std::pair<float, std::size_t>> seeing;  // (distance, camera)
+    for (std::size_t c = 0; c < cameras.size(); ++c) {
+        const float distance = glm::length(cameras[c].eye - middle);
+        if (distance <= reach && 4 * points_seen(cameras[c], sample, aspect, znear) >= sample.size())
+            seeing.emplace_back(distance, c);
+    }
+    std::sort(seeing.begin(), seeing.end());
+    std::vector<eval::CameraPose> poses;
+    const std::size_t n = std::min(most, seeing.size());
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t pick = n == 1 ? 0 : k * (seeing.size() - 1) / (n - 1);
+        eval::CameraPose pose = cameras[seeing[pick].second];
+        const float along = glm::dot(middle - pose.eye, pose.forward);
+        pose.focus_distance = along > znear ? along : std::max(seeing[pick].first, znear);
+        poses.push_back(pose);
+    }
+    return poses;
 }
 
 }  // namespace splat_lod::world

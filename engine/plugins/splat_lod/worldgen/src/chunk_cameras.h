@@ -34,4 +34,16 @@ std::vector<eval::CameraPose> chunk_camera_poses(const WorldTerrain& terrain, co
 std::vector<eval::CameraPose> capture_chunk_camera_poses(const GroundHeight& ground, const ChunkSquare& square,
                                                          float scale, bool aerial);
 
+// How many of `points` lie inside the pose's image (aspect × its vertical field of view), beyond `znear`.
+std::size_t points_seen(const eval::CameraPose& pose, const std::vector<glm::vec3>& points, float aspect, float znear);
+
+// A capture's training cameras (training_cameras.h, in the world frame) that see a chunk well: with a
+// sample of up to 64 of its centres `fine`, those that have a quarter of the sample or more inside
+// their image (in front of `znear`), standing within 8 chunk diagonals of the sample's middle. At most
+// `most`, spread evenly over them sorted by distance (the nearest and the farthest kept); each focused on
+// the sample's middle. Empty when none does.
+std::vector<eval::CameraPose> chunk_training_poses(const std::vector<eval::CameraPose>& cameras,
+                                                   const std::vector<glm::vec3>& fine, const ChunkSquare& square,
+                                                   float aspect, float znear, std::size_t most = 16);
+
 }  // namespace splat_lod::world

@@ -97,7 +97,8 @@ std::string listed(const std::vector<std::string>& items, std::size_t most) {
 
 // Renames the staged generation to `generation` and commits `m` (naming it); on failure before the
 // commit the staged files go back to the staging folder, for another merge.
-void commit_staged(const fs::path& output, const fs::path& staging, const fs::path& generation, const WorldManifest& m) {
+void commit_staged(const fs::path& output, const fs::path& staging, const fs::path& generation,
+                   const WorldManifest& m) {
     std::error_code ec;
     fs::rename(staging / kStagedGeneration, output / generation, ec);
     if (ec)

@@ -44,7 +44,8 @@ struct ChunkResult {
     std::vector<StageSeconds> stages;
     std::vector<bake::LevelSummary> levels;                  // the bake's per-level report
     std::array<std::uint64_t, kLevels> bake_level_counts{};  // Gaussians per bake level, [l − 1]
-    bool unbaked = false;  // an import's chunk that no bake camera sees, written as it is
+    bool unbaked = false;                // an import's chunk that no bake camera sees, written as it is
+    bool from_training_cameras = false;  // an import's chunk baked from the capture's own cameras
 };
 
 // How a chunk is baked: the recipe, the camera image size, the stream-level rule of its file.

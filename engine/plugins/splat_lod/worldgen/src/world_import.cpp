@@ -28,8 +28,11 @@ WorldManifest build_import(const ImportOptions& o, const ImportPlan& plan, const
     const WorldOptions w = import_world_options(o, plan.frame, bins.largest(), o.output);
     const GroundGrid ground = ground_grid(plan.sample, plan.frame);
     const auto stage = Clock::now();
-    std::vector<ChunkResult> chunks = bake_bins(o, w, plan.frame, ground, bins, generation, start);
-    for (const ChunkResult& chunk : chunks) s.unbaked_chunks += chunk.unbaked ? 1 : 0;
+    std::vector<ChunkResult> chunks = bake_bins(o, w, plan, ground, bins, generation, start);
+    for (const ChunkResult& chunk : chunks) {
+        s.unbaked_chunks += chunk.unbaked ? 1 : 0;
+        s.training_camera_chunks += chunk.from_training_cameras ? 1 : 0;
+    }
     s.world.stages.push_back(
         {"chunks (bake, write) on " + std::to_string(w.threads) + " threads", seconds_since(stage)});
     std::error_code ec;
@@ -117,6 +120,12 @@ std::string format_import_summary(const ImportSummary& s) {
             n(s.binned), n(s.dropped_by_reader), n(s.invisible), n(s.degenerate), n(s.far_huge), n(s.far_outside),
             n(s.far_layer), n(s.far_dropped), s.unbaked_chunks);
         out << line;
+        if (s.training_cameras > 0) {
+            std::snprintf(line, sizeof line,
+                          "training cameras: %zu read; %zu chunks baked from them, the rest from the rings\n",
+                          s.training_cameras, s.training_camera_chunks);
+            out << line;
+        }
     }
     std::string world = format_summary(s.world);
     // The world's own summary speaks of generated content; an import has none.

@@ -83,8 +83,7 @@ std::vector<WorldShard> complete_records(const ImportOptions& o, const fs::path&
 
 // The merged manifest from the records, paths still relative to the staging folder: chunks in grid order,
 // the far layer of shard 1.
-WorldManifest gather_records(const ImportOptions& o, const fs::path& staging, const ImportPlan& plan,
-                             WorldManifest m) {
+WorldManifest gather_records(const ImportOptions& o, const fs::path& staging, const ImportPlan& plan, WorldManifest m) {
     std::map<std::size_t, ChunkEntry> chunks;  // by grid index
     for (const WorldShard& shard : complete_records(o, staging)) {
         WorldManifest record = read_import_record(staging, shard, plan.frame, m.generator);
@@ -143,7 +142,8 @@ ImportResult import_world_shard(const ImportOptions& o, const WorldShard& shard)
         try {
             const WorldOptions w = import_world_options(o, plan.frame, 0, staging);
             const auto m = import_manifest(o, w, plan, ground_grid(plan.sample, plan.frame));
-            ImportResult cached = cached_result(read_import_record(staging, shard, plan.frame, m.generator), staging, start);
+            ImportResult cached =
+                cached_result(read_import_record(staging, shard, plan.frame, m.generator), staging, start);
             cached.record = record_path;
             return cached;
         } catch (const engine::Error& e) {
@@ -155,12 +155,16 @@ ImportResult import_world_shard(const ImportOptions& o, const WorldShard& shard)
     ChunkBins bins(staging / bins_folder, plan.sample.sh_degree,
                    o.bin_flush_bytes > 0 ? o.bin_flush_bytes : o.memory_bytes / 4);
     FarLayer far(plan.sample.sh_degree, o.far_layer_max);
-    bin_capture(o, plan, bins, far, s, start, [&](const glm::ivec2& cell) { return shard_owns(plan.frame, cell, shard); });
+    bin_capture(o, plan, bins, far, s, start,
+                [&](const glm::ivec2& cell) { return shard_owns(plan.frame, cell, shard); });
     const WorldOptions w = import_world_options(o, plan.frame, bins.largest(), staging);
     const GroundGrid ground = ground_grid(plan.sample, plan.frame);
     auto stage = Clock::now();
-    std::vector<ChunkResult> chunks = bake_bins(o, w, plan.frame, ground, bins, kStagedGeneration, start);
-    for (const ChunkResult& chunk : chunks) s.unbaked_chunks += chunk.unbaked ? 1 : 0;
+    std::vector<ChunkResult> chunks = bake_bins(o, w, plan, ground, bins, kStagedGeneration, start);
+    for (const ChunkResult& chunk : chunks) {
+        s.unbaked_chunks += chunk.unbaked ? 1 : 0;
+        s.training_camera_chunks += chunk.from_training_cameras ? 1 : 0;
+    }
     s.world.stages.push_back(
         {"chunks (bake, write) on " + std::to_string(w.threads) + " threads", seconds_since(stage)});
     fs::remove_all(staging / bins_folder, ec);
@@ -199,7 +203,8 @@ ImportResult merge_import_shards(const ImportOptions& o) {
 
     auto stage = Clock::now();
     const WorldOptions w = import_world_options(o, plan.frame, 0, staging);
-    WorldManifest m = gather_records(o, staging, plan, import_manifest(o, w, plan, ground_grid(plan.sample, plan.frame)));
+    WorldManifest m =
+        gather_records(o, staging, plan, import_manifest(o, w, plan, ground_grid(plan.sample, plan.frame)));
     s.world.stages.push_back({"check shards", seconds_since(stage)});
     add_groups(w, kStagedGeneration, m, s.world, start);
     prune_staged(staging, m);

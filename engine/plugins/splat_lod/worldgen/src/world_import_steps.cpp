@@ -17,6 +17,7 @@
 #include "splat_lod/core/gaussian_extent.h"
 #include "splat_lod/core/parallel_for.h"
 #include "splat_lod/core/splat_io.h"
+#include "splat_lod/core/training_cameras.h"
 #include "splat_lod/worldgen/world_lock.h"
 #include "world_folder.h"
 
@@ -143,29 +144,41 @@ namespace {
 // Whether some camera has some Gaussian's centre in front of it and inside its image: a bake needs one.
 // A chunk of a few stray Gaussians far above or below the ground grid can be out of every ring's view.
 bool any_camera_sees(const SplatCloud& fine, const std::vector<eval::CameraPose>& poses, float aspect, float znear) {
-    for (const eval::CameraPose& pose : poses) {
-        const glm::vec3 right = glm::normalize(glm::cross(pose.forward, pose.up));
-        const glm::vec3 up = glm::cross(right, pose.forward);
-        const float tan_y = std::tan(0.5f * pose.fov_y), tan_x = tan_y * aspect;
-        for (const glm::vec3& p : fine.positions) {
-            const glm::vec3 d = p - pose.eye;
-            const float z = glm::dot(d, pose.forward);
-            if (z > znear && std::fabs(glm::dot(d, right)) <= tan_x * z && std::fabs(glm::dot(d, up)) <= tan_y * z)
-                return true;
-        }
+    return std::any_of(poses.begin(), poses.end(), [&](const eval::CameraPose& pose) {
+        return points_seen(pose, fine.positions, aspect, znear) > 0;
+    });
+}
+
+// Bakes one chunk from the training cameras that see it well, else from the rings, or writes it unbaked.
+ChunkResult bake_bin(const ChunkBake& how, const WorldOptions& w, const ImportPlan& plan, const GroundHeight& height,
+                     const SplatCloud& fine, const fs::path& file, const glm::ivec2& cell) {
+    ChunkSquare square;
+    square.lo = glm::vec2(cell) * plan.frame.chunk_size;
+    square.hi = square.lo + glm::vec2(plan.frame.chunk_size);
+    const float aspect = static_cast<float>(w.bake_width) / static_cast<float>(w.bake_height);
+    auto poses = chunk_training_poses(plan.training, fine.positions, square, aspect, w.bake.znear);
+    const bool training = poses.size() >= 4;
+    if (!training) poses = capture_chunk_camera_poses(height, square, plan.frame.scale(), plan.frame.aerial);
+    ChunkResult result;
+    if (any_camera_sees(fine, poses, aspect, w.bake.znear)) {
+        result = bake_chunk(how, fine, poses, w.output, file, cell);
+        result.from_training_cameras = training;
+    } else {  // kept as it is: its Gaussians are drawn from any distance, like a prop's
+        write_chunk(how, fine, w.output, file, cell, result);
+        result.unbaked = true;
     }
-    return false;
+    return result;
 }
 
 }  // namespace
 
-std::vector<ChunkResult> bake_bins(const ImportOptions& o, const WorldOptions& w, const CaptureFrame& frame,
+std::vector<ChunkResult> bake_bins(const ImportOptions& o, const WorldOptions& w, const ImportPlan& plan,
                                    const GroundGrid& ground, const ChunkBins& bins, const fs::path& generation,
                                    Clock::time_point start) {
     const std::vector<glm::ivec2> cells = bins.cells();
     std::vector<ChunkResult> results(cells.size());
     const ChunkBake how{w.bake, w.bake_width, w.bake_height, stream_level_rule(w)};
-    const GroundHeight height = [&](float x, float z) { return ground.height(x, z, frame.size()); };
+    const GroundHeight height = [&](float x, float z) { return ground.height(x, z, plan.frame.size()); };
     std::mutex mutex;
     std::size_t done = 0;
     std::uint64_t gaussians = 0, baked = 0, total = 0;
@@ -175,18 +188,7 @@ std::vector<ChunkResult> bake_bins(const ImportOptions& o, const WorldOptions& w
     reference::detail::parallel_for(cells.size(), w.threads, [&](std::size_t k) {
         const glm::ivec2 cell = cells[k];
         try {
-            const SplatCloud fine = bins.read(cell);
-            ChunkSquare square;
-            square.lo = glm::vec2(cell) * frame.chunk_size;
-            square.hi = square.lo + glm::vec2(frame.chunk_size);
-            const auto poses = capture_chunk_camera_poses(height, square, frame.scale(), frame.aerial);
-            const float aspect = static_cast<float>(w.bake_width) / static_cast<float>(w.bake_height);
-            if (any_camera_sees(fine, poses, aspect, w.bake.znear)) {
-                results[k] = bake_chunk(how, fine, poses, w.output, chunk_file(generation, cell), cell);
-            } else {  // kept as it is: its Gaussians are drawn from any distance, like a prop's
-                write_chunk(how, fine, w.output, chunk_file(generation, cell), cell, results[k]);
-                results[k].unbaked = true;
-            }
+            results[k] = bake_bin(how, w, plan, height, bins.read(cell), chunk_file(generation, cell), cell);
             bins.remove(cell);
         } catch (const std::exception& e) {
             engine::fail(chunk_id(cell) + ": " + e.what());
@@ -243,6 +245,14 @@ std::string capture_fingerprint(const Capture& capture, const ImportOptions& o) 
         } else {
             describe(part.file);
         }
+    }
+    if (!o.cameras.empty()) {
+        text << "cameras\n";
+        describe(o.cameras);
+        for (const char* name :
+             {"cameras.json", "images.txt", "cameras.txt", "sparse/0/images.txt", "sparse/0/cameras.txt"})
+            if (fs::exists(o.cameras / name, ec)) describe(o.cameras / name);
+        if (o.cameras.filename() == "images.txt") describe(o.cameras.parent_path() / "cameras.txt");
     }
     text << kImportVersion << ' ' << (o.up ? glm::length(*o.up) : 0.0f) << ' ' << (o.up ? o.up->x : 0.0f) << ' '
          << (o.up ? o.up->y : 0.0f) << ' ' << (o.up ? o.up->z : 0.0f) << ' ' << static_cast<int>(o.views) << ' '
@@ -312,6 +322,15 @@ void survey_import(const ImportOptions& o, ImportPlan& plan, ImportSummary& s, C
         report(o, "survey", parts, plan.capture.parts.size(), start);
     });
     plan.frame = choose_frame(plan.sample, o, o.capture.string());
+    if (!o.cameras.empty()) {
+        plan.training = eval::read_training_cameras(o.cameras);
+        for (eval::CameraPose& pose : plan.training) {  // into the world frame
+            pose.eye = glm::vec3(plan.frame.rotation * glm::dvec3(pose.eye) + plan.frame.translation);
+            pose.forward = glm::normalize(glm::vec3(plan.frame.rotation * glm::dvec3(pose.forward)));
+            pose.up = glm::normalize(glm::vec3(plan.frame.rotation * glm::dvec3(pose.up)));
+        }
+        s.training_cameras = plan.training.size();
+    }
     s.world.stages.push_back({"survey", seconds_since(stage)});
     record_survey(plan.sample, plan.frame, s);
 }
@@ -351,7 +370,8 @@ void add_far_layer(const SplatCloud& far_cloud, const fs::path& root, const fs::
 
 std::size_t cell_index(const CaptureFrame& frame, const glm::ivec2& cell) {
     const int n = frame.chunks_per_side;
-    return static_cast<std::size_t>(cell.y + n / 2) * static_cast<std::size_t>(n) + static_cast<std::size_t>(cell.x + n / 2);
+    return static_cast<std::size_t>(cell.y + n / 2) * static_cast<std::size_t>(n) +
+           static_cast<std::size_t>(cell.x + n / 2);
 }
 
 }  // namespace splat_lod::world

@@ -26,6 +26,7 @@ struct ImportPlan {
     std::string fingerprint;  // of the capture's files, the options and the import's version
     CaptureSample sample;     // after survey_import()
     CaptureFrame frame;
+    std::vector<eval::CameraPose> training;  // options.cameras in the world frame (after survey_import())
 };
 
 // Checks the options, opens the capture and takes its fingerprint (no survey yet).
@@ -34,7 +35,8 @@ ImportPlan open_import(const ImportOptions& options, ImportSummary& summary);
 // The world in options.output when it is this import (same fingerprint, every file of its size).
 std::optional<WorldManifest> cached_import(const ImportOptions& options, const std::string& fingerprint);
 
-// Reads the capture once for the sample and chooses the frame (plan.sample, plan.frame).
+// Reads the capture once for the sample, chooses the frame and reads the training cameras into it
+// (plan.sample, plan.frame, plan.training).
 void survey_import(const ImportOptions& options, ImportPlan& plan, ImportSummary& summary, Clock::time_point start);
 
 // Which chunk cells a run bakes: every cell, or a shard's (empty function: every cell).
@@ -47,14 +49,15 @@ void bin_capture(const ImportOptions& options, const ImportPlan& plan, ChunkBins
 
 // The world's options for the chunk bakes and groups at the frame's scale, writing below `root`, with as
 // many bakes at once as the memory cap allows for chunks of up to `largest_chunk` Gaussians.
-WorldOptions import_world_options(const ImportOptions& options, const CaptureFrame& frame,
-                                  std::uint64_t largest_chunk, const std::filesystem::path& root);
+WorldOptions import_world_options(const ImportOptions& options, const CaptureFrame& frame, std::uint64_t largest_chunk,
+                                  const std::filesystem::path& root);
 
 // The ground under each chunk, from the survey's sample.
 GroundGrid ground_grid(const CaptureSample& sample, const CaptureFrame& frame);
 
-// Bakes every bin (w.threads at once) into w.output / generation, removing each bin once it is written.
-std::vector<ChunkResult> bake_bins(const ImportOptions& options, const WorldOptions& w, const CaptureFrame& frame,
+// Bakes every bin (w.threads at once) into w.output / generation, removing each bin once it is written:
+// from the training cameras that see it well when at least 4 do, else from the rings.
+std::vector<ChunkResult> bake_bins(const ImportOptions& options, const WorldOptions& w, const ImportPlan& plan,
                                    const GroundGrid& ground, const ChunkBins& bins,
                                    const std::filesystem::path& generation, Clock::time_point start);
 

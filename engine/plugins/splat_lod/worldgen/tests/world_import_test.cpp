@@ -202,6 +202,53 @@ TEST(WorldImport, ShardedImportsGiveTheSameBytesAndTheMergeChecksThem) {
     EXPECT_TRUE(world::import_world_shard(o, {2, 3}).summary.cached) << "the folder's world is this import";
 }
 
+// 30 cameras 15 units above the patch looking down and a little north, as cameras.json in the frame of
+// the capture y_down() and moved 200 units along x: the import must move and turn them with the capture
+// for them to see anything.
+std::string training_cameras_json() {
+    const glm::dmat3 turn = splat_lod::rotation_between({0, 1, 0}, {0, -1, 0});
+    std::string text = "[";
+    for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 5; ++j) {
+            const glm::dvec3 eye(-17.5 + 7.0 * i, 15.0, -12.0 + 6.0 * j);
+            const glm::dvec3 forward = glm::normalize(glm::dvec3(0.0, -1.0, -0.2));
+            const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 1, 0)));
+            const glm::dvec3 down = glm::cross(forward, right);
+            const glm::dmat3 c2w = turn * glm::dmat3(right, down, forward);
+            const glm::dvec3 p = turn * eye + glm::dvec3(200.0, 0.0, 0.0);
+            char camera[512];
+            std::snprintf(camera, sizeof camera,
+                          R"(%s{"id": %d, "img_name": "c%d", "width": 500, "height": 500, "fx": 500, "fy": 500, )"
+                          R"("position": [%.9g, %.9g, %.9g], "rotation": [[%.9g, %.9g, %.9g], [%.9g, %.9g, %.9g], )"
+                          R"([%.9g, %.9g, %.9g]]})",
+                          text.size() > 1 ? ", " : "", 5 * i + j, 5 * i + j, p.x, p.y, p.z, c2w[0][0], c2w[1][0],
+                          c2w[2][0], c2w[0][1], c2w[1][1], c2w[2][1], c2w[0][2], c2w[1][2], c2w[2][2]);
+            text += camera;
+        }
+    return text + "]";
+}
+
+TEST(WorldImport, TrainingCamerasTurnWithTheCaptureAndBakeTheChunksTheySee) {
+    const fs::path dir = fresh_dir("training_cameras");
+    SplatCloud capture = y_down(synthetic_capture());
+    splat_lod::transform_cloud(capture, glm::dmat3(1.0), glm::dvec3(200.0, 0.0, 0.0));
+    splat_lod::write_inria_ply(dir / "capture.ply", capture);
+    engine::write_text_file_atomic(dir / "cameras.json", training_cameras_json());
+    world::ImportOptions o = fast_options(dir / "capture.ply", dir / "world");
+    o.cameras = dir / "cameras.json";
+    const auto with = world::import_world(o);
+    EXPECT_EQ(with.summary.training_cameras, 30u);
+    EXPECT_GT(with.summary.training_camera_chunks, with.manifest.chunks.size() / 2)
+        << "most chunks lie under the cameras; none would, were the cameras not turned with the capture";
+    EXPECT_NE(world::format_import_summary(with.summary).find("training cameras: 30 read"), std::string::npos);
+    o.cameras.clear();
+    const auto without = world::import_world(o);
+    EXPECT_FALSE(without.summary.cached) << "the cameras are part of the fingerprint";
+    EXPECT_EQ(without.summary.training_camera_chunks, 0u);
+    o.cameras = dir / "missing.json";
+    EXPECT_NE(error_of([&] { world::import_world(o); }).find("missing.json"), std::string::npos);
+}
+
 TEST(WorldImport, TheSameCaptureAndOptionsAreNotImportedTwice) {
     const fs::path dir = fresh_dir("cached");
     splat_lod::write_inria_ply(dir / "capture.ply", synthetic_capture());

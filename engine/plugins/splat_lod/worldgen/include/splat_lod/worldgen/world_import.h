@@ -59,6 +59,10 @@ struct ImportOptions {
     std::filesystem::path capture;  // any capture (capture_source.h): a file, a streamed SOG, tiles
     std::filesystem::path output;   // the world's folder
     std::optional<glm::vec3> up;    // none: found from the data
+    // The capture's training cameras (cameras.json, COLMAP images.txt or a folder with either; see
+    // splat_lod/core/training_cameras.h), in the capture's frame: a chunk that at least 4 of them see well
+    // is baked from up to 16 of those instead of the rings. Empty: the rings only.
+    std::filesystem::path cameras;
     CaptureViews views = CaptureViews::automatic;
     std::uint64_t memory_bytes = std::uint64_t{3} << 30;  // resident memory the import aims to stay within
     std::uint64_t max_chunk_gaussians = 262144;           // the chunk size is chosen so no chunk holds more
@@ -97,6 +101,8 @@ struct ImportSummary {
     std::uint64_t binned = 0;                            // in chunks
     std::uint64_t bin_flushes = 0;                       // times the bins' buffers were written out
     std::size_t unbaked_chunks = 0;                      // chunks no bake camera sees, written as they are
+    std::size_t training_cameras = 0;                    // read from options.cameras
+    std::size_t training_camera_chunks = 0;              // chunks baked from training cameras
     std::uint64_t peak_rss_bytes = 0;                    // the process's high-water mark at the end
     WorldSummary world;
 };
