@@ -9,7 +9,7 @@
 namespace splat_lod::eval {
 namespace {
 
-// The multi-scale paper's claims for its full method against the baseline renderer.
+// Yan et al.'s claims for its full method against the baseline renderer.
 constexpr double kMinGainDb = 3.0;     // at 16× and 64×
 constexpr double kMinSpeedup = 5.0;    // at 64×
 constexpr double kMinPsnrAt1x = 40.0;  // at 1×, against the reference (= baseline there)

@@ -160,7 +160,7 @@ struct PixelResult {
     std::uint32_t contributors = 0;
 };
 
-// One splat's term of paper Eqs. 8–14 in the accumulated-alpha form of docs/algorithms.md §5, taken
+// One splat's term of Niedermayr et al. Eqs. 8–14 in the accumulated-alpha form of docs/algorithms.md §5, taken
 // before the splat is blended: `transmittance` is still T = 1 − A of the splats in front. The
 // exponent g = −½ dᵀ C d has g_x = −(Cxx dx + Cxy dy), g_y = −(Cxy dx + Cyy dy), g_xy = −Cxy;
 // α is the clamped value and the clamp itself is not differentiated.

@@ -1,5 +1,5 @@
 // The CPU reference upscalers of docs/algorithms.md §5 (GL-free, double precision inside): the gradient-
-// aware spline (the paper's Eq. 25–28 / appendix G Hermite patch on analytic derivatives) and the
+// aware spline (Niedermayr et al. Eqs. 25–28 / appendix G Hermite patch on analytic derivatives) and the
 // baselines it is compared with (bicubic, bilinear, Lanczos-3). The GPU upscale pass is tested
 // against these.
 #include "splat_lod/core/upscale.h"
@@ -57,13 +57,13 @@ struct Plane {
 };
 
 // [1 t t² t³] · M with M = [[1,0,0,0], [0,0,1,0], [−3,3,−2,−1], [2,−2,1,1]] (docs/algorithms.md §5, the
-// inverse of the paper's C, Eq. 28): the weights of f(0), f(1), f'(0), f'(1).
+// inverse of Niedermayr et al.'s C, Eq. 28): the weights of f(0), f(1), f'(0), f'(1).
 std::array<double, 4> hermite_weights(double t) {
     const double t2 = t * t, t3 = t2 * t;
     return {1.0 - 3.0 * t2 + 2.0 * t3, 3.0 * t2 - 2.0 * t3, t - 2.0 * t2 + t3, t3 - t2};
 }
 
-// The four corners' values and derivatives laid out as the paper's F (Eq. 27): rows f(0,·),
+// The four corners' values and derivatives laid out as Niedermayr et al.'s F (Eq. 27): rows f(0,·),
 // f(1,·), fx(0,·), fx(1,·); columns (·,0), (·,1), ∂y(·,0), ∂y(·,1).
 using PatchMatrix = std::array<std::array<double, 4>, 4>;
 

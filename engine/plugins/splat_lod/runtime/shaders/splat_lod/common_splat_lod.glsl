@@ -8,7 +8,7 @@ float pixel_coverage(mat2 cov, float det, float opacity) {
     return 2.0 * min(sqrt(level_set * det / cov[1][1]), sqrt(level_set * det / cov[0][0]));
 }
 
-// docs/algorithms.md §3 (paper Eq. 6); bounds of −1 are unset.
+// docs/algorithms.md §3 (Yan et al. Eq. 6); bounds of −1 are unset.
 bool lod_selected(uint level, float coverage, float coverage_min, float coverage_max) {
     uint mode = frame.lod_mode, finest = frame.finest_level, coarsest = frame.coarsest_level;
     bool all_levels = mode == SPLAT_LOD_MODE_INSERT_LARGE || mode == SPLAT_LOD_MODE_FULL;

@@ -18,7 +18,7 @@
 //
 // With SPLAT_GRADIENTS defined (render scale below 1, docs/algorithms.md §5) the pixels are low-resolution
 // texels and nothing is composited here: the pass writes C and A with their analytic ∂/∂x, ∂/∂y and
-// ∂²/∂x∂y (paper Eqs. 8–14) and a front depth for the upscale pass. A texel is cut at the FARTHEST
+// ∂²/∂x∂y (Niedermayr et al. Eqs. 8–14) and a front depth for the upscale pass. A texel is cut at the FARTHEST
 // mesh depth among the output pixels it stands for, so no splat is lost where any of them would
 // show it; the upscale pass decides per output pixel, with the front depth, where the mesh wins.
 #include "common_splat_bindings.glsl"

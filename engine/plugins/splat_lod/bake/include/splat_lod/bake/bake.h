@@ -1,5 +1,5 @@
 #pragma once
-// The LOD bake (multi-scale paper Algorithm 1 and supplement §9, docs/algorithms.md §4): from a trained
+// The LOD bake (Yan et al. Algorithm 1 and supplement §9, docs/algorithms.md §4): from a trained
 // scene (level 1 only) and a set of cameras, builds levels 2..4 by pooling the Gaussians that are
 // small at the level's render scale 4^(l−1), enlarges them, gives every Gaussian the coverage
 // range in which it is drawn (10th/90th percentiles over the cameras), and refines the colour and

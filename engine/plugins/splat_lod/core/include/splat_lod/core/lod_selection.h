@@ -1,6 +1,6 @@
 #pragma once
-// Pixel coverage (multi-scale paper §4.1, docs/algorithms.md §2) and the per-frame selection rule (paper
-// Eq. 6 / Algorithm 2, docs/algorithms.md §3), stated once on the CPU. The GPU's splat_project pass
+// Pixel coverage (Yan et al. §4.1, docs/algorithms.md §2) and the per-frame selection rule (Yan et
+// al. Eq. 6 / Algorithm 2, docs/algorithms.md §3), stated once on the CPU. The GPU's splat_project pass
 // implements the same rule; tests compare the two Gaussian for Gaussian.
 #include "splat_lod/msgs/lod_settings.h"
 

@@ -2,7 +2,7 @@
 // What an evaluation writes into its output folder:
 //   measurements.csv   every measurement (one row per scene, sweep, view, method, scale/distance),
 //                      with the Gaussians drawn per level (drawn_l1..drawn_l4)
-//   report.md          the paper's Table 1 shape (methods × scales: PSNR, SSIM, time) and the
+//   report.md          Yan et al.'s Table 1 shape (methods × scales: PSNR, SSIM, time) and the
 //                      Gaussians drawn per level, the LOD verdict and the matched-count comparison
 //                      (lod_report.h) where measured, the distance profile, the upscalers against
 //                      native with their verdict (upscale_report.h), and links to the plots and

@@ -1,7 +1,7 @@
 #pragma once
 // The LOD parts of report.md, from the scale sweep's means over the views:
 //   - the verdict: `full` against `baseline` per scale (PSNR gain, speed-up of the splat pass),
-//     checked against the multi-scale paper's claims: ≥ 3 dB better at 16× and 64×, ≥ 5× cheaper
+//     checked against Yan et al.'s claims: ≥ 3 dB better at 16× and 64×, ≥ 5× cheaper
 //     at 64×, and at 1× (where the reference is the baseline itself) a PSNR of at least 40 dB;
 //   - matched Gaussian counts: per scale, `full` next to the comparison scenes (e.g. the levels of
 //     an existing LOD chain) that draw about as many Gaussians.

@@ -1,6 +1,6 @@
 #pragma once
 // The splat LOD settings (docs/algorithms.md §3 and §5): which Gaussians the selection
-// rule keeps (multi-scale paper, Eq. 6), at which resolution splats are rasterised and how they
+// rule keeps (Yan et al. Eq. 6; docs/algorithms.md names the papers), at which resolution splats are rasterised and how they
 // are upscaled. The UI and tools publish it; the splat_lod plugin reads it.
 #include <array>
 #include <cmath>
@@ -14,7 +14,7 @@
 
 namespace plugin_msgs {
 
-// Ablation modes of the paper's Table 1.
+// Ablation modes of Yan et al.'s Table 1.
 enum class LodMode {
     baseline,      // level 1 only, no coverage filter
     filter_small,  // level 1 only, selection rule applied
@@ -23,7 +23,7 @@ enum class LodMode {
 };
 inline constexpr std::array<std::string_view, 4> kLodModeNames{"baseline", "filter_small", "insert_large", "full"};
 
-// How a low-resolution splat image is brought to output size (gradient-aware upscaling paper).
+// How a low-resolution splat image is brought to output size (Niedermayr et al.).
 enum class Upscaler { spline, bicubic, bilinear, lanczos3 };
 inline constexpr std::array<std::string_view, 4> kUpscalerNames{"spline", "bicubic", "bilinear", "lanczos3"};
 
