@@ -51,10 +51,17 @@ double number_of(const std::string& token, const std::string& name, std::size_t 
 
 // CAMERA_ID → vertical field of view (radians).
 std::map<std::string, float> camera_fovs(const std::string& text, const std::string& name) {
-    static const std::map<std::string, int> focal_y = {
-        {"SIMPLE_PINHOLE", 0}, {"SIMPLE_RADIAL", 0}, {"RADIAL", 0},         {"SIMPLE_RADIAL_FISHEYE", 0},
-        {"RADIAL_FISHEYE", 0}, {"PINHOLE", 1},       {"OPENCV", 1},         {"OPENCV_FISHEYE", 1},
-        {"FULL_OPENCV", 1},    {"FOV", 1},           {"THIN_PRISM_FISHEYE", 1}};
+    static const std::map<std::string, int> focal_y = {{"SIMPLE_PINHOLE", 0},
+                                                       {"SIMPLE_RADIAL", 0},
+                                                       {"RADIAL", 0},
+                                                       {"SIMPLE_RADIAL_FISHEYE", 0},
+                                                       {"RADIAL_FISHEYE", 0},
+                                                       {"PINHOLE", 1},
+                                                       {"OPENCV", 1},
+                                                       {"OPENCV_FISHEYE", 1},
+                                                       {"FULL_OPENCV", 1},
+                                                       {"FOV", 1},
+                                                       {"THIN_PRISM_FISHEYE", 1}};
     std::map<std::string, float> fovs;
     for (const auto& [line, content] : lines_of(text)) {
         const auto t = tokens_of(content);
@@ -104,7 +111,8 @@ std::vector<CameraPose> parse_colmap_cameras(const std::string& images, const st
     for (std::size_t i = 0; i < lines.size(); ++i) {
         const auto t = tokens_of(lines[i].second);
         if (t.empty()) continue;
-        if (t.size() < 10) line_error(images_name, lines[i].first, "expected IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME");
+        if (t.size() < 10)
+            line_error(images_name, lines[i].first, "expected IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME");
         poses.push_back(colmap_pose(t, fovs, images_name, lines[i].first));
         ++i;  // the image's points line, which may be empty
     }

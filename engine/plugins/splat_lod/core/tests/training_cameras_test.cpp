@@ -49,14 +49,16 @@ struct Known {
             rows += row;
         }
         char text[512];
-        std::snprintf(text, sizeof text,
-                      R"([{"id": 0, "img_name": "frame_007", "width": 1600, "height": 900, "position": [%.17g, %.17g, %.17g], "rotation": [%s], "fx": 1000, "fy": 1000}])",
-                      centre.x, centre.y, centre.z, rows.c_str());
+        std::snprintf(
+            text, sizeof text,
+            R"([{"id": 0, "img_name": "frame_007", "width": 1600, "height": 900, "position": [%.17g, %.17g, %.17g], "rotation": [%s], "fx": 1000, "fy": 1000}])",
+            centre.x, centre.y, centre.z, rows.c_str());
         return text;
     }
 };
 
-constexpr const char* kCameras = "# Camera list\n1 PINHOLE 1600 900 1000 1000 800 450\n2 SIMPLE_RADIAL 800 450 500 400 225 0.01\n";
+constexpr const char* kCameras =
+    "# Camera list\n1 PINHOLE 1600 900 1000 1000 800 450\n2 SIMPLE_RADIAL 800 450 500 400 225 0.01\n";
 
 void expect_same(const CameraPose& a, const CameraPose& b) {
     EXPECT_NEAR(glm::length(a.eye - b.eye), 0.0f, 1e-5f);
@@ -70,8 +72,8 @@ void expect_same(const CameraPose& a, const CameraPose& b) {
 TEST(TrainingCameras, ColmapGivesThePoseOfTheSameCameraInCamerasJson) {
     const Known known;
     // Comments, and an image whose points line is empty followed by one with points.
-    const std::string images = "# Image list\n" + known.images_line("1") + "\n" + known.images_line("2") +
-                               "100.5 200.5 -1 300 400 12\n";
+    const std::string images =
+        "# Image list\n" + known.images_line("1") + "\n" + known.images_line("2") + "100.5 200.5 -1 300 400 12\n";
     const auto colmap = splat_lod::eval::parse_colmap_cameras(images, kCameras, "images.txt", "cameras.txt");
     const auto inria = splat_lod::eval::parse_inria_cameras(known.inria_json(), "cameras.json");
     ASSERT_EQ(colmap.size(), 2u);
@@ -98,8 +100,9 @@ TEST(TrainingCameras, FoldersAreSearchedAndBadFilesNamed) {
               std::string::npos);
     fs::create_directories(dir / "lone");
     engine::write_text_file_atomic(dir / "lone" / "images.txt", known.images_line("1"));
-    EXPECT_NE(error_of([&] { splat_lod::eval::read_training_cameras(dir / "lone" / "images.txt"); })
-                  .find("cameras.txt (the fields of view) is missing"),
+    EXPECT_NE(error_of([&] {
+                  splat_lod::eval::read_training_cameras(dir / "lone" / "images.txt");
+              }).find("cameras.txt (the fields of view) is missing"),
               std::string::npos);
     const auto parse_error = [&](const std::string& images) {
         return error_of([&] { splat_lod::eval::parse_colmap_cameras(images, kCameras, "images.txt", "cameras.txt"); });
@@ -111,7 +114,8 @@ TEST(TrainingCameras, FoldersAreSearchedAndBadFilesNamed) {
               std::string::npos);
     EXPECT_NE(parse_error("1 1 0 0 0 1 2\n").find("line 1: expected IMAGE_ID"), std::string::npos);
     EXPECT_NE(parse_error("# nothing\n").find("no image"), std::string::npos);
-    EXPECT_NE(error_of([&] { splat_lod::eval::parse_colmap_cameras(known.images_line("1"), "1 FANCY 4 4 1\n", "i", "c"); })
-                  .find("c: line 1: unknown camera model \"FANCY\""),
+    EXPECT_NE(error_of([&] {
+                  splat_lod::eval::parse_colmap_cameras(known.images_line("1"), "1 FANCY 4 4 1\n", "i", "c");
+              }).find("c: line 1: unknown camera model \"FANCY\""),
               std::string::npos);
 }

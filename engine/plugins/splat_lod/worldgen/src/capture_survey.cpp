@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <utility>
 
@@ -15,8 +16,15 @@ namespace splat_lod::world {
 namespace {
 
 constexpr double kSnapDegrees = 5.0;
+// The thinnest axis of the centres is a weaker estimate (trees and houses placed at random tilt it):
+// within this angle of a coordinate axis it is taken to be that axis, as captures mostly are aligned.
+constexpr double kWeakSnapDegrees = 30.0;
 constexpr double kFlatRatio = 0.25;   // smallest scale below this fraction of the middle one
 constexpr double kFlatOpacity = 0.5;  // and at least this opaque: a surface element
+// The flat Gaussians' normals give up only when one direction dominates them: their moment matrix's
+// largest eigenvalue at least this many times the next (a ground, roofs, a road). Scenes of leaves,
+// walls and clutter spread their normals, and the thinnest axis of the centres says more.
+constexpr double kDominantNormal = 1.5;
 constexpr std::uint64_t kMinFlat = 100;
 // An aerial capture is flat (height span below this share of the footprint) and made of coarse
 // Gaussians (median extent above this share of the footprint): measured, the 4.2M aerial capture of
@@ -62,16 +70,22 @@ std::vector<double> along(const std::vector<glm::vec3>& points, const glm::dvec3
 }
 
 // The up axis before its sign: the dominant normal of flat Gaussians, else the positions' thinnest axis.
-glm::dvec3 up_axis(const CaptureSample& sample, std::string& source) {
+glm::dvec3 up_axis(const CaptureSample& sample, std::string& source, double& snap_degrees) {
+    snap_degrees = kSnapDegrees;
     glm::dvec3 values;
     glm::dmat3 vectors;
+    std::string ambiguous;
     if (sample.flat >= kMinFlat) {
         math::symmetric_eigen(sample.normal_moments, values, vectors);
-        int best = 0;
-        for (int k = 1; k < 3; ++k)
-            if (values[k] > values[best]) best = k;
-        source = "flat Gaussians (" + std::to_string(sample.flat) + ")";
-        return vectors[best];
+        int order[3] = {0, 1, 2};
+        std::sort(order, order + 3, [&](int a, int b) { return values[a] > values[b]; });
+        char ratio[64];
+        std::snprintf(ratio, sizeof ratio, "%.2f", values[order[0]] / std::max(values[order[1]], 1e-300));
+        if (values[order[0]] >= kDominantNormal * values[order[1]]) {
+            source = "flat Gaussians (" + std::to_string(sample.flat) + ", dominant normal " + ratio + "x the next)";
+            return vectors[order[0]];
+        }
+        ambiguous = "; the flat Gaussians' normals are ambiguous (dominant only " + std::string(ratio) + "x the next)";
     }
     glm::dvec3 mean(0.0);
     for (const glm::vec3& p : sample.positions) mean += glm::dvec3(p);
@@ -83,12 +97,13 @@ glm::dvec3 up_axis(const CaptureSample& sample, std::string& source) {
     int thinnest = 0;
     for (int k = 1; k < 3; ++k)
         if (values[k] < values[thinnest]) thinnest = k;
-    source = "thinnest axis of the centres";
+    source = "thinnest axis of the centres" + ambiguous;
+    snap_degrees = kWeakSnapDegrees;
     return vectors[thinnest];
 }
 
 // Towards the longer tail of heights (what stands on the ground), snapped to a nearby coordinate axis.
-glm::dvec3 orient_up(glm::dvec3 up, const CaptureSample& sample) {
+glm::dvec3 orient_up(glm::dvec3 up, const CaptureSample& sample, double snap_degrees) {
     up = glm::normalize(up);
     const std::vector<double> heights = along(sample.positions, up);
     const double low = percentile(heights, 0.01), mid = percentile(heights, 0.5), high = percentile(heights, 0.99);
@@ -96,7 +111,7 @@ glm::dvec3 orient_up(glm::dvec3 up, const CaptureSample& sample) {
     for (int k = 0; k < 3; ++k) {
         glm::dvec3 axis(0.0);
         axis[k] = up[k] < 0.0 ? -1.0 : 1.0;
-        if (glm::dot(up, axis) >= std::cos(kSnapDegrees * 3.14159265358979 / 180.0)) return axis;
+        if (glm::dot(up, axis) >= std::cos(snap_degrees * 3.14159265358979 / 180.0)) return axis;
     }
     return up;
 }
@@ -188,7 +203,9 @@ CaptureFrame choose_frame(const CaptureSample& sample, const ImportOptions& o, c
         frame.up = glm::normalize(glm::dvec3(*o.up));
         frame.up_source = "given";
     } else {
-        frame.up = orient_up(up_axis(sample, frame.up_source), sample);
+        double snap_degrees = kSnapDegrees;
+        const glm::dvec3 axis = up_axis(sample, frame.up_source, snap_degrees);
+        frame.up = orient_up(axis, sample, snap_degrees);
     }
     frame.rotation = rotation_between(frame.up, glm::dvec3(0.0, 1.0, 0.0));
     std::vector<glm::vec3> world;

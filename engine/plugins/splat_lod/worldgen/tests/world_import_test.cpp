@@ -285,6 +285,29 @@ TEST(WorldImport, FindsZUpAndCountsHostileGaussians) {
     EXPECT_EQ(result.summary.binned + result.summary.far_layer, n);
 }
 
+TEST(WorldImport, NormalsSpreadOverEveryDirectionGiveWayToTheThinnestAxis) {
+    // 4,000 flat, opaque Gaussians turned every which way (leaves, litter: no ground facing up) in a
+    // 30 x 30 patch, most near the ground and a tail up to 6 units: their normals say nothing.
+    const fs::path dir = fresh_dir("spread_normals");
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::normal_distribution<float> gauss(0.0f, 1.0f);
+    SplatCloud cloud;
+    cloud.resize(4000);
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        const float h = unit(rng);
+        cloud.positions[i] = {30.0f * unit(rng) - 15.0f, 6.0f * h * h * h, 30.0f * unit(rng) - 15.0f};
+        cloud.log_scales[i] = {std::log(0.1f), std::log(0.005f), std::log(0.1f)};
+        const glm::vec4 q = glm::normalize(glm::vec4(gauss(rng), gauss(rng), gauss(rng), gauss(rng)));
+        cloud.rotations[i] = {q.x, q.y, q.z, q.w};
+        cloud.opacity_logits[i] = 3.0f;
+    }
+    splat_lod::write_inria_ply(dir / "capture.ply", cloud);
+    const auto result = world::import_world(fast_options(dir / "capture.ply", dir / "world"));
+    EXPECT_EQ(result.summary.up, glm::dvec3(0.0, 1.0, 0.0));
+    EXPECT_NE(result.summary.up_source.find("ambiguous"), std::string::npos) << result.summary.up_source;
+}
+
 TEST(WorldImport, ACaptureDenserThanAnyChunkKeepsTheGridBounded) {
     const fs::path dir = fresh_dir("dense_spot");
     // 3,000 ground Gaussians on one spot and 300 of the leaves spread over the patch: the spot holds more

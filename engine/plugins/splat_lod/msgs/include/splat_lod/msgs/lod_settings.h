@@ -1,7 +1,7 @@
 #pragma once
 // The splat LOD settings (docs/algorithms.md §3 and §5): which Gaussians the selection
-// rule keeps (Yan et al. Eq. 6; docs/algorithms.md names the papers), at which resolution splats are rasterised and how they
-// are upscaled. The UI and tools publish it; the splat_lod plugin reads it.
+// rule keeps (Yan et al. Eq. 6; docs/algorithms.md names the papers), at which resolution splats are rasterised and how
+// they are upscaled. The UI and tools publish it; the splat_lod plugin reads it.
 #include <array>
 #include <cmath>
 #include <stdexcept>

@@ -3,10 +3,10 @@
 // checksums and commit as a generated world (world_generator.h), so the streamer and the game read it
 // unchanged. Steps:
 //   1. Survey (one read of the capture, part by part; capture_source.h): a strided sample of the
-//      Gaussians gives the frame. Up: --up, or found from the data (the mean normal of flat, opaque
-//      Gaussians, the thinnest axis of the positions when there are too few; its sign towards the
-//      longer tail of heights, where trees, buildings and sky stand; within 5° of a coordinate axis it
-//      snaps to that axis). The footprint: the 1st–99th percentile box of the centres in the
+//      Gaussians gives the frame. Up: --up, or found from the data (the dominant normal of flat, opaque
+//      Gaussians; the thinnest axis of the positions when there are too few or no normal dominates; its
+//      sign towards the longer tail of heights, where trees, buildings and sky stand; within 5° of a
+//      coordinate axis it snaps to that axis, within 30° for the thinnest axis). The footprint: the 1st–99th percentile box of the centres in the
 //      horizontal plane. The chunk size: the largest power-of-two fraction of the footprint at which
 //      no chunk of the sample holds more than max_chunk_gaussians.
 //   2. Binning (a second read): every Gaussian is turned into the world frame (Y up, the footprint's
