@@ -87,6 +87,7 @@ CameraPose colmap_pose(const std::vector<std::string>& t, const std::map<std::st
     const glm::dquat q(v[0], v[1], v[2], v[3]);
     const double norm = glm::length(q);
     if (!(norm > 1e-6)) line_error(name, line, "the quaternion is zero");
+    if (!std::isfinite(norm)) line_error(name, line, "the quaternion's length is beyond double range");
     const glm::dmat3 world_to_camera = glm::mat3_cast(q / norm);
     const glm::dmat3 camera_to_world = glm::transpose(world_to_camera);
     const auto fov = fovs.find(t[8]);

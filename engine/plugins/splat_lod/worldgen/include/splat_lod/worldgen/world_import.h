@@ -6,9 +6,9 @@
 //      Gaussians gives the frame. Up: --up, or found from the data (the dominant normal of flat, opaque
 //      Gaussians; the thinnest axis of the positions when there are too few or no normal dominates; its
 //      sign towards the longer tail of heights, where trees, buildings and sky stand; within 5° of a
-//      coordinate axis it snaps to that axis, within 30° for the thinnest axis). The footprint: the 1st–99th percentile box of the centres in the
-//      horizontal plane. The chunk size: the largest power-of-two fraction of the footprint at which
-//      no chunk of the sample holds more than max_chunk_gaussians.
+//      coordinate axis it snaps to that axis, within 30° for the thinnest axis). The footprint: the 1st–99th percentile
+//      box of the centres in the horizontal plane. The chunk size: the largest power-of-two fraction of the footprint
+//      at which no chunk of the sample holds more than max_chunk_gaussians.
 //   2. Binning (a second read): every Gaussian is turned into the world frame (Y up, the footprint's
 //      centre snapped to the chunk grid at the origin; SH rotated with it) and appended by its centre
 //      to its chunk's bin file on disk; buffers are flushed when they hold a quarter of the memory cap,
