@@ -8,6 +8,7 @@
 
 #include "drop_in_lod_test_helpers.h"
 #include "engine/core/error.h"
+#include "splat_lod/bake/capture_shape.h"
 #include "splat_lod/bake/lod_cache.h"
 
 namespace {
@@ -73,6 +74,29 @@ TEST(DropInLod, FirstLoadDrawsTheTrainedSceneThenTheBakeAndTheNextLoadHitsTheCac
     auto other_engine = make_engine(settings);
     auto other = other_engine->load_scene(scene_file);
     EXPECT_NE(splat_of(*other).lod_bake, nullptr);
+}
+
+TEST(DropInLod, ACaptureBetterAsAStreamedWorldIsDrawnAsTrainedWithoutABake) {
+    const fs::path dir = engine::test::output_dir("DropInLod");
+    fs::remove_all(dir);
+    auto settings = quick_settings();
+    settings.cache_folder = dir / "cache";
+    std::size_t asked = 0;
+    settings.world_advice = [&](const splat_lod::SplatCloud& cloud) {
+        ++asked;
+        return "a flat capture of " + std::to_string(cloud.size()) + " Gaussians";
+    };
+    auto engine = make_engine(settings);
+    auto scene = engine->load_scene(write_scene(dir, R"(, "lod": "auto")"));
+    auto& splat = splat_of(*scene);
+    EXPECT_EQ(asked, 1u);
+    ASSERT_NE(splat.cloud, nullptr);
+    EXPECT_FALSE(splat.cloud->has_lod_attributes());
+    EXPECT_EQ(splat.lod_bake, nullptr) << "no bake of one file for it";
+    EXPECT_FALSE(splat.update_lod());
+    EXPECT_TRUE(entries(dir / "cache").empty());
+    // The real rule keeps small scenes baking.
+    EXPECT_EQ(splat_lod::bake::streamed_world_advice(*splat.cloud), "");
 }
 
 TEST(DropInLod, FailedBakeKeepsTheTrainedSceneAndCachesNothing) {

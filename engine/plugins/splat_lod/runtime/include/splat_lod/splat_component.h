@@ -13,6 +13,7 @@
 
 #include "engine/scene/component.h"
 #include "splat_lod/bake/bake_setup.h"
+#include "splat_lod/bake/capture_shape.h"
 #include "splat_lod/core/splat_cloud.h"
 
 namespace engine {
@@ -59,6 +60,10 @@ struct DropInLodSettings {
     std::filesystem::path cache_folder;  // empty: bake::lod_cache_folder()
     // Called on the bake's thread with its progress; may throw to fail the bake (for tests).
     std::function<void(const std::string& stage, double fraction)> observer;
+    // Why a trained scene is better served as a streamed world than by one baked file ("" when one file
+    // is fine): such a scene is drawn as trained and not baked (docs/lod.md, "Drop-in LOD"). Tests give
+    // their own.
+    std::function<std::string(const SplatCloud&)> world_advice = bake::streamed_world_advice;
 };
 
 // Registers the "splat" type (asset path resolved against the scene file, loads cached).

@@ -43,6 +43,13 @@ std::vector<std::uint8_t> input_bytes(const fs::path& asset) {
 void start_drop_in_lod(SplatComponent& component, const DropInLodSettings& settings, engine::AssetCache& assets) {
     if (!component.cloud || component.cloud->has_lod_attributes()) return;
     const std::string name = component.asset.filename().string();
+    if (const std::string why = settings.world_advice ? settings.world_advice(*component.cloud) : ""; !why.empty()) {
+        engine::log_warning("splat_lod: " + name + ": " + why +
+                            ": drawn as trained, without levels of detail (baking it as one file would take long and "
+                            "serve it badly); make it a streamed world: splat_world --from " +
+                            component.asset.string() + " --out <folder> (docs/world_lod.md, \"Importing a capture\")");
+        return;
+    }
     fs::path entry;
     try {
         const fs::path folder = settings.cache_folder.empty() ? bake::lod_cache_folder() : settings.cache_folder;
