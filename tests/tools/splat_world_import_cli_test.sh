@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# splat_world --from as a user runs it: a capture imported whole, and in two shards run at once then
-# merged, gives the same world.json and the same bytes in every file of its generation folder; a merge
-# with a shard missing, --count-only with --from and a missing --cameras file fail with exit code 1 and
-# a message naming the problem.
+# splat_world --from as a user runs it: a capture imported whole, and in two shards run at once (one of
+# them twice at once) then merged, gives the same world.json and the same bytes in every file of its
+# generation folder; a merge with a shard missing, --count-only with --from and a missing --cameras file
+# fail with exit code 1 and a message naming the problem.
 #   splat_world_import_cli_test.sh SPLAT_WORLD SPLAT_SYNTH OUTPUT_DIR
 set -uo pipefail
 world=$1
@@ -28,10 +28,13 @@ if [ "$code" -ne 1 ] || ! grep -q "missing shards 2/2" "$dir/early.log"; then
 fi
 [ -e "$dir/sharded/world.json" ] && fail "the failed merge wrote world.json"
 
-"$world" --from "$dir/garden.ply" --out "$dir/sharded" "${fast[@]}" --shard 2/2 --force > "$dir/s2.log" 2>&1 &
+# Shard 2/2 twice at once (a requeued task whose first run still runs), beside shard 1/2 run again.
+"$world" --from "$dir/garden.ply" --out "$dir/sharded" "${fast[@]}" --shard 2/2 > "$dir/s2.log" 2>&1 &
+"$world" --from "$dir/garden.ply" --out "$dir/sharded" "${fast[@]}" --shard 2/2 --force > "$dir/s2b.log" 2>&1 &
 "$world" --from "$dir/garden.ply" --out "$dir/sharded" "${fast[@]}" --shard 1/2 --force > "$dir/s1b.log" 2>&1 &
 wait %1 || fail "shard 2/2: $(tail -n 3 "$dir/s2.log")"
-wait %2 || fail "shard 1/2 again: $(tail -n 3 "$dir/s1b.log")"
+wait %2 || fail "shard 2/2 at the same time: $(tail -n 3 "$dir/s2b.log")"
+wait %3 || fail "shard 1/2 again: $(tail -n 3 "$dir/s1b.log")"
 grep -q "^shard 2/2: .*shard-2-of-2.json" "$dir/s2.log" || fail "shard 2/2 printed: $(tail -n 2 "$dir/s2.log")"
 "$world" --from "$dir/garden.ply" --out "$dir/sharded" "${fast[@]}" --merge > "$dir/merge.log" 2>&1 ||
   fail "merge: $(tail -n 3 "$dir/merge.log")"

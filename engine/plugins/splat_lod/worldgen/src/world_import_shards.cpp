@@ -3,8 +3,11 @@
 // chunk groups there, renames the staged generation and commits world.json as a whole import does.
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <set>
 #include <system_error>
+
+#include <unistd.h>
 
 #include "engine/core/error.h"
 #include "engine/core/process_memory.h"
@@ -118,6 +121,26 @@ void rename_generation(WorldManifest& m, const fs::path& generation) {
     for (Prop& p : m.props) p.mesh = generation / p.mesh.lexically_relative(kStagedGeneration);
 }
 
+// The shard's record when it is there and every file matches it (not with options.force); otherwise
+// nothing, with why in the summary's cache note.
+std::optional<ImportResult> cached_shard(const ImportOptions& o, const ImportPlan& plan, const fs::path& staging,
+                                         const WorldShard& shard, ImportSummary& s, Clock::time_point start) {
+    const fs::path record_path = staging / shard_record_name(shard);
+    std::error_code ec;
+    if (o.force || !fs::exists(record_path, ec)) return std::nullopt;
+    try {
+        const WorldOptions w = import_world_options(o, plan.frame, 0, staging);
+        const auto m = import_manifest(o, w, plan, ground_grid(plan.sample, plan.frame));
+        ImportResult cached =
+            cached_result(read_import_record(staging, shard, plan.frame, m.generator), staging, start);
+        cached.record = record_path;
+        return cached;
+    } catch (const engine::Error& e) {
+        s.world.cache_note = e.what();  // baked again
+        return std::nullopt;
+    }
+}
+
 }  // namespace
 
 ImportResult import_world_shard(const ImportOptions& o, const WorldShard& shard) {
@@ -138,20 +161,11 @@ ImportResult import_world_shard(const ImportOptions& o, const WorldShard& shard)
     s.run = "shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count);
     survey_import(o, plan, s, start);
     const fs::path record_path = staging / shard_record_name(shard);
-    if (!o.force && fs::exists(record_path, ec)) {
-        try {
-            const WorldOptions w = import_world_options(o, plan.frame, 0, staging);
-            const auto m = import_manifest(o, w, plan, ground_grid(plan.sample, plan.frame));
-            ImportResult cached =
-                cached_result(read_import_record(staging, shard, plan.frame, m.generator), staging, start);
-            cached.record = record_path;
-            return cached;
-        } catch (const engine::Error& e) {
-            s.world.cache_note = e.what();  // baked again
-        }
-    }
+    if (auto cached = cached_shard(o, plan, staging, shard, s, start)) return std::move(*cached);
 
-    const std::string bins_folder = "bins-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count);
+    // Each run its own bins (a requeued shard may run while its first run still does).
+    const std::string bins_folder =
+        "bins-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + "-" + std::to_string(::getpid());
     ChunkBins bins(staging / bins_folder, plan.sample.sh_degree,
                    o.bin_flush_bytes > 0 ? o.bin_flush_bytes : o.memory_bytes / 4);
     FarLayer far(plan.sample.sh_degree, o.far_layer_max);
