@@ -2,6 +2,7 @@
 #include "splat_lod/core/training_cameras.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <sstream>
 
@@ -47,6 +48,17 @@ double number_of(const std::string& token, const std::string& name, std::size_t 
     } catch (const std::exception&) {
     }
     line_error(name, line, "\"" + token + "\" is not a finite number");
+}
+
+// Whether a line is an image's 2D points (empty, or numbers only: X Y POINT3D_ID triples), not the next
+// image (whose NAME is not a number): a file written without points lines loses no image.
+bool points_line(const std::string& line) {
+    for (const std::string& token : tokens_of(line)) {
+        char* end = nullptr;
+        std::strtod(token.c_str(), &end);
+        if (end != token.c_str() + token.size()) return false;
+    }
+    return true;
 }
 
 // CAMERA_ID → vertical field of view (radians).
@@ -115,7 +127,7 @@ std::vector<CameraPose> parse_colmap_cameras(const std::string& images, const st
         if (t.size() < 10)
             line_error(images_name, lines[i].first, "expected IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME");
         poses.push_back(colmap_pose(t, fovs, images_name, lines[i].first));
-        ++i;  // the image's points line, which may be empty
+        if (i + 1 < lines.size() && points_line(lines[i + 1].second)) ++i;  // its points (may be empty)
     }
     if (poses.empty()) engine::fail(images_name + ": no image in the file");
     return poses;

@@ -77,6 +77,11 @@ TEST(TrainingCameras, ColmapGivesThePoseOfTheSameCameraInCamerasJson) {
     const auto colmap = splat_lod::eval::parse_colmap_cameras(images, kCameras, "images.txt", "cameras.txt");
     const auto inria = splat_lod::eval::parse_inria_cameras(known.inria_json(), "cameras.json");
     ASSERT_EQ(colmap.size(), 2u);
+    // Written without points lines (one line per image): no image is lost.
+    EXPECT_EQ(splat_lod::eval::parse_colmap_cameras(known.images_line("1") + known.images_line("2"), kCameras,
+                                                    "images.txt", "cameras.txt")
+                  .size(),
+              2u);
     ASSERT_EQ(inria.size(), 1u);
     expect_same(colmap[0], inria[0]);
     expect_same(colmap[1], inria[0]);  // the other camera model has the same field of view

@@ -3,7 +3,8 @@
 // output, camera_set.h) or COLMAP's text model, `images.txt` with `cameras.txt` beside it:
 //   images.txt: two lines per image, "IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME" (the world-to-camera
 //               rotation as a unit quaternion and translation, OpenCV axes: x right, y down, z forward)
-//               and a line of 2D points (ignored, possibly empty); lines starting with '#' are comments;
+//               and a line of 2D points (ignored, possibly empty; a file without them loses no image);
+//               lines starting with '#' are comments;
 //   cameras.txt: "CAMERA_ID MODEL WIDTH HEIGHT PARAMS..." (the field of view comes from HEIGHT and the
 //               focal length: PARAMS[1] for the models with fx and fy, PARAMS[0] for those with one f).
 // The camera's centre is −Rᵀt; it looks along Rᵀ's third column. Errors name the file, the line and the
