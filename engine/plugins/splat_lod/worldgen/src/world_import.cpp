@@ -20,30 +20,9 @@ namespace fs = std::filesystem;
 // Everything below `generation`; returns the manifest that names it.
 WorldManifest build_import(const ImportOptions& o, const ImportPlan& plan, const fs::path& generation, ImportSummary& s,
                            Clock::time_point start) {
-    ChunkBins bins(o.output / generation / "bins", plan.sample.sh_degree,
-                   o.bin_flush_bytes > 0 ? o.bin_flush_bytes : o.memory_bytes / 4);
-    FarLayer far(plan.sample.sh_degree, o.far_layer_max);
-    bin_capture(o, plan, bins, far, s, start, {});
-    if (bins.cells().empty()) engine::fail(o.capture.string() + ": no Gaussian lies inside the world's box");
-    const WorldOptions w = import_world_options(o, plan.frame, bins.largest(), o.output);
-    const GroundGrid ground = ground_grid(plan.sample, plan.frame);
-    const auto stage = Clock::now();
-    std::vector<ChunkResult> chunks = bake_bins(o, w, plan, ground, bins, generation, start);
-    for (const ChunkResult& chunk : chunks) {
-        s.unbaked_chunks += chunk.unbaked ? 1 : 0;
-        s.training_camera_chunks += chunk.from_training_cameras ? 1 : 0;
-    }
-    s.world.stages.push_back(
-        {"chunks (bake, write) on " + std::to_string(w.threads) + " threads", seconds_since(stage)});
-    std::error_code ec;
-    fs::remove_all(o.output / generation / "bins", ec);
-
-    WorldManifest m = import_manifest(o, w, plan, ground);
-    const SplatCloud far_cloud = far.finish();
-    s.far_dropped = far.dropped();
-    s.far_layer = far_cloud.size();
-    add_far_layer(far_cloud, o.output, generation, m);
-    add_chunk_results(chunks, m, s.world);
+    WorldOptions w;
+    WorldManifest m =
+        bake_capture(o, plan, o.output, generation, o.output / generation / "bins", {}, true, w, s, start);
     add_groups(w, generation, m, s.world, start);
     return m;
 }

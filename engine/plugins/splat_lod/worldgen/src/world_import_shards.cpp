@@ -166,31 +166,13 @@ ImportResult import_world_shard(const ImportOptions& o, const WorldShard& shard)
     // Each run its own bins (a requeued shard may run while its first run still does).
     const std::string bins_folder =
         "bins-" + std::to_string(shard.index) + "-of-" + std::to_string(shard.count) + "-" + std::to_string(::getpid());
-    ChunkBins bins(staging / bins_folder, plan.sample.sh_degree,
-                   o.bin_flush_bytes > 0 ? o.bin_flush_bytes : o.memory_bytes / 4);
-    FarLayer far(plan.sample.sh_degree, o.far_layer_max);
-    bin_capture(o, plan, bins, far, s, start,
-                [&](const glm::ivec2& cell) { return shard_owns(plan.frame, cell, shard); });
-    const WorldOptions w = import_world_options(o, plan.frame, bins.largest(), staging);
-    const GroundGrid ground = ground_grid(plan.sample, plan.frame);
-    auto stage = Clock::now();
-    std::vector<ChunkResult> chunks = bake_bins(o, w, plan, ground, bins, kStagedGeneration, start);
-    for (const ChunkResult& chunk : chunks) {
-        s.unbaked_chunks += chunk.unbaked ? 1 : 0;
-        s.training_camera_chunks += chunk.from_training_cameras ? 1 : 0;
-    }
-    s.world.stages.push_back(
-        {"chunks (bake, write) on " + std::to_string(w.threads) + " threads", seconds_since(stage)});
-    fs::remove_all(staging / bins_folder, ec);
-
     ImportResult result;
     WorldManifest& record = result.manifest;
-    record = import_manifest(o, w, plan, ground);
-    const SplatCloud far_cloud = far.finish();
-    s.far_dropped = far.dropped();
-    s.far_layer = far_cloud.size();
-    if (shard.index == 1) add_far_layer(far_cloud, staging, kStagedGeneration, record);  // one shard writes it
-    add_chunk_results(chunks, record, s.world);
+    WorldOptions w;
+    // Every shard computes the far layer the same way; one writes it.
+    record = bake_capture(
+        o, plan, staging, kStagedGeneration, staging / bins_folder,
+        [&](const glm::ivec2& cell) { return shard_owns(plan.frame, cell, shard); }, shard.index == 1, w, s, start);
     write_world_manifest(record_path, record);
     result.record = record_path;
     summarise_manifest(record, staging, s.world);

@@ -368,6 +368,35 @@ void add_far_layer(const SplatCloud& far_cloud, const fs::path& root, const fs::
     m.props.push_back({generation / kFarLayerMesh, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f)});
 }
 
+WorldManifest bake_capture(const ImportOptions& o, const ImportPlan& plan, const fs::path& root,
+                           const fs::path& generation, const fs::path& bins_folder, const CellFilter& keep,
+                           bool far_layer, WorldOptions& w, ImportSummary& s, Clock::time_point start) {
+    ChunkBins bins(bins_folder, plan.sample.sh_degree, o.bin_flush_bytes > 0 ? o.bin_flush_bytes : o.memory_bytes / 4);
+    FarLayer far(plan.sample.sh_degree, o.far_layer_max);
+    bin_capture(o, plan, bins, far, s, start, keep);
+    if (!keep && bins.cells().empty()) engine::fail(o.capture.string() + ": no Gaussian lies inside the world's box");
+    w = import_world_options(o, plan.frame, bins.largest(), root);
+    const GroundGrid ground = ground_grid(plan.sample, plan.frame);
+    const auto stage = Clock::now();
+    std::vector<ChunkResult> chunks = bake_bins(o, w, plan, ground, bins, generation, start);
+    for (const ChunkResult& chunk : chunks) {
+        s.unbaked_chunks += chunk.unbaked ? 1 : 0;
+        s.training_camera_chunks += chunk.from_training_cameras ? 1 : 0;
+    }
+    s.world.stages.push_back(
+        {"chunks (bake, write) on " + std::to_string(w.threads) + " threads", seconds_since(stage)});
+    std::error_code ec;
+    fs::remove_all(bins_folder, ec);
+
+    WorldManifest m = import_manifest(o, w, plan, ground);
+    const SplatCloud far_cloud = far.finish();
+    s.far_dropped = far.dropped();
+    s.far_layer = far_cloud.size();
+    if (far_layer) add_far_layer(far_cloud, root, generation, m);
+    add_chunk_results(chunks, m, s.world);
+    return m;
+}
+
 std::size_t cell_index(const CaptureFrame& frame, const glm::ivec2& cell) {
     const int n = frame.chunks_per_side;
     return static_cast<std::size_t>(cell.y + n / 2) * static_cast<std::size_t>(n) +

@@ -70,6 +70,15 @@ WorldManifest import_manifest(const ImportOptions& options, const WorldOptions& 
 void add_far_layer(const SplatCloud& far_cloud, const std::filesystem::path& root,
                    const std::filesystem::path& generation, WorldManifest& m);
 
+// What a whole import and a shard both make below `root`: the capture binned into `bins_folder` (only the
+// cells `keep` accepts; an empty `keep` is a whole import, which fails when no cell holds a Gaussian),
+// every bin baked into root / generation and the bins removed; then the manifest without groups: the far
+// layer (when `far_layer`) and the chunks' entries. `w` gets the world's options the bakes used.
+WorldManifest bake_capture(const ImportOptions& options, const ImportPlan& plan, const std::filesystem::path& root,
+                           const std::filesystem::path& generation, const std::filesystem::path& bins_folder,
+                           const CellFilter& keep, bool far_layer, WorldOptions& w, ImportSummary& summary,
+                           Clock::time_point start);
+
 // The grid-order index of a chunk cell: rows of increasing z, each of increasing x.
 std::size_t cell_index(const CaptureFrame& frame, const glm::ivec2& cell);
 
