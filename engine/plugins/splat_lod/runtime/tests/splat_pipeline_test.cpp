@@ -220,7 +220,6 @@ TEST_F(SplatPipelineTest, KeyBufferGrowsAfterAnOverflowedFrame) {
 // behind him. The GPU frame equals the reference composited over the GPU mesh layer, and matches
 // a golden image.
 TEST_F(SplatPipelineTest, MeshesAndSplatsCompositeByDepth) {
-    ENGINE_REQUIRE_SHARED_DATA();
     auto& engine = harness.engine();
     const auto scene_file = engine::test::repo_dir() / "content/scenes/biker_with_boxes.json";
     const auto full = engine.load_scene(scene_file);

@@ -228,7 +228,6 @@ TEST_F(SplatUpscaleTest, LodSelectionUsesTheOutputCoverage) {
 // colour exactly, away from the box's edges the splats match native, and the whole frame stays
 // within a few dB of native.
 TEST_F(SplatUpscaleTest, MeshesHideSplatsWithSharpEdges) {
-    ENGINE_REQUIRE_SHARED_DATA();
     auto& engine = harness.engine();
     const auto scene_file = engine::test::repo_dir() / "content/scenes/biker_with_boxes.json";
     const auto full = engine.load_scene(scene_file);
