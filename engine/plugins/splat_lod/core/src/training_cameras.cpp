@@ -133,7 +133,7 @@ std::vector<CameraPose> parse_colmap_cameras(const std::string& images, const st
     return poses;
 }
 
-std::vector<CameraPose> read_training_cameras(const fs::path& path) {
+std::vector<fs::path> training_camera_files(const fs::path& path) {
     std::error_code ec;
     fs::path file = path;
     if (fs::is_directory(path, ec)) {
@@ -144,14 +144,18 @@ std::vector<CameraPose> read_training_cameras(const fs::path& path) {
             }
         if (file == path) engine::fail(path.string() + ": holds no cameras.json or COLMAP images.txt");
     }
-    if (file.filename() == "images.txt") {
-        const fs::path cameras = file.parent_path() / "cameras.txt";
-        if (!fs::is_regular_file(cameras, ec))
-            engine::fail(file.string() + ": its cameras.txt (the fields of view) is missing beside it");
-        return parse_colmap_cameras(engine::read_text_file(file), engine::read_text_file(cameras), file.string(),
-                                    cameras.string());
-    }
-    return read_inria_cameras(file);
+    if (file.filename() == "images.txt") return {file, file.parent_path() / "cameras.txt"};
+    return {file};
+}
+
+std::vector<CameraPose> read_training_cameras(const fs::path& path) {
+    const std::vector<fs::path> files = training_camera_files(path);
+    if (files.size() == 1) return read_inria_cameras(files[0]);
+    std::error_code ec;
+    if (!fs::is_regular_file(files[1], ec))
+        engine::fail(files[0].string() + ": its cameras.txt (the fields of view) is missing beside it");
+    return parse_colmap_cameras(engine::read_text_file(files[0]), engine::read_text_file(files[1]), files[0].string(),
+                                files[1].string());
 }
 
 }  // namespace splat_lod::eval

@@ -28,6 +28,26 @@ bool manifest_names(const fs::path& output, const fs::path& generation) {
 
 }  // namespace
 
+void check_shard(const WorldShard& shard) {
+    if (shard.count < 1 || shard.count > kMaxShards || shard.index < 1 || shard.index > shard.count)
+        engine::fail("shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) +
+                     ": expected 1 <= I <= N <= " + std::to_string(kMaxShards) + " (I is 1-based)");
+}
+
+void prune_staged(const fs::path& staging, const std::set<fs::path>& keep) {
+    std::vector<fs::path> remove;
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(staging / kStagedGeneration, ec), end; !ec && it != end; it.increment(ec))
+        if (!it->is_directory(ec) && !keep.count(it->path().lexically_relative(staging))) remove.push_back(it->path());
+    for (const fs::path& path : remove) fs::remove(path, ec);
+}
+
+void move_to_generation(WorldManifest& m, const fs::path& generation) {
+    for (auto* list : {&m.chunks, &m.groups})
+        for (ChunkEntry& c : *list) c.file = generation / c.file.lexically_relative(kStagedGeneration);
+    for (Prop& p : m.props) p.mesh = generation / p.mesh.lexically_relative(kStagedGeneration);
+}
+
 std::optional<std::size_t> whole_number(const std::string& text) {
     std::size_t n = 0;
     const char* const last = text.data() + text.size();

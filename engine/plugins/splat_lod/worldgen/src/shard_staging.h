@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,9 @@ inline constexpr const char* kStagedGeneration = "gen";
 // A decimal number made of digits only; nullopt for anything else.
 std::optional<std::size_t> whole_number(const std::string& text);
 
+// Throws engine::Error unless 1 <= shard.index <= shard.count <= kMaxShards.
+void check_shard(const WorldShard& shard);
+
 // I and N of a record's name "shard-<I>-of-<N>.json"; nullopt for any other name.
 std::optional<WorldShard> record_shard(const std::string& name);
 
@@ -32,6 +36,13 @@ void check_chunk_file(const std::filesystem::path& path, const ChunkEntry& entry
 
 // "a, b, c and 5 more": at most `most` items.
 std::string listed(const std::vector<std::string>& items, std::size_t most = 8);
+
+// Removes every file in the staged generation whose path relative to the staging folder is not in
+// `keep`: temporaries of killed shards, anything else put there.
+void prune_staged(const std::filesystem::path& staging, const std::set<std::filesystem::path>& keep);
+
+// The paths `m` names in the staged generation (chunks, groups, props) moved to `generation`.
+void move_to_generation(WorldManifest& m, const std::filesystem::path& generation);
 
 // Takes the staging folder's lock for the merge, which no shard may hold (a shard still baking);
 // throws engine::Error naming the folder when it is missing or busy.

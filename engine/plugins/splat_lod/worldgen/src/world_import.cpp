@@ -36,14 +36,8 @@ ImportResult import_world(const ImportOptions& o) {
     ImportPlan plan = open_import(o, s);
     create_world_folder(o.output);
     const WorldFolderLock lock(o.output, WorldFolderLock::Mode::write);
-    if (auto cached = cached_import(o, plan.fingerprint)) {
-        result.manifest = std::move(*cached);
-        s.cached = true;
-        summarise_manifest(result.manifest, o.output, s.world);
-        s.world.cached = true;
-        s.world.seconds = seconds_since(start);
-        return result;
-    }
+    if (auto cached = cached_import(o, plan.fingerprint))
+        return cached_import_result(std::move(*cached), o.output, start);
     lock.require();
     survey_import(o, plan, s, start);
 

@@ -30,16 +30,6 @@ bool shard_owns(const CaptureFrame& frame, const glm::ivec2& cell, const WorldSh
     return cell_index(frame, cell) % shard.count == shard.index - 1;
 }
 
-ImportResult cached_result(WorldManifest m, const fs::path& folder, Clock::time_point start) {
-    ImportResult result;
-    result.manifest = std::move(m);
-    result.summary.cached = true;
-    summarise_manifest(result.manifest, folder, result.summary.world);
-    result.summary.world.cached = true;
-    result.summary.world.seconds = seconds_since(start);
-    return result;
-}
-
 // A shard's record, checked: made by this import (same generator), its chunks the shard's and where
 // shards write them, each file matching its entry; the far layer (shard 1's) present.
 WorldManifest read_import_record(const fs::path& staging, const WorldShard& shard, const CaptureFrame& frame,
@@ -102,23 +92,12 @@ WorldManifest gather_records(const ImportOptions& o, const fs::path& staging, co
 }
 
 // Removes what the staged generation holds that `m` does not name (temporaries of killed shards).
-void prune_staged(const fs::path& staging, const WorldManifest& m) {
+void prune_unnamed(const fs::path& staging, const WorldManifest& m) {
     std::set<fs::path> keep;
     for (const auto* list : {&m.chunks, &m.groups})
         for (const ChunkEntry& c : *list) keep.insert(c.file);
     for (const Prop& p : m.props) keep.insert(p.mesh);
-    std::vector<fs::path> remove;
-    std::error_code ec;
-    for (fs::recursive_directory_iterator it(staging / kStagedGeneration, ec), end; !ec && it != end; it.increment(ec))
-        if (!it->is_directory(ec) && !keep.count(it->path().lexically_relative(staging))) remove.push_back(it->path());
-    for (const fs::path& path : remove) fs::remove(path, ec);
-}
-
-// The paths of `m` (in the staged generation) moved to `generation`.
-void rename_generation(WorldManifest& m, const fs::path& generation) {
-    for (auto* list : {&m.chunks, &m.groups})
-        for (ChunkEntry& c : *list) c.file = generation / c.file.lexically_relative(kStagedGeneration);
-    for (Prop& p : m.props) p.mesh = generation / p.mesh.lexically_relative(kStagedGeneration);
+    prune_staged(staging, keep);
 }
 
 // The shard's record when it is there and every file matches it (not with options.force); otherwise
@@ -132,7 +111,7 @@ std::optional<ImportResult> cached_shard(const ImportOptions& o, const ImportPla
         const WorldOptions w = import_world_options(o, plan.frame, 0, staging);
         const auto m = import_manifest(o, w, plan, ground_grid(plan.sample, plan.frame));
         ImportResult cached =
-            cached_result(read_import_record(staging, shard, plan.frame, m.generator), staging, start);
+            cached_import_result(read_import_record(staging, shard, plan.frame, m.generator), staging, start);
         cached.record = record_path;
         return cached;
     } catch (const engine::Error& e) {
@@ -144,12 +123,13 @@ std::optional<ImportResult> cached_shard(const ImportOptions& o, const ImportPla
 }  // namespace
 
 ImportResult import_world_shard(const ImportOptions& o, const WorldShard& shard) {
+    check_shard(shard);
     const auto start = Clock::now();
     ImportSummary s;
     ImportPlan plan = open_import(o, s);
-    parse_world_shard(std::to_string(shard.index) + "/" + std::to_string(shard.count));  // checks it
     create_world_folder(o.output);
-    if (auto cached = cached_import(o, plan.fingerprint)) return cached_result(std::move(*cached), o.output, start);
+    if (auto cached = cached_import(o, plan.fingerprint))
+        return cached_import_result(std::move(*cached), o.output, start);
     const fs::path staging = import_staging(o, plan);
     std::error_code ec;
     fs::create_directories(staging / kStagedGeneration, ec);
@@ -189,7 +169,8 @@ ImportResult merge_import_shards(const ImportOptions& o) {
     std::error_code ec;
     if (!fs::is_directory(o.output, ec)) engine::fail(o.output.string() + ": cannot merge: no such folder");
     const WorldFolderLock lock(o.output, WorldFolderLock::Mode::write);
-    if (auto cached = cached_import(o, plan.fingerprint)) return cached_result(std::move(*cached), o.output, start);
+    if (auto cached = cached_import(o, plan.fingerprint))
+        return cached_import_result(std::move(*cached), o.output, start);
     lock.require();
     const fs::path staging = import_staging(o, plan);
     std::optional<FolderFlock> staging_lock;
@@ -203,11 +184,11 @@ ImportResult merge_import_shards(const ImportOptions& o) {
         gather_records(o, staging, plan, import_manifest(o, w, plan, ground_grid(plan.sample, plan.frame)));
     s.world.stages.push_back({"check shards", seconds_since(stage)});
     add_groups(w, kStagedGeneration, m, s.world, start);
-    prune_staged(staging, m);
+    prune_unnamed(staging, m);
 
     stage = Clock::now();
     const fs::path generation = new_generation(o.output);
-    rename_generation(m, generation);
+    move_to_generation(m, generation);
     commit_staged(o.output, staging, generation, m);
     staging_lock.reset();
     if (const FolderFlock no_shard(staging, true); no_shard.held()) fs::remove_all(staging, ec);

@@ -81,65 +81,12 @@ void bin_part(SplatCloud& part, const CaptureFrame& frame, ChunkBins& bins, FarL
     }
 }
 
-}  // namespace
-
-// The ground under each chunk: the 10th percentile of the sample's heights there (or over all chunks).
-GroundGrid ground_grid(const CaptureSample& sample, const CaptureFrame& frame) {
-    const int n = frame.chunks_per_side;
-    std::vector<std::vector<float>> heights(static_cast<std::size_t>(n * n));
-    std::vector<float> all;
-    for (const glm::vec3& p : sample.positions) {
-        const glm::vec3 w = glm::vec3(frame.rotation * glm::dvec3(p) + frame.translation);
-        glm::ivec2 cell;
-        if (!frame.cell_of(w, cell)) continue;
-        heights[static_cast<std::size_t>((cell.y + n / 2) * n + cell.x + n / 2)].push_back(w.y);
-        all.push_back(w.y);
-    }
-    const auto low = [](std::vector<float>& v) {
-        const auto k = v.size() / 10;
-        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-        return v[k];
-    };
-    const float fallback = all.empty() ? 0.0f : low(all);
-    GroundGrid ground;
-    ground.cells = n;
-    for (auto& cell : heights) ground.heights.push_back(cell.size() >= 8 ? low(cell) : fallback);
-    return ground;
-}
-
-namespace {
-
 int bake_threads(const ImportOptions& o, std::uint64_t largest_chunk) {
     const std::uint64_t per_bake = kBakeFixedBytes + largest_chunk * kBakeBytesPerGaussian;
     const std::uint64_t room = o.memory_bytes > kBaseBytes ? o.memory_bytes - kBaseBytes : 0;
     const int fit = static_cast<int>(std::max<std::uint64_t>(1, room / per_bake));
     return std::min(reference::detail::resolve_thread_count(o.threads), fit);
 }
-
-}  // namespace
-
-// What the world's own code needs of the import (groups, stream levels, the chunk recipe) at scale σ.
-WorldOptions import_world_options(const ImportOptions& o, const CaptureFrame& frame, std::uint64_t largest_chunk,
-                                  const fs::path& root) {
-    const int threads = bake_threads(o, largest_chunk);
-    WorldOptions w;
-    w.size_m = frame.size();
-    w.chunk_size_m = frame.chunk_size;
-    w.threads = threads;
-    w.bake = o.bake;
-    w.bake.znear = o.bake.znear * frame.scale();  // the near plane scales with the cameras' distances
-    w.bake_width = o.bake_width;
-    w.bake_height = o.bake_height;
-    w.terrain_mesh = false;
-    for (float& reach : w.stream_reach_min) reach *= frame.scale();
-    w.groups.enabled = o.groups;
-    w.groups.base_cell_m = frame.scale() * w.groups.base_cell_m;
-    w.output = root;
-    w.progress = o.progress;
-    return w;
-}
-
-namespace {
 
 // Whether some camera has some Gaussian's centre in front of it and inside its image: a bake needs one.
 // A chunk of a few stray Gaussians far above or below the ground grid can be out of every ring's view.
@@ -169,8 +116,6 @@ ChunkResult bake_bin(const ChunkBake& how, const WorldOptions& w, const ImportPl
     }
     return result;
 }
-
-}  // namespace
 
 std::vector<ChunkResult> bake_bins(const ImportOptions& o, const WorldOptions& w, const ImportPlan& plan,
                                    const GroundGrid& ground, const ChunkBins& bins, const fs::path& generation,
@@ -207,7 +152,25 @@ std::vector<ChunkResult> bake_bins(const ImportOptions& o, const WorldOptions& w
     return results;
 }
 
-namespace {
+void bin_capture(const ImportOptions& o, const ImportPlan& plan, ChunkBins& bins, FarLayer& far, ImportSummary& s,
+                 Clock::time_point start, const CellFilter& keep) {
+    for (std::size_t p = 0; p < plan.capture.parts.size(); ++p) {
+        SplatCloud part = read_capture_part(plan.capture.parts[p]);
+        part.extras.clear();
+        part.set_sh_degree(plan.sample.sh_degree);
+        transform_cloud(part, plan.frame.rotation, plan.frame.translation);
+        bin_part(part, plan.frame, bins, far, s, keep);
+        report(o, "binning", p + 1, plan.capture.parts.size(), start, s.binned);
+    }
+    bins.flush();
+    s.bin_flushes = bins.flushes();
+}
+
+void add_far_layer(const SplatCloud& far_cloud, const fs::path& root, const fs::path& generation, WorldManifest& m) {
+    if (far_cloud.empty()) return;
+    write_gltf_splats(root / generation / kFarLayerMesh, far_cloud);
+    m.props.push_back({generation / kFarLayerMesh, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f)});
+}
 
 std::string import_settings(const ImportOptions& o, const WorldOptions& w, const CaptureFrame& frame) {
     std::ostringstream s;
@@ -248,11 +211,7 @@ std::string capture_fingerprint(const Capture& capture, const ImportOptions& o) 
     }
     if (!o.cameras.empty()) {
         text << "cameras\n";
-        describe(o.cameras);
-        for (const char* name :
-             {"cameras.json", "images.txt", "cameras.txt", "sparse/0/images.txt", "sparse/0/cameras.txt"})
-            if (fs::exists(o.cameras / name, ec)) describe(o.cameras / name);
-        if (o.cameras.filename() == "images.txt") describe(o.cameras.parent_path() / "cameras.txt");
+        for (const fs::path& file : eval::training_camera_files(o.cameras)) describe(file);
     }
     text << kImportVersion << ' ' << (o.up ? glm::length(*o.up) : 0.0f) << ' ' << (o.up ? o.up->x : 0.0f) << ' '
          << (o.up ? o.up->y : 0.0f) << ' ' << (o.up ? o.up->z : 0.0f) << ' ' << static_cast<int>(o.views) << ' '
@@ -266,26 +225,6 @@ std::string capture_fingerprint(const Capture& capture, const ImportOptions& o) 
 }
 
 constexpr const char* kImportGenerator = "splat_lod capture import 1";
-
-}  // namespace
-
-std::optional<WorldManifest> cached_import(const ImportOptions& o, const std::string& fingerprint) {
-    std::error_code ec;
-    const fs::path path = o.output / kManifestFileName;
-    if (o.force || !fs::exists(path, ec)) return std::nullopt;
-    try {
-        WorldManifest m = read_world_manifest(path);
-        if (m.generator.rfind(std::string(kImportGenerator) + " [" + fingerprint + "]", 0) != 0) return std::nullopt;
-        for (const auto* list : {&m.chunks, &m.groups})
-            for (const ChunkEntry& c : *list)
-                if (fs::file_size(o.output / c.file, ec) != c.file_bytes || ec) return std::nullopt;
-        return m;
-    } catch (const engine::Error&) {
-        return std::nullopt;
-    }
-}
-
-namespace {
 
 // What the survey found, for the summary.
 void record_survey(const CaptureSample& sample, const CaptureFrame& frame, ImportSummary& s) {
@@ -304,6 +243,83 @@ void record_survey(const CaptureSample& sample, const CaptureFrame& frame, Impor
 }
 
 }  // namespace
+
+std::size_t cell_index(const CaptureFrame& frame, const glm::ivec2& cell) {
+    const int n = frame.chunks_per_side;
+    return static_cast<std::size_t>(cell.y + n / 2) * static_cast<std::size_t>(n) +
+           static_cast<std::size_t>(cell.x + n / 2);
+}
+
+// The ground under each chunk: the 10th percentile of the sample's heights there (or over all chunks).
+GroundGrid ground_grid(const CaptureSample& sample, const CaptureFrame& frame) {
+    const int n = frame.chunks_per_side;
+    std::vector<std::vector<float>> heights(static_cast<std::size_t>(n * n));
+    std::vector<float> all;
+    for (const glm::vec3& p : sample.positions) {
+        const glm::vec3 w = glm::vec3(frame.rotation * glm::dvec3(p) + frame.translation);
+        glm::ivec2 cell;
+        if (!frame.cell_of(w, cell)) continue;
+        heights[cell_index(frame, cell)].push_back(w.y);
+        all.push_back(w.y);
+    }
+    const auto low = [](std::vector<float>& v) {
+        const auto k = v.size() / 10;
+        std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+        return v[k];
+    };
+    const float fallback = all.empty() ? 0.0f : low(all);
+    GroundGrid ground;
+    ground.cells = n;
+    for (auto& cell : heights) ground.heights.push_back(cell.size() >= 8 ? low(cell) : fallback);
+    return ground;
+}
+
+// What the world's own code needs of the import (groups, stream levels, the chunk recipe) at scale σ.
+WorldOptions import_world_options(const ImportOptions& o, const CaptureFrame& frame, std::uint64_t largest_chunk,
+                                  const fs::path& root) {
+    const int threads = bake_threads(o, largest_chunk);
+    WorldOptions w;
+    w.size_m = frame.size();
+    w.chunk_size_m = frame.chunk_size;
+    w.threads = threads;
+    w.bake = o.bake;
+    w.bake.znear = o.bake.znear * frame.scale();  // the near plane scales with the cameras' distances
+    w.bake_width = o.bake_width;
+    w.bake_height = o.bake_height;
+    w.terrain_mesh = false;
+    for (float& reach : w.stream_reach_min) reach *= frame.scale();
+    w.groups.enabled = o.groups;
+    w.groups.base_cell_m = frame.scale() * w.groups.base_cell_m;
+    w.output = root;
+    w.progress = o.progress;
+    return w;
+}
+
+std::optional<WorldManifest> cached_import(const ImportOptions& o, const std::string& fingerprint) {
+    std::error_code ec;
+    const fs::path path = o.output / kManifestFileName;
+    if (o.force || !fs::exists(path, ec)) return std::nullopt;
+    try {
+        WorldManifest m = read_world_manifest(path);
+        if (m.generator.rfind(std::string(kImportGenerator) + " [" + fingerprint + "]", 0) != 0) return std::nullopt;
+        for (const auto* list : {&m.chunks, &m.groups})
+            for (const ChunkEntry& c : *list)
+                if (fs::file_size(o.output / c.file, ec) != c.file_bytes || ec) return std::nullopt;
+        return m;
+    } catch (const engine::Error&) {
+        return std::nullopt;
+    }
+}
+
+ImportResult cached_import_result(WorldManifest m, const fs::path& folder, Clock::time_point start) {
+    ImportResult result;
+    result.manifest = std::move(m);
+    result.summary.cached = true;
+    summarise_manifest(result.manifest, folder, result.summary.world);
+    result.summary.world.cached = true;
+    result.summary.world.seconds = seconds_since(start);
+    return result;
+}
 
 ImportPlan open_import(const ImportOptions& o, ImportSummary& s) {
     check(o);
@@ -335,20 +351,6 @@ void survey_import(const ImportOptions& o, ImportPlan& plan, ImportSummary& s, C
     record_survey(plan.sample, plan.frame, s);
 }
 
-void bin_capture(const ImportOptions& o, const ImportPlan& plan, ChunkBins& bins, FarLayer& far, ImportSummary& s,
-                 Clock::time_point start, const CellFilter& keep) {
-    for (std::size_t p = 0; p < plan.capture.parts.size(); ++p) {
-        SplatCloud part = read_capture_part(plan.capture.parts[p]);
-        part.extras.clear();
-        part.set_sh_degree(plan.sample.sh_degree);
-        transform_cloud(part, plan.frame.rotation, plan.frame.translation);
-        bin_part(part, plan.frame, bins, far, s, keep);
-        report(o, "binning", p + 1, plan.capture.parts.size(), start, s.binned);
-    }
-    bins.flush();
-    s.bin_flushes = bins.flushes();
-}
-
 WorldManifest import_manifest(const ImportOptions& o, const WorldOptions& w, const ImportPlan& plan,
                               const GroundGrid& ground) {
     WorldManifest m;
@@ -360,12 +362,6 @@ WorldManifest import_manifest(const ImportOptions& o, const WorldOptions& w, con
     m.ground = ground;
     m.capture = capture_origin(o, plan.frame);
     return m;
-}
-
-void add_far_layer(const SplatCloud& far_cloud, const fs::path& root, const fs::path& generation, WorldManifest& m) {
-    if (far_cloud.empty()) return;
-    write_gltf_splats(root / generation / kFarLayerMesh, far_cloud);
-    m.props.push_back({generation / kFarLayerMesh, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f)});
 }
 
 WorldManifest bake_capture(const ImportOptions& o, const ImportPlan& plan, const fs::path& root,
@@ -395,12 +391,6 @@ WorldManifest bake_capture(const ImportOptions& o, const ImportPlan& plan, const
     if (far_layer) add_far_layer(far_cloud, root, generation, m);
     add_chunk_results(chunks, m, s.world);
     return m;
-}
-
-std::size_t cell_index(const CaptureFrame& frame, const glm::ivec2& cell) {
-    const int n = frame.chunks_per_side;
-    return static_cast<std::size_t>(cell.y + n / 2) * static_cast<std::size_t>(n) +
-           static_cast<std::size_t>(cell.x + n / 2);
 }
 
 }  // namespace splat_lod::world

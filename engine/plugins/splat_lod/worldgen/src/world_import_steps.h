@@ -35,17 +35,15 @@ ImportPlan open_import(const ImportOptions& options, ImportSummary& summary);
 // The world in options.output when it is this import (same fingerprint, every file of its size).
 std::optional<WorldManifest> cached_import(const ImportOptions& options, const std::string& fingerprint);
 
+// The result of an import that finds its work done: `m` as it is in `folder`, summarised.
+ImportResult cached_import_result(WorldManifest m, const std::filesystem::path& folder, Clock::time_point start);
+
 // Reads the capture once for the sample, chooses the frame and reads the training cameras into it
 // (plan.sample, plan.frame, plan.training).
 void survey_import(const ImportOptions& options, ImportPlan& plan, ImportSummary& summary, Clock::time_point start);
 
 // Which chunk cells a run bakes: every cell, or a shard's (empty function: every cell).
 using CellFilter = std::function<bool(const glm::ivec2& cell)>;
-
-// Reads every part again, turns it into the world frame and sorts each Gaussian into `bins` (only the
-// cells `keep` accepts), the far layer or the counts of what is dropped.
-void bin_capture(const ImportOptions& options, const ImportPlan& plan, ChunkBins& bins, FarLayer& far,
-                 ImportSummary& summary, Clock::time_point start, const CellFilter& keep);
 
 // The world's options for the chunk bakes and groups at the frame's scale, writing below `root`, with as
 // many bakes at once as the memory cap allows for chunks of up to `largest_chunk` Gaussians.
@@ -55,20 +53,10 @@ WorldOptions import_world_options(const ImportOptions& options, const CaptureFra
 // The ground under each chunk, from the survey's sample.
 GroundGrid ground_grid(const CaptureSample& sample, const CaptureFrame& frame);
 
-// Bakes every bin (w.threads at once) into w.output / generation, removing each bin once it is written:
-// from the training cameras that see it well when at least 4 do, else from the rings.
-std::vector<ChunkResult> bake_bins(const ImportOptions& options, const WorldOptions& w, const ImportPlan& plan,
-                                   const GroundGrid& ground, const ChunkBins& bins,
-                                   const std::filesystem::path& generation, Clock::time_point start);
-
 // The manifest without chunks, props or groups: sizes, the generator (with the fingerprint), stream
 // levels, ground grid and the capture's frame.
 WorldManifest import_manifest(const ImportOptions& options, const WorldOptions& w, const ImportPlan& plan,
                               const GroundGrid& ground);
-
-// Writes the far layer (when not empty) to root / generation / meshes and names it as a prop in `m`.
-void add_far_layer(const SplatCloud& far_cloud, const std::filesystem::path& root,
-                   const std::filesystem::path& generation, WorldManifest& m);
 
 // What a whole import and a shard both make below `root`: the capture binned into `bins_folder` (only the
 // cells `keep` accepts; an empty `keep` is a whole import, which fails when no cell holds a Gaussian),

@@ -25,12 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void check_shard(const WorldShard& shard) {
-    if (shard.count < 1 || shard.count > kMaxShards || shard.index < 1 || shard.index > shard.count)
-        engine::fail("shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) +
-                     ": expected 1 <= I <= N <= " + std::to_string(kMaxShards) + " (I is 1-based)");
-}
-
 // The chunk entries of a shard's record (paths relative to the staging folder), each checked: made
 // with these options, one of the shard's chunks, named as the shards name them, its file matching.
 std::vector<ChunkEntry> read_shard_record(const WorldOptions& o, const fs::path& staging, const WorldShard& shard) {
@@ -98,11 +92,7 @@ void prune_staged_generation(const fs::path& staging, const WorldManifest& m) {
     for (const ChunkEntry& c : m.chunks) keep.insert(c.file);
     for (const char* mesh : {kHouseMesh, kFenceMesh, kPostMesh, kTerrainMesh})
         keep.insert(fs::path(kStagedGeneration) / mesh);
-    std::vector<fs::path> remove;
-    std::error_code ec;
-    for (fs::recursive_directory_iterator it(staging / kStagedGeneration, ec), end; !ec && it != end; it.increment(ec))
-        if (!it->is_directory(ec) && !keep.count(it->path().lexically_relative(staging))) remove.push_back(it->path());
-    for (const fs::path& path : remove) fs::remove(path, ec);
+    prune_staged(staging, keep);
 }
 
 WorldResult cached_result(WorldManifest manifest, const fs::path& folder, Clock::time_point start) {
@@ -141,15 +131,12 @@ void commit_merge(const WorldOptions& o, const fs::path& staging, const WorldLay
     const fs::path generation = new_generation(o.output);
     WorldManifest& m = result.manifest;
     m = manifest_without_chunks(o, layout, generation);
+    move_to_generation(staged, generation);
     for (ChunkEntry& c : staged.chunks) {
-        c.file = generation / c.file.lexically_relative(kStagedGeneration);
         m.gaussians += c.prefix_count[0];
         m.chunks.push_back(std::move(c));
     }
-    for (ChunkEntry& g : staged.groups) {
-        g.file = generation / g.file.lexically_relative(kStagedGeneration);
-        m.groups.push_back(std::move(g));
-    }
+    for (ChunkEntry& g : staged.groups) m.groups.push_back(std::move(g));
     m.group_generator = group_generator_settings(o.groups);
     commit_staged(o.output, staging, generation, m);
     staging_lock.reset();  // the clean-up takes it again to remove the staging folder

@@ -7,6 +7,11 @@
 
 namespace splat_lod::io {
 
+bool stays_below_folder(const std::filesystem::path& path) {
+    if (path.is_absolute() || path.has_root_name() || path.has_root_directory()) return false;
+    return std::none_of(path.begin(), path.end(), [](const std::filesystem::path& part) { return part == ".."; });
+}
+
 void fail_file(const std::string& name, std::string_view message) {
     engine::fail(name + ": " + std::string(message));
 }

@@ -3,6 +3,7 @@
 // overflow-checked sizes, and bounds-checked little-endian reads.
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <span>
 #include <string>
 #include <string_view>
@@ -10,6 +11,10 @@
 #include "engine/core/error.h"
 
 namespace splat_lod::io {
+
+// Whether a path read from a file names something below the folder it is relative to: relative,
+// without a root, with no ".." component (so a file can never make a reader open one elsewhere).
+bool stays_below_folder(const std::filesystem::path& path);
 
 // "<name>: <message>"
 [[noreturn]] void fail_file(const std::string& name, std::string_view message);

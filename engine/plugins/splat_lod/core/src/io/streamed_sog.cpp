@@ -55,9 +55,7 @@ std::vector<std::string> read_filenames(const json& doc, const fs::path& path) {
             meta_error(path, "\"filenames\"[" + std::to_string(i) + "] must be a non-empty string");
         // Chunk files lie below the folder of lod-meta.json: a hostile file cannot point elsewhere.
         const fs::path name(names[i].get<std::string>());
-        bool inside = !name.is_absolute() && !name.has_root_name();
-        for (const fs::path& part : name) inside = inside && part != "..";
-        if (!inside)
+        if (!io::stays_below_folder(name))
             meta_error(path, "\"filenames\"[" + std::to_string(i) + "] \"" + name.string() +
                                  "\" leaves the folder of lod-meta.json");
         out.push_back(names[i].get<std::string>());

@@ -30,6 +30,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
+#include "io/io_util.h"
 #include "world_manifest_extras.h"
 
 namespace splat_lod::world {
@@ -121,10 +122,10 @@ public:
             if (!allow_empty) error(key, "must not be empty");
             return path;
         }
-        if (path.is_absolute() || path.has_root_name() || path.has_root_directory())
-            error(key, "\"" + path.string() + "\" must be relative to the manifest's folder");
-        for (const auto& part : path)
-            if (part == "..") error(key, "\"" + path.string() + "\" leaves the manifest's folder");
+        if (!io::stays_below_folder(path))
+            error(key, "\"" + path.string() + "\" " +
+                           (path.is_relative() && !path.has_root_name() ? "leaves the manifest's folder"
+                                                                        : "must be relative to the manifest's folder"));
         return path;
     }
 

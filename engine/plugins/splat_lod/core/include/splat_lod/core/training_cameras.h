@@ -21,6 +21,11 @@ namespace splat_lod::eval {
 std::vector<CameraPose> parse_colmap_cameras(const std::string& images, const std::string& cameras,
                                              const std::string& images_name, const std::string& cameras_name);
 
+// The files read_training_cameras() reads for `path`: the cameras.json (or camera path) itself, or an
+// images.txt and the cameras.txt beside it, found in a folder as below. Throws engine::Error naming a
+// folder that holds neither; files are not checked for existence here.
+std::vector<std::filesystem::path> training_camera_files(const std::filesystem::path& path);
+
 // A cameras.json, an images.txt (its cameras.txt beside it), or a folder holding either (a COLMAP
 // `sparse/0`, a 3DGS output folder). Throws engine::Error naming the path when it holds none.
 std::vector<CameraPose> read_training_cameras(const std::filesystem::path& path);
