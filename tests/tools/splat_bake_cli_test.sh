@@ -8,31 +8,17 @@ synth=$2
 dir=$3
 rm -rf "$dir"
 mkdir -p "$dir"
-failures=0
-
-expect_failure() {  # expect_failure NAME EXPECTED_TEXT ARGS...
-  local name=$1 text=$2
-  shift 2
-  local log="$dir/$name.log"
-  "$bake" "$@" >"$log" 2>&1
-  local code=$?
-  if [ "$code" -ne 1 ]; then
-    echo "FAIL $name: exit code $code, expected 1"; cat "$log"; failures=$((failures + 1)); return
-  fi
-  if ! grep -q -- "$text" "$log"; then
-    echo "FAIL $name: message lacks \"$text\":"; cat "$log"; failures=$((failures + 1)); return
-  fi
-  echo "ok   $name: $(tail -n 1 "$log")"
-}
+# shellcheck source=cli_test_lib.sh
+source "$(dirname "$0")/cli_test_lib.sh"
 
 "$synth" --out "$dir/garden.ply" --seed 3 --detail 0.02 >/dev/null || { echo "FAIL: splat_synth"; exit 1; }
 echo "previous output" > "$dir/keep.ply"
 cp "$dir/keep.ply" "$dir/keep.orig"
 
-expect_failure missing_input "missing.ply" --input "$dir/missing.ply" --output "$dir/keep.ply"
-expect_failure missing_cameras "no_cameras.json" --input "$dir/garden.ply" --output "$dir/keep.ply" --cameras "$dir/no_cameras.json"
+expect_failure missing_input "missing.ply" "$bake" --input "$dir/missing.ply" --output "$dir/keep.ply"
+expect_failure missing_cameras "no_cameras.json" "$bake" --input "$dir/garden.ply" --output "$dir/keep.ply" --cameras "$dir/no_cameras.json"
 echo '[{"eye": [0, 0, 50], "target": [0, 0, 100]}]' > "$dir/away.json"
-expect_failure cameras_see_nothing "sees any" --input "$dir/garden.ply" --output "$dir/keep.ply" --cameras "$dir/away.json"
+expect_failure cameras_see_nothing "sees any" "$bake" --input "$dir/garden.ply" --output "$dir/keep.ply" --cameras "$dir/away.json"
 {
   printf 'ply\nformat binary_little_endian 1.0\nelement vertex 0\n'
   for p in x y z f_dc_0 f_dc_1 f_dc_2 opacity scale_0 scale_1 scale_2 rot_0 rot_1 rot_2 rot_3; do
@@ -40,13 +26,13 @@ expect_failure cameras_see_nothing "sees any" --input "$dir/garden.ply" --output
   done
   printf 'end_header\n'
 } > "$dir/empty.ply"
-expect_failure empty_scene "no Gaussians" --input "$dir/empty.ply" --output "$dir/keep.ply"
+expect_failure empty_scene "no Gaussians" "$bake" --input "$dir/empty.ply" --output "$dir/keep.ply"
 head -c 4000 "$dir/garden.ply" > "$dir/truncated.ply"
-expect_failure truncated_input "truncated.ply" --input "$dir/truncated.ply" --output "$dir/keep.ply"
-expect_failure output_folder_missing "does not exist" --input "$dir/garden.ply" --output "$dir/nowhere/out.ply"
-expect_failure output_is_folder "is a folder" --input "$dir/garden.ply" --output "$dir"
-expect_failure output_is_input "replace the input" --input "$dir/garden.ply" --output "$dir/garden.ply"
-expect_failure impossible_threshold "S_T" --input "$dir/garden.ply" --output "$dir/keep.ply" --size-threshold -1
+expect_failure truncated_input "truncated.ply" "$bake" --input "$dir/truncated.ply" --output "$dir/keep.ply"
+expect_failure output_folder_missing "does not exist" "$bake" --input "$dir/garden.ply" --output "$dir/nowhere/out.ply"
+expect_failure output_is_folder "is a folder" "$bake" --input "$dir/garden.ply" --output "$dir"
+expect_failure output_is_input "replace the input" "$bake" --input "$dir/garden.ply" --output "$dir/garden.ply"
+expect_failure impossible_threshold "S_T" "$bake" --input "$dir/garden.ply" --output "$dir/keep.ply" --size-threshold -1
 
 if ! cmp -s "$dir/keep.ply" "$dir/keep.orig"; then
   echo "FAIL: a failed bake changed the existing output"; failures=$((failures + 1))
@@ -66,7 +52,7 @@ fi
 # A .glb output: a failed bake leaves the previous one, a working bake writes glTF with the LOD attributes.
 echo "previous glb" > "$dir/keep.glb"
 cp "$dir/keep.glb" "$dir/keep_glb.orig"
-expect_failure glb_truncated_input "truncated.ply" --input "$dir/truncated.ply" --output "$dir/keep.glb"
+expect_failure glb_truncated_input "truncated.ply" "$bake" --input "$dir/truncated.ply" --output "$dir/keep.glb"
 cmp -s "$dir/keep.glb" "$dir/keep_glb.orig" || { echo "FAIL: a failed bake changed the .glb"; failures=$((failures + 1)); }
 if "$bake" --input "$dir/garden.ply" --output "$dir/keep.glb" --refine-iterations 0 > "$dir/ok_glb.log" 2>&1 &&
    [ "$(head -c 4 "$dir/keep.glb")" = "glTF" ] && grep -q "_SPLAT_LOD_LEVEL" "$dir/keep.glb"; then

@@ -9,8 +9,8 @@ synth=$2
 dir=$3
 rm -rf "$dir"
 mkdir -p "$dir"
-failures=0
-fail() { echo "FAIL $1"; failures=$((failures + 1)); }
+# shellcheck source=cli_test_lib.sh
+source "$(dirname "$0")/cli_test_lib.sh"
 
 "$synth" --out "$dir/garden.ply" --seed 3 --detail 0.02 >/dev/null || { echo "FAIL: splat_synth"; exit 1; }
 "$convert" --input "$dir/garden.ply" --output "$dir/a.glb" > "$dir/1.log" 2>&1 || fail "ply to glb: $(cat "$dir/1.log")"
