@@ -123,8 +123,6 @@ struct Box2 {
 // The largest power-of-two chunk (relative to the footprint's power of two) at which no cell of the
 // sample holds more than the cap, with at most kMaxChunksPerSide chunks per side (a capture denser than
 // that gets fuller chunks); the translation snapped to that chunk.
-constexpr int kMaxChunksPerSide = 1024;
-
 void choose_chunks(const std::vector<glm::vec3>& world, const Box2& box, std::uint64_t stride, std::uint64_t cap,
                    CaptureFrame& frame) {
     const double footprint = std::max(box.x_hi - box.x_lo, box.z_hi - box.z_lo);

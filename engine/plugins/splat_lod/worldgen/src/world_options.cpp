@@ -43,7 +43,8 @@ void validate(const WorldOptions& o) {
     if (chunks * o.chunk_size_m != o.size_m)
         bad("the size (" + number(o.size_m) + " m) must be a whole multiple of the chunk size (" +
             number(o.chunk_size_m) + " m)");
-    if (chunks > 1024.0f) bad("at most 1024 chunks per side");
+    if (chunks > static_cast<float>(kMaxChunksPerSide))
+        bad("at most " + std::to_string(kMaxChunksPerSide) + " chunks per side");
     if (!(std::isfinite(o.density) && o.density > 0.0f && o.density <= 8.0f)) bad("the density must be in (0, 8]");
     if (o.threads < 0 || o.threads > 1024) bad("threads must be 0..1024");
     if (o.bake_width < 64 || o.bake_height < 64 || o.bake_width > 8192 || o.bake_height > 8192)

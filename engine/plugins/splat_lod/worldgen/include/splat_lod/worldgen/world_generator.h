@@ -85,6 +85,9 @@ struct WorldProgress {
 // level 48.1 / 49.9 / 44.5 / 37.9 dB.
 bake::BakeOptions default_world_bake_options();
 
+// The most chunks a world has along a side (validate() refuses more; an import sizes its chunks to fit).
+inline constexpr int kMaxChunksPerSide = 1024;
+
 struct WorldOptions {
     std::uint64_t seed = 1;
     float size_m = 1024.0f;      // the world spans [−size/2, size/2] in x and z
