@@ -41,6 +41,10 @@ std::string_view to_string(Segment segment) {
     return kSegmentNames[static_cast<std::size_t>(segment)];
 }
 
+glm::vec3 pose_velocity(const std::vector<PathPose>& poses, std::size_t i) {
+    return i == 0 || i >= poses.size() ? glm::vec3(0.0f) : poses[i].eye - poses[i - 1].eye;
+}
+
 CameraPath::CameraPath(std::vector<PathKey> keys) : keys_(std::move(keys)) {
     if (keys_.size() < 2)
         engine::fail("sample_game::CameraPath: needs at least two keys, got " + std::to_string(keys_.size()));

@@ -49,7 +49,25 @@ int ChunkGrid::chunk_at(float x, float z) const {
     const float u = (x + 0.5f * size_m) / chunk_size_m, v = (z + 0.5f * size_m) / chunk_size_m;
     const int n = count();
     if (!(u >= 0.0f && v >= 0.0f && u <= static_cast<float>(n) && v <= static_cast<float>(n))) return -1;
-    return std::min(static_cast<int>(v), n - 1) * n + std::min(static_cast<int>(u), n - 1);
+    const int cell = std::min(static_cast<int>(v), n - 1) * n + std::min(static_cast<int>(u), n - 1);
+    return owner.empty() ? cell : owner[static_cast<std::size_t>(cell)];
+}
+
+ChunkGrid chunk_grid(const splat_lod::world::WorldManifest& m) {
+    ChunkGrid grid{m.size_m, m.chunk_size_m, {}};
+    const int n = grid.count();
+    const bool spans = std::any_of(m.chunks.begin(), m.chunks.end(), [](const auto& c) { return c.span > 0; });
+    if (!spans) return grid;
+    grid.owner.resize(static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
+    for (std::size_t k = 0; k < grid.owner.size(); ++k) grid.owner[k] = static_cast<int>(k);
+    for (const splat_lod::world::ChunkEntry& c : m.chunks) {
+        const glm::ivec2 low = c.cell + glm::ivec2(n / 2);
+        const int side = 1 << c.span;
+        for (int z = low.y; z < low.y + side && z < n; ++z)
+            for (int x = low.x; x < low.x + side && x < n; ++x)
+                if (x >= 0 && z >= 0) grid.owner[static_cast<std::size_t>(z * n + x)] = low.y * n + low.x;
+    }
+    return grid;
 }
 
 namespace {

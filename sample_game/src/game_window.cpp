@@ -95,7 +95,8 @@ private:
     engine::Subscription lod_subscription_;
     std::vector<PathPose> path_;
     engine::FlyCamera fly_;
-    float path_position_ = 0.0f;  // index into path_, fractional
+    float path_position_ = 0.0f;         // index into path_, fractional
+    std::optional<glm::vec3> last_eye_;  // the camera of the last streamer update; none after a jump
     float path_speed_ = 1.0f;
     bool follow_ = true, playing_ = true;
     bool show_ui_;
@@ -173,6 +174,7 @@ void Game::draw_walkthrough_panel() {
     if (ImGui::SliderInt("position", &index, 0, count - 1)) {
         path_position_ = static_cast<float>(index);
         follow_ = true;
+        last_eye_.reset();  // a jump: nothing for the streamer to anticipate
     }
     ImGui::SliderFloat("speed", &path_speed_, 0.1f, 8.0f, "%.1fx");
     const PathPose& pose = path_[static_cast<std::size_t>(index)];
@@ -198,7 +200,9 @@ void Game::update_camera(float seconds) {
         if (playing_) {
             // Scripted runs (--frames) step one pose per frame so that they are repeatable.
             const float step = options_.frames > 0 ? 1.0f : seconds * kPathPosesPerSecond * path_speed_;
-            path_position_ = std::fmod(path_position_ + step, static_cast<float>(path_.size()));
+            const float next = path_position_ + step;
+            if (next >= static_cast<float>(path_.size())) last_eye_.reset();  // back to the start
+            path_position_ = std::fmod(next, static_cast<float>(path_.size()));
         }
         const PathPose& pose = path_[static_cast<std::size_t>(path_position_)];
         fly_.look_at(pose.eye, pose.eye + pose.forward);
@@ -213,7 +217,8 @@ bool Game::draw_frame(bool last, double frame_ms) {
     if (!target_ || target_->width() != size.x || target_->height() != size.y)
         target_ = std::make_unique<engine::RenderTarget>(size.x, size.y);
     const engine::CameraView camera = world_->camera(fly_.position(), fly_.forward(), size.x, size.y);
-    world_->update_streaming(camera, frame_++);
+    world_->update_streaming(camera, frame_++, last_eye_ ? camera.position - *last_eye_ : glm::vec3(0.0f));
+    last_eye_ = camera.position;
     engine_.renderer().render(world_->scene(), camera, *target_);
     auto& streamer = world_->streamer();
     const plugin_msgs::ResidencyReport& residency = streamer.residency();

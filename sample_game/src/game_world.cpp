@@ -136,9 +136,9 @@ engine::CameraView GameWorld::camera(const PathPose& pose, int width, int height
     return camera(pose.eye, pose.forward, width, height);
 }
 
-double GameWorld::update_streaming(const engine::CameraView& camera, std::uint64_t frame) {
+double GameWorld::update_streaming(const engine::CameraView& camera, std::uint64_t frame, const glm::vec3& velocity) {
     const auto start = Clock::now();
-    streamer_->update({camera.position, camera.focal_length(), frame});
+    streamer_->update({camera.position, camera.focal_length(), frame, velocity});
     return milliseconds_since(start);
 }
 

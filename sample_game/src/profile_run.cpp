@@ -113,8 +113,7 @@ struct Run {
         if (!ground)
             ground = std::make_unique<HeightGrid>([&](float x, float z) { return world.ground().height(x, z); },
                                                   world.manifest().size_m);
-        const ChunkMap map =
-            chunk_map(*ground, ChunkGrid{world.manifest().size_m, world.manifest().chunk_size_m}, camera);
+        const ChunkMap map = chunk_map(*ground, chunk_grid(world.manifest()), camera);
         r.seam_ratio = seam_ratio(image, *truth, map).value_or(-1.0);
         r.seam_ratio_same_distance = seam_ratio_same_distance(image, *truth, map).value_or(-1.0);
         if (options.frames_png_every > 0)
@@ -182,7 +181,7 @@ struct Run {
             FrameRecord r;
             r.frame = static_cast<int>(i);
             const engine::CameraView camera = world.camera(poses[i], options.width, options.height, &r);
-            r.stream_update_ms = world.update_streaming(camera, first_update + i);
+            r.stream_update_ms = world.update_streaming(camera, first_update + i, pose_velocity(poses, i));
             draw_and_measure(world, engine, camera, target, r);
             const engine::Image image = target.read_color();
             keep_picture(image, r);

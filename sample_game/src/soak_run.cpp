@@ -282,7 +282,7 @@ void SoakWalk::walk(int lap, bool faulted_lap) {
     for (int i = 0; i < o_.frames_per_lap; ++i, ++frame_) {
         if (faulted_lap && i == fault_begin_) damage_victims();
         const engine::CameraView camera = world_.camera(poses_[static_cast<std::size_t>(i)], o_.width, o_.height);
-        world_.update_streaming(camera, frame_);
+        world_.update_streaming(camera, frame_, pose_velocity(poses_, static_cast<std::size_t>(i)));
         count_failures();
         engine_.renderer().render(world_.scene(), camera, target_);
         if (i % o_.sample_every == 0) take_sample(lap, false);

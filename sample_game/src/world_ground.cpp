@@ -49,12 +49,15 @@ WorldGround WorldGround::of(const splat_lod::world::WorldManifest& m) {
     ground.grid_ = m.ground;
     ground.size_ = m.size_m;
     ground.scale_ = m.chunk_size_m / 64.0f;
-    // The walk runs along x through the middle of the chunk holding the most Gaussians, centred on it.
-    const auto densest = std::max_element(m.chunks.begin(), m.chunks.end(), [](const auto& a, const auto& b) {
-        return a.prefix_count[0] < b.prefix_count[0];
-    });
+    // The walk runs along x through the middle of the densest chunk (Gaussians per grid cell), centred on it.
+    const auto density = [](const splat_lod::world::ChunkEntry& c) {
+        return static_cast<double>(c.prefix_count[0]) / static_cast<double>(1ull << (2 * c.span));
+    };
+    const auto densest = std::max_element(m.chunks.begin(), m.chunks.end(),
+                                          [&](const auto& a, const auto& b) { return density(a) < density(b); });
     if (densest != m.chunks.end()) {
-        const glm::vec2 middle = (glm::vec2(densest->cell) + 0.5f) * m.chunk_size_m;
+        const float side = static_cast<float>(1 << densest->span);
+        const glm::vec2 middle = (glm::vec2(densest->cell) + 0.5f * side) * m.chunk_size_m;
         const WalkLengths len = walk_lengths(ground);
         const float stretch = len.walk + 1.6f * len.canopy;
         ground.walk_z_ = middle.y;

@@ -13,7 +13,7 @@ using namespace sample_game;
 namespace {
 
 // 3 × 3 chunks of 32 m, flat at height 2 (borders at x, z = ±16).
-const ChunkGrid kGrid{96.0f, 32.0f};
+const ChunkGrid kGrid{96.0f, 32.0f, {}};
 
 HeightGrid flat_ground() {
     return HeightGrid([](float, float) { return 2.0f; }, 96.0f, 64);
@@ -25,6 +25,26 @@ engine::CameraView from_above() {
 }
 
 }  // namespace
+
+// An import's chunk of span 1 covers 2 × 2 cells of a 4-cell grid: all four are one chunk (no border
+// between them), the cells beside it their own.
+TEST(ChunkBorders, AChunkOfSeveralCellsIsOneChunk) {
+    splat_lod::world::WorldManifest m;
+    m.size_m = 128.0f;
+    m.chunk_size_m = 32.0f;
+    splat_lod::world::ChunkEntry merged;
+    merged.cell = {-2, -2};
+    merged.span = 1;
+    m.chunks.push_back(merged);
+    const ChunkGrid grid = chunk_grid(m);
+    const int corner = grid.chunk_at(-60.0f, -60.0f);
+    EXPECT_EQ(corner, 0);
+    EXPECT_EQ(grid.chunk_at(-10.0f, -60.0f), corner);
+    EXPECT_EQ(grid.chunk_at(-60.0f, -10.0f), corner);
+    EXPECT_EQ(grid.chunk_at(-10.0f, -10.0f), corner);
+    EXPECT_EQ(grid.chunk_at(10.0f, -10.0f), 6);
+    EXPECT_TRUE(chunk_grid(splat_lod::world::WorldManifest{}).owner.empty()) << "no spans: no owners";
+}
 
 TEST(ChunkBorders, EveryPixelShowsTheChunkUnderIt) {
     const engine::CameraView camera = from_above();

@@ -40,6 +40,10 @@ struct PathPose {
     float t = 0.0f;  // position along the whole path by frame, 0 (first frame) .. 1 (last frame)
 };
 
+// How far the camera moves from pose i − 1 to pose i of a walk (zero at the first pose): what the
+// streamer's cut anticipates with (GameWorld::update_streaming).
+glm::vec3 pose_velocity(const std::vector<PathPose>& poses, std::size_t i);
+
 class CameraPath {
 public:
     // At least two keys, consecutive eyes distinct, look directions non-zero and finite, and the

@@ -13,6 +13,7 @@
 
 #include "engine/render/camera.h"
 #include "engine/render/image.h"
+#include "splat_lod/core/world_manifest.h"
 #include "splat_lod/eval/image_metrics.h"
 
 namespace sample_game {
@@ -40,9 +41,15 @@ private:
 // (the generator's layout: chunk (i, j) covers [−size/2 + i·chunk, −size/2 + (i + 1)·chunk) in x).
 struct ChunkGrid {
     float size_m = 0.0f, chunk_size_m = 1.0f;
+    // Per grid cell, the cell index of the chunk that holds it when chunks span several cells (an
+    // import's quadtree, ChunkEntry::span); empty: every cell its own chunk.
+    std::vector<int> owner;
     int count() const;
     int chunk_at(float x, float z) const;  // −1 outside the world
 };
+
+// The manifest's grid, with the owners of cells that chunks of several cells hold.
+ChunkGrid chunk_grid(const splat_lod::world::WorldManifest& manifest);
 
 // Per pixel (row-major, top row first): the chunk it shows, −1 for none, and how far along the
 // pixel's ray the ground is (m; −1 for none).

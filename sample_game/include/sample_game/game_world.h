@@ -59,8 +59,10 @@ public:
     // The pose's camera, also setting the record's position, height and centre distance fields.
     engine::CameraView camera(const PathPose& pose, int width, int height, FrameRecord* record = nullptr) const;
 
-    // One streamer update for this camera; returns its wall time in milliseconds.
-    double update_streaming(const engine::CameraView& camera, std::uint64_t frame);
+    // One streamer update for this camera; returns its wall time in milliseconds. `velocity`: how far
+    // the camera moved since the last update (world units), zero after a jump; the streamer's cut
+    // coarsens early what the camera moves away from (chunk_streamer.h, "anticipation").
+    double update_streaming(const engine::CameraView& camera, std::uint64_t frame, const glm::vec3& velocity = {});
     // New settings from the UI: LOD thresholds and budgets go to the streamer (the splat pass
     // already took the LodSettings message). The SH degree and sync mode are fixed at start.
     void set_settings(const GameSettings& settings);

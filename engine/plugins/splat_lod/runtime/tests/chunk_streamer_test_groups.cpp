@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "chunk_streamer_test_helpers.h"
+#include "engine/core/error.h"
 #include "engine/core/message_bus.h"
 #include "splat_lod/core/chunk_quadtree.h"
 #include "splat_lod/core/world_manifest.h"
@@ -243,6 +244,76 @@ TEST(ChunkStreamerGroups, ABindingSplatBudgetMakesTheCutCoarser) {
     EXPECT_TRUE(h.status("group_2_+000_+000").in_cut);
     EXPECT_TRUE(h.sink.drawn("group_2_+000_+000"));
     EXPECT_EQ(h.streamer.residency().drawn_groups, 1u);
+}
+
+// An import's quadtree (ChunkEntry::span): the four chunks of the corner group_1_+000_+000 as one chunk
+// of span 1, which hangs from the root directly (no depth-1 group over it). Flying in and out, it
+// cross-fades with the root like any node: never drawn with the root, no hole, drawn up close.
+TEST(ChunkStreamerGroups, AChunkOfSeveralCellsHangsFromTheGroupAboveItsSpan) {
+    sw::WorldManifest world = make_grouped_world();
+    const int count = sw::chunks_per_side(world);
+    sw::ChunkEntry merged = world.chunks.front();
+    merged.id = "chunk_merged";
+    merged.file = "chunk_merged.ply";
+    merged.span = 1;
+    std::vector<sw::ChunkEntry> chunks;
+    for (const sw::ChunkEntry& c : world.chunks) {
+        if (sw::group_of_chunk(c.cell, count, 1) != glm::ivec2(0, 0)) {
+            chunks.push_back(c);
+            continue;
+        }
+        merged.cell = glm::min(merged.cell, c.cell);
+        merged.bounds_min = glm::min(merged.bounds_min, c.bounds_min);
+        merged.bounds_max = glm::max(merged.bounds_max, c.bounds_max);
+    }
+    chunks.insert(chunks.begin(), merged);
+    world.chunks = chunks;
+    std::erase_if(world.groups, [](const sw::ChunkEntry& g) { return g.id == "group_1_+000_+000"; });
+
+    Harness h(sync_settings(), nullptr, world);
+    h.steps({20.0f, 400.0f, 20.0f}, 12);
+    EXPECT_TRUE(h.sink.drawn("group_2_+000_+000"));
+    EXPECT_FALSE(h.sink.drawn("chunk_merged")) << "the root covers it";
+    for (int k = 0; k < 80; ++k) {
+        const float t = static_cast<float>(k) / 79.0f;
+        h.step(glm::mix(glm::vec3(20.0f, 400.0f, 20.0f), glm::vec3(5.0f, 1.5f, 5.0f), std::pow(t, 0.4f)));
+        for (const std::string& problem : coverage_problems(h, world)) ADD_FAILURE() << "step " << k << ": " << problem;
+    }
+    h.steps({5.0f, 1.5f, 5.0f}, 8);
+    EXPECT_TRUE(h.sink.drawn("chunk_merged"));
+    EXPECT_FALSE(h.sink.drawn("group_2_+000_+000"));
+    EXPECT_TRUE(coverage_problems(h, world, true).empty());
+    EXPECT_TRUE(h.sink.violations.empty()) << h.sink.violations.front();
+}
+
+// Anticipation (chunk_streamer.h): climbing 5 m per update straight above the world, the root (drawn
+// from 100 m) enters the cut fade_frames (4) updates earlier with the camera's velocity than without,
+// so its cross-fade ends about when the switch is due; descending, the finer groups enter the cut at
+// the same update with or without it (refinement is never delayed). No hole or overlap meanwhile.
+TEST(ChunkStreamerGroups, TheCutCoarsensAheadOfAClimbingCameraOnly) {
+    const sw::WorldManifest world = make_grouped_world();
+    // The first update at which `id` is in the cut, moving from y0 by dy per update (n updates).
+    const auto first_in_cut = [&](float y0, float dy, bool anticipate, const std::string& id) {
+        Harness h(sync_settings(), nullptr, world);
+        const glm::vec3 velocity = anticipate ? glm::vec3(0.0f, dy, 0.0f) : glm::vec3(0.0f);
+        h.steps({20.0f, y0, 20.0f}, 12);
+        for (int k = 0; k < 40; ++k) {
+            h.step({20.0f, y0 + dy * static_cast<float>(k + 1), 20.0f}, velocity);
+            for (const std::string& problem : coverage_problems(h, world))
+                ADD_FAILURE() << "update " << k << ": " << problem;
+            if (h.status(id).in_cut) return k;
+        }
+        return -1;
+    };
+    const int climb = first_in_cut(62.0f, 5.0f, false, "group_2_+000_+000");
+    ASSERT_GT(climb, 4) << "the climb starts well below the root's switch";
+    EXPECT_EQ(first_in_cut(62.0f, 5.0f, true, "group_2_+000_+000"), climb - 4);
+    const int descent = first_in_cut(200.0f, -5.0f, false, "group_1_+000_+000");
+    ASSERT_GT(descent, 4);
+    EXPECT_EQ(first_in_cut(200.0f, -5.0f, true, "group_1_+000_+000"), descent);
+
+    Harness h(sync_settings(), nullptr, world);
+    EXPECT_THROW(h.streamer.update({{20.0f, 62.0f, 20.0f}, kFocal, 0, {0.0f, NAN, 0.0f}}), engine::Error);
 }
 
 // Fades (chunk_streamer.h): when the depth-1 groups replace the root, the root fades out while they

@@ -106,7 +106,8 @@ struct Harness {
     explicit Harness(sw::StreamerSettings settings, engine::MessageBus* bus = nullptr,
                      sw::WorldManifest world = make_world());
 
-    void step(const glm::vec3& camera);
+    // One update; `velocity`: the camera's motion per update, for the cut's anticipation.
+    void step(const glm::vec3& camera, const glm::vec3& velocity = glm::vec3(0.0f));
     void steps(const glm::vec3& camera, int n) {
         for (int k = 0; k < n; ++k) step(camera);
     }

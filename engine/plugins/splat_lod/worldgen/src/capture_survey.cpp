@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "engine/core/error.h"
+#include "splat_lod/core/chunk_quadtree.h"
 #include "splat_lod/core/cloud_transform.h"
 #include "splat_lod/core/gaussian_extent.h"
 #include "splat_lod/core/splat_math.h"
@@ -152,7 +153,49 @@ void choose_chunks(const std::vector<glm::vec3>& world, const Box2& box, std::ui
     }
 }
 
+// The quadtree's spans (CaptureFrame::spans), bottom-up: a square of 2^s × 2^s cells inside the grid is
+// one chunk when its four quarters are and its sample estimate is at most the cap; at most span D − 1
+// for a grid of D group depths, so that a group stays above every chunk.
+void choose_spans(const std::vector<glm::vec3>& world, std::uint64_t stride, std::uint64_t cap, CaptureFrame& frame) {
+    const int n = frame.chunks_per_side;
+    std::vector<std::uint64_t> counts(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0);
+    for (const glm::vec3& p : world) {
+        const glm::ivec2 i(static_cast<int>(std::floor((p.x + frame.translation.x) / frame.chunk_size)) + n / 2,
+                           static_cast<int>(std::floor((p.z + frame.translation.z) / frame.chunk_size)) + n / 2);
+        if (i.x >= 0 && i.y >= 0 && i.x < n && i.y < n) counts[static_cast<std::size_t>(i.y * n + i.x)] += stride;
+    }
+    frame.spans.assign(counts.size(), 0);
+    std::vector<std::uint64_t> sums = counts;  // at span s: the square's estimate (cells at its lowest corner)
+    std::vector<std::uint8_t> whole(counts.size(), 1);
+    for (int s = 1; s < group_depths(n); ++s) {
+        const int side = 1 << s, half = side / 2;
+        bool any = false;
+        for (int z = 0; z + side <= n; z += side)
+            for (int x = 0; x + side <= n; x += side) {
+                const auto at = [&](int dx, int dz) { return static_cast<std::size_t>((z + dz) * n + x + dx); };
+                const std::uint64_t sum = sums[at(0, 0)] + sums[at(half, 0)] + sums[at(0, half)] + sums[at(half, half)];
+                const bool merge =
+                    whole[at(0, 0)] && whole[at(half, 0)] && whole[at(0, half)] && whole[at(half, half)] && sum <= cap;
+                sums[at(0, 0)] = sum;
+                whole[at(0, 0)] = merge ? 1 : 0;
+                if (!merge) continue;
+                any = true;
+                for (int dz = 0; dz < side; ++dz)
+                    for (int dx = 0; dx < side; ++dx) frame.spans[at(dx, dz)] = static_cast<std::uint8_t>(s);
+            }
+        if (!any) break;  // no square of this span is whole, so none larger is
+    }
+}
+
 }  // namespace
+
+glm::ivec2 CaptureFrame::chunk_of(const glm::ivec2& cell, int& span) const {
+    const int n = chunks_per_side;
+    const glm::ivec2 i = cell + glm::ivec2(n / 2);
+    span = spans.empty() ? 0 : spans[static_cast<std::size_t>(i.y * n + i.x)];
+    const int side = 1 << span;
+    return (i / side) * side - glm::ivec2(n / 2);
+}
 
 CaptureSample survey_capture(const Capture& capture, std::uint64_t sample_max,
                              const std::function<void(std::uint64_t)>& progress) {
@@ -226,6 +269,7 @@ CaptureFrame choose_frame(const CaptureSample& sample, const ImportOptions& o, c
                    (o.views == CaptureViews::automatic && y_hi - y_lo < kAerialFlatness * footprint &&
                     sample.median_extent > kAerialCoarseness * footprint);
     choose_chunks(world, box, sample.stride, o.max_chunk_gaussians, frame);
+    choose_spans(world, sample.stride, o.max_chunk_gaussians, frame);
     // Huge: wider than half a chunk (its bounds would grow past its neighbours') and far wider than the
     // capture's typical Gaussian (sky and background are 100–1000× the median; a capture denser than any
     // chunk has small chunks, and its ordinary Gaussians must stay in them).

@@ -40,7 +40,12 @@ struct CaptureFrame {
     float height_span = 0.0f;                  // the 1–99 % span of the heights
     float huge_extent = 0.0f;                  // above it a Gaussian goes to the far layer
     bool aerial = false;
+    // The quadtree of chunks (ChunkEntry::span): per grid cell (cell_index order), the span of the chunk
+    // that holds it. Four sibling chunks whose sample estimates sum to at most the cap are one chunk.
+    std::vector<std::uint8_t> spans;
     float size() const { return chunk_size * static_cast<float>(chunks_per_side); }
+    // The chunk holding grid `cell`: its lowest cell, and its span in `span`.
+    glm::ivec2 chunk_of(const glm::ivec2& cell, int& span) const;
     float scale() const { return chunk_size / 64.0f; }
     // The chunk cell of a world-frame centre, or false outside the world box.
     bool cell_of(const glm::vec3& p, glm::ivec2& cell) const;

@@ -240,6 +240,7 @@ std::vector<GroupTask> group_tasks(const std::vector<ChunkEntry>& chunks, int co
     for (int depth = 1; depth <= group_depths(count); ++depth) {
         std::map<std::pair<int, int>, std::vector<std::size_t>> members;  // by (row, column): index order
         for (std::size_t k = 0; k < chunks.size(); ++k) {
+            if (chunks[k].span >= depth) continue;  // the chunk is as large as the group: none over it
             const glm::ivec2 g = group_of_chunk(chunks[k].cell, count, depth);
             members[{g.y, g.x}].push_back(k);
         }

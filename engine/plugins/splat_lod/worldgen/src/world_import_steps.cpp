@@ -75,6 +75,8 @@ void bin_part(SplatCloud& part, const CaptureFrame& frame, ChunkBins& bins, FarL
             far.add(part, i, static_cast<float>(reach * opacity_from_logit(part.opacity_logits[i])));
             continue;
         }
+        int span = 0;
+        cell = frame.chunk_of(cell, span);  // bins are named by their chunk's lowest cell
         if (keep && !keep(cell)) continue;  // another shard's chunk
         bins.add(cell, part, i);
         ++s.binned;
@@ -99,9 +101,11 @@ bool any_camera_sees(const SplatCloud& fine, const std::vector<eval::CameraPose>
 // Bakes one chunk from the training cameras that see it well, else from the rings, or writes it unbaked.
 ChunkResult bake_bin(const ChunkBake& how, const WorldOptions& w, const ImportPlan& plan, const GroundHeight& height,
                      const SplatCloud& fine, const fs::path& file, const glm::ivec2& cell) {
+    int span = 0;
+    plan.frame.chunk_of(cell, span);
     ChunkSquare square;
     square.lo = glm::vec2(cell) * plan.frame.chunk_size;
-    square.hi = square.lo + glm::vec2(plan.frame.chunk_size);
+    square.hi = square.lo + glm::vec2(plan.frame.chunk_size * static_cast<float>(1 << span));
     const float aspect = static_cast<float>(w.bake_width) / static_cast<float>(w.bake_height);
     auto poses = chunk_training_poses(plan.training, fine.positions, square, aspect, w.bake.znear);
     const bool training = poses.size() >= 4;
@@ -114,6 +118,7 @@ ChunkResult bake_bin(const ChunkBake& how, const WorldOptions& w, const ImportPl
         write_chunk(how, fine, w.output, file, cell, result);
         result.unbaked = true;
     }
+    result.entry.span = span;
     return result;
 }
 
@@ -190,7 +195,7 @@ CaptureOrigin capture_origin(const ImportOptions& o, const CaptureFrame& frame) 
 
 // Raised whenever the import makes other bytes from the same capture and options (a cached import of an
 // older version is made again).
-constexpr int kImportVersion = 4;
+constexpr int kImportVersion = 5;
 
 // A checksum of what the import's bytes depend on: the import's version, every file of the capture (path, size,
 // modification time; a SOG chunk's whole folder) and every option.
@@ -377,6 +382,8 @@ WorldManifest bake_capture(const ImportOptions& o, const ImportPlan& plan, const
     std::vector<ChunkResult> chunks = bake_bins(o, w, plan, ground, bins, generation, start);
     for (const ChunkResult& chunk : chunks) {
         s.unbaked_chunks += chunk.unbaked ? 1 : 0;
+        s.merged_chunks += chunk.entry.span > 0 ? 1 : 0;
+        s.largest_span = std::max(s.largest_span, chunk.entry.span);
         s.training_camera_chunks += chunk.from_training_cameras ? 1 : 0;
     }
     s.world.stages.push_back(

@@ -6,7 +6,9 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -17,6 +19,7 @@
 #include "engine/render/camera.h"
 #include "splat_io_test_helpers.h"
 #include "splat_lod/core/capture_source.h"
+#include "splat_lod/core/chunk_quadtree.h"
 #include "splat_lod/core/cloud_transform.h"
 #include "splat_lod/core/reference_renderer.h"
 #include "splat_lod/core/splat_io.h"
@@ -119,7 +122,8 @@ TEST(WorldImport, FindsTheFrameAndTheCutCaptureDrawsLikeTheUncutFile) {
     EXPECT_GT(result.manifest.chunks.size(), 4u);
     for (const world::ChunkEntry& chunk : result.manifest.chunks) {
         EXPECT_LE(chunk.prefix_count[0], 3u * 2048u) << chunk.id;  // the bake adds a few coarse ones
-        EXPECT_LT(chunk.bounds_max.x - chunk.bounds_min.x, 1.01f * result.manifest.chunk_size_m) << chunk.id;
+        const float side = result.manifest.chunk_size_m * static_cast<float>(1 << chunk.span);
+        EXPECT_LT(chunk.bounds_max.x - chunk.bounds_min.x, 1.01f * side) << chunk.id;
     }
     ASSERT_EQ(result.manifest.props.size(), 1u) << "the far layer";
     EXPECT_FALSE(result.manifest.ground.empty());
@@ -137,6 +141,63 @@ TEST(WorldImport, FindsTheFrameAndTheCutCaptureDrawsLikeTheUncutFile) {
     const std::vector<splat_lod::reference::ReferenceInstance> imported{{&chunks, glm::dmat4(1.0)},
                                                                         {&far, glm::dmat4(1.0)}};
     const std::vector<splat_lod::reference::ReferenceInstance> uncut{{&original, to_world}};
+    const auto a = splat_lod::reference::render_reference(imported, camera, settings);
+    const auto b = splat_lod::reference::render_reference(uncut, camera, settings);
+    EXPECT_GE(psnr(a, b), 60.0);
+}
+
+// The quadtree: a 64 × 64 unit field of sparse ground (one Gaussian per square unit) with a dense
+// 4 × 4 patch (6,000) in one corner. The patch sets the grid's cell (4 units: it falls in four cells of
+// 1,500, none over 2,048); the sparse ground (16 per cell) is merged into chunks of up to 8 × 8 cells (13
+// chunks instead of 256), each centre inside its chunk's square and every chunk under the group one
+// depth above its span. The cut world draws like the uncut file.
+TEST(WorldImport, SparseGroundIsCutIntoFewerLargerChunks) {
+    const fs::path dir = fresh_dir("quadtree");
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    SplatCloud cloud;
+    cloud.resize(4096 + 6000);
+    for (std::size_t k = 0; k < cloud.size(); ++k) {
+        const bool patch = k >= 4096;
+        const glm::vec2 at =
+            patch ? glm::vec2(-30.0f + 4.0f * unit(rng), -30.0f + 4.0f * unit(rng))
+                  : glm::vec2(-32.0f + static_cast<float>(k % 64) + 0.5f, -32.0f + static_cast<float>(k / 64) + 0.5f);
+        cloud.positions[k] = {at.x, 0.05f * unit(rng), at.y};
+        cloud.log_scales[k] = {std::log(patch ? 0.05f : 0.4f), std::log(0.01f), std::log(patch ? 0.05f : 0.4f)};
+        cloud.opacity_logits[k] = 3.0f;
+        cloud.sh_dc[k] = {0.5f * unit(rng), 0.8f * unit(rng), 0.2f};
+    }
+    splat_lod::write_inria_ply(dir / "capture.ply", cloud);
+    const world::ImportResult result = world::import_world(fast_options(dir / "capture.ply", dir / "world"));
+    const world::WorldManifest& m = result.manifest;
+    const int count = world::chunks_per_side(m);
+    EXPECT_EQ(result.summary.binned, cloud.size());
+    EXPECT_EQ(m.chunk_size_m, 4.0f);
+    EXPECT_GT(result.summary.merged_chunks, 0u);
+    EXPECT_GE(result.summary.largest_span, 3);
+    EXPECT_EQ(m.chunks.size(), 13u) << "3 chunks of 8 x 8 cells, 3 of 4 x 4, 3 of 2 x 2 and the patch's 4 cells";
+    std::set<std::tuple<int, int, int>> groups;
+    for (const world::ChunkEntry& g : m.groups) groups.insert({g.depth, g.cell.x, g.cell.y});
+    for (const world::ChunkEntry& c : m.chunks) {
+        const float side = m.chunk_size_m * static_cast<float>(1 << c.span);
+        const glm::vec2 lo = glm::vec2(c.cell) * m.chunk_size_m;
+        EXPECT_GE(c.bounds_min.x, lo.x - 1e-3f) << c.id;
+        EXPECT_LE(c.bounds_max.x, lo.x + side + 1e-3f) << c.id;
+        EXPECT_GE(c.bounds_min.z, lo.y - 1e-3f) << c.id;
+        EXPECT_LE(c.bounds_max.z, lo.y + side + 1e-3f) << c.id;
+        const glm::ivec2 parent = world::group_of_chunk(c.cell, count, c.span + 1);
+        EXPECT_TRUE(groups.count({c.span + 1, parent.x, parent.y})) << c.id << " has no group above it";
+    }
+    const SplatCloud chunks = splat_lod::read_capture(dir / "world" / world::kManifestFileName);
+    EXPECT_EQ(chunks.size(), cloud.size());
+    const glm::dmat4 to_world =
+        glm::translate(glm::dmat4(1.0), result.summary.translation) * glm::dmat4(result.summary.rotation);
+    const auto camera = engine::make_look_at_camera({20.0f, 25.0f, 30.0f}, {-10.0f, 0.0f, -10.0f}, {0, 1, 0}, 1.0f, 160,
+                                                    120, 0.2f, 1000.0f);
+    splat_lod::reference::ReferenceSettings settings;
+    settings.threads = 2;
+    const std::vector<splat_lod::reference::ReferenceInstance> imported{{&chunks, glm::dmat4(1.0)}},
+        uncut{{&cloud, to_world}};
     const auto a = splat_lod::reference::render_reference(imported, camera, settings);
     const auto b = splat_lod::reference::render_reference(uncut, camera, settings);
     EXPECT_GE(psnr(a, b), 60.0);

@@ -162,6 +162,45 @@ TEST(WorldManifest, EveryBadInputNamesTheFileAndTheKey) {
     EXPECT_NE(error_of([&] { read_world_manifest(dir / "absent.json"); }).find("absent.json"), std::string::npos);
 }
 
+// An import's quadtree: a chunk of span 1 covers 2 × 2 cells of a 4-cell grid. Its span survives the
+// round trip (a chunk of span 0 writes none), and a span that is misaligned, leaves the grid, overlaps
+// another chunk or is out of range is refused naming the chunk.
+TEST(WorldManifest, ChunksOfSeveralCellsAreAlignedInsideTheGridAndApart) {
+    const fs::path dir = engine::test::output_dir("world");
+    WorldManifest m = sample_manifest();
+    m.size_m = 256.0f;
+    m.chunks[0].cell = {-2, -2};
+    m.chunks[0].id = chunk_id(m.chunks[0].cell);
+    m.chunks[0].span = 1;
+    m.chunks[1].cell = {0, 0};
+    m.chunks[1].id = chunk_id(m.chunks[1].cell);
+    write_world_manifest(dir / "spans.json", m);
+    const WorldManifest r = read_world_manifest(dir / "spans.json");
+    EXPECT_EQ(r.chunks[0].span, 1);
+    EXPECT_EQ(r.chunks[1].span, 0);
+    const json good = json::parse(engine::read_text_file(dir / "spans.json"));
+    EXPECT_FALSE(good["chunks"][1].contains("span"));
+    const std::vector<std::pair<std::function<void(json&)>, std::string>> cases = {
+        {[](json& j) {
+             j["chunks"][0]["cell"] = {-1, -2};
+         },
+         "chunks[0].cell: a chunk of span 1 must start"},
+        {[](json& j) { j["chunks"][1]["span"] = 2; }, "chunks[1].cell: a chunk of span 2"},
+        {[](json& j) {
+             j["chunks"][1]["cell"] = {-1, -1};
+         },
+         "chunks[1].cell: overlaps an earlier chunk"},
+        {[](json& j) { j["chunks"][0]["span"] = 11; }, "chunks[0].span: must be 0 to 10"},
+    };
+    for (const auto& [mutate, expected] : cases) {
+        json document = good;
+        mutate(document);
+        engine::write_text_file_atomic(dir / "bad_span.json", document.dump());
+        const std::string message = error_of([&] { read_world_manifest(dir / "bad_span.json"); });
+        EXPECT_NE(message.find(expected), std::string::npos) << message;
+    }
+}
+
 TEST(WorldManifest, WriterRefusesWhatTheReaderWouldAndWritesNothing) {
     const fs::path path = engine::test::output_dir("world") / "world.json";
     WorldManifest m = sample_manifest();

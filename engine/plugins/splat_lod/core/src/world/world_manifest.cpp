@@ -31,6 +31,7 @@
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
 #include "io/io_util.h"
+#include "splat_lod/core/chunk_quadtree.h"
 #include "world_manifest_extras.h"
 
 namespace splat_lod::world {
@@ -181,9 +182,14 @@ ChunkEntry ManifestReader::chunk(const json& object, const std::string& key, boo
                    "vertex_bytes", "file_bytes", "header_crc32", "record_crc32", "depth", "cell_m"});
     else
         only_keys(object, key,
-                  {"id", "file", "cell", "bounds_min", "bounds_max", "prefix_count", "levels", "header_bytes",
+                  {"id", "file", "cell", "span", "bounds_min", "bounds_max", "prefix_count", "levels", "header_bytes",
                    "vertex_bytes", "file_bytes", "header_crc32", "record_crc32"});
     ChunkEntry c;
+    if (!group && object.contains("span")) {
+        const std::uint64_t span = whole(object["span"], join(key, "span"));
+        if (span > 10) error(join(key, "span"), "must be 0 to 10");
+        c.span = static_cast<int>(span);
+    }
     if (group) {
         const std::uint64_t depth = whole(member(object, key, "depth"), join(key, "depth"));
         if (depth < 1 || depth > 30) error(join(key, "depth"), "must be 1 to 30");
@@ -254,6 +260,42 @@ StreamLevelRule ManifestReader::stream_level_rule(const json& object, const std:
     return rule;
 }
 
+// The grid cells the chunks claim: a chunk of span s > 0 must be aligned to 2^s, lie inside the grid,
+// and share no cell with another chunk (cells of span 0 are only checked against those).
+class GridCover {
+public:
+    GridCover(const ManifestReader& reader, int count) : reader_(reader), count_(count) {}
+
+    void claim(const ChunkEntry& c, const std::string& key) {
+        if (c.span == 0) {
+            if (spanned_.count({c.cell.x, c.cell.y}) != 0) overlap(key);
+            single_.insert({c.cell.x, c.cell.y});
+            return;
+        }
+        const int side = 1 << c.span;
+        const glm::ivec2 i = c.cell + glm::ivec2(count_ / 2);
+        if (i.x < 0 || i.y < 0 || i.x % side != 0 || i.y % side != 0 || i.x + side > count_ || i.y + side > count_)
+            reader_.error(ManifestReader::join(key, "cell"), "a chunk of span " + std::to_string(c.span) +
+                                                                 " must start at a multiple of " +
+                                                                 std::to_string(side) + " cells and lie inside the " +
+                                                                 std::to_string(count_) + "-cell grid");
+        for (int z = 0; z < side; ++z)
+            for (int x = 0; x < side; ++x) {
+                const std::pair<int, int> cell{c.cell.x + x, c.cell.y + z};
+                if (single_.count(cell) != 0 || !spanned_.insert(cell).second) overlap(key);
+            }
+    }
+
+private:
+    [[noreturn]] void overlap(const std::string& key) const {
+        reader_.error(ManifestReader::join(key, "cell"), "overlaps an earlier chunk");
+    }
+
+    const ManifestReader& reader_;
+    int count_;
+    std::set<std::pair<int, int>> single_, spanned_;
+};
+
 WorldManifest ManifestReader::manifest(const json& document) const {
     if (!document.is_object()) error("", "expected a JSON object at the top level");
     WorldManifest m;
@@ -291,6 +333,7 @@ WorldManifest ManifestReader::manifest(const json& document) const {
     if (!chunks.is_array()) error("chunks", "expected an array");
     std::set<std::string> ids;
     std::set<std::pair<int, int>> cells;
+    GridCover covered(*this, chunks_per_side(m));
     std::uint64_t total = 0;
     for (std::size_t i = 0; i < chunks.size(); ++i) {
         const std::string key = index("chunks", i);
@@ -298,6 +341,7 @@ WorldManifest ManifestReader::manifest(const json& document) const {
         const ChunkEntry& c = m.chunks.back();
         if (!ids.insert(c.id).second) error(join(key, "id"), "\"" + c.id + "\" is used by an earlier chunk");
         if (!cells.insert({c.cell.x, c.cell.y}).second) error(join(key, "cell"), "is used by an earlier chunk");
+        covered.claim(c, key);
         if (__builtin_add_overflow(total, c.prefix_count[0], &total)) error("gaussians", "the chunks' sum overflows");
     }
     if (total != m.gaussians)
@@ -342,18 +386,20 @@ json chunk_json(const ChunkEntry& c) {
     for (const ChunkLevel& l : c.levels)
         levels.push_back(
             {{"extent_max", l.extent_max}, {"extent_per_min_coverage_max", l.extent_per_min_coverage_max}});
-    return {{"id", c.id},
-            {"file", c.file.generic_string()},
-            {"cell", json::array({c.cell.x, c.cell.y})},
-            {"bounds_min", vec3_json(c.bounds_min)},
-            {"bounds_max", vec3_json(c.bounds_max)},
-            {"prefix_count", c.prefix_count},
-            {"levels", levels},
-            {"header_bytes", c.header_bytes},
-            {"vertex_bytes", c.vertex_bytes},
-            {"file_bytes", c.file_bytes},
-            {"header_crc32", c.header_crc32},
-            {"record_crc32", c.record_crc32}};
+    json entry = {{"id", c.id},
+                  {"file", c.file.generic_string()},
+                  {"cell", json::array({c.cell.x, c.cell.y})},
+                  {"bounds_min", vec3_json(c.bounds_min)},
+                  {"bounds_max", vec3_json(c.bounds_max)},
+                  {"prefix_count", c.prefix_count},
+                  {"levels", levels},
+                  {"header_bytes", c.header_bytes},
+                  {"vertex_bytes", c.vertex_bytes},
+                  {"file_bytes", c.file_bytes},
+                  {"header_crc32", c.header_crc32},
+                  {"record_crc32", c.record_crc32}};
+    if (c.span > 0) entry["span"] = c.span;  // absent for one cell: generated worlds keep their bytes
+    return entry;
 }
 
 json manifest_json(const WorldManifest& m) {

@@ -348,6 +348,9 @@ void ChunkStreamer::update(const StreamView& view) {
     const glm::vec3& p = view.camera_position;
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
         engine::fail("splat_lod::world::ChunkStreamer::update(): the camera position is not finite");
+    const glm::vec3& v = view.camera_velocity;
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+        engine::fail("splat_lod::world::ChunkStreamer::update(): the camera velocity is not finite");
     if (!(view.focal_length_px > 0.0f) || !std::isfinite(view.focal_length_px))
         engine::fail("splat_lod::world::ChunkStreamer::update(): the focal length must be positive and finite, got " +
                      std::to_string(view.focal_length_px));

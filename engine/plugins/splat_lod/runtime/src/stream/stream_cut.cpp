@@ -31,9 +31,12 @@ void ChunkStreamer::State::link_groups() {
         by_cell[{chunks[k].depth, chunks[k].entry->cell.x, chunks[k].entry->cell.y}] = k;
     for (std::size_t k = 0; k < chunks.size(); ++k) {
         ChunkSlot& slot = chunks[k];
-        const glm::ivec2 up = slot.depth == 0 ? group_of_chunk(slot.entry->cell, count, 1) : slot.entry->cell / 2;
+        // A chunk hangs from the group of depth span + 1 (one of span 0 from depth 1), a group from the next.
+        const glm::ivec2 up =
+            slot.depth == 0 ? group_of_chunk(slot.entry->cell, count, slot.entry->span + 1) : slot.entry->cell / 2;
         // Groups of a non-negative index only: floor and truncation agree.
-        const auto it = by_cell.find({slot.depth + 1, up.x, up.y});
+        const int parent_depth = slot.depth == 0 ? slot.entry->span + 1 : slot.depth + 1;
+        const auto it = by_cell.find({parent_depth, up.x, up.y});
         if (it == by_cell.end()) continue;
         slot.parent = it->second;
         chunks[it->second].children.push_back(k);
@@ -42,14 +45,16 @@ void ChunkStreamer::State::link_groups() {
 
 void ChunkStreamer::State::choose_cut(const StreamView& view) {
     const bool groups_on = settings.group_cell_px > 0.0f && !manifest.groups.empty();
-    // The cut for a switch of `pixels_max`; `covered`: a group above is in it.
-    const auto cut = [&](double pixels_max, auto&& assign) {
+    // The cut for a switch of `pixels_max`; `covered`: a group above is in it. `ahead`: decide by
+    // ChunkSlot::cut_distance ("anticipation"), else by the distance now.
+    const auto cut = [&](double pixels_max, bool ahead, auto&& assign) {
         std::function<void(std::size_t, bool)> mark = [&](std::size_t k, bool covered) {
             const ChunkSlot& slot = chunks[k];
             bool in = !covered;
             if (slot.depth > 0) {
-                const double pixels = static_cast<double>(slot.entry->cell_m) * view.focal_length_px / slot.distance;
-                const bool coarse_enough = slot.distance > 0.0f && pixels <= pixels_max;
+                const float z = ahead ? slot.cut_distance : slot.distance;
+                const double pixels = static_cast<double>(slot.entry->cell_m) * view.focal_length_px / z;
+                const bool coarse_enough = z > 0.0f && pixels <= pixels_max;
                 in = groups_on && !covered && coarse_enough && !slot.failed && !slot.failure_permanent;
             }
             assign(k, in);
@@ -59,14 +64,14 @@ void ChunkStreamer::State::choose_cut(const StreamView& view) {
             if (chunks[k].parent == ChunkSlot::kNoSlot) mark(k, false);
     };
     const double switch_px = settings.group_cell_px * double{group_cell_scale}, band = settings.unload_distance_factor;
-    cut(switch_px, [&](std::size_t k, bool in) {
+    cut(switch_px, true, [&](std::size_t k, bool in) {
         chunks[k].in_cut = in;
         chunks[k].near_cut = false;
     });
     // The hysteresis band: what would be in the cut if the camera were `band` times nearer or
     // farther stays resident (not drawn) once loaded, so that small moves do not reload it.
     for (const double pixels_max : {switch_px * band, switch_px / band})
-        cut(pixels_max,
+        cut(pixels_max, false,
             [&](std::size_t k, bool in) { chunks[k].near_cut = chunks[k].near_cut || (in && !chunks[k].in_cut); });
 }
 

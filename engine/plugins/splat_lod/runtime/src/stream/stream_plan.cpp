@@ -40,7 +40,12 @@ LevelRank ChunkStreamer::State::rank(std::size_t chunk, int level) const {
 void ChunkStreamer::State::plan(const StreamView& view) {
     const double keep_factor = settings.unload_distance_factor;
     order.clear();
-    for (ChunkSlot& slot : chunks) slot.distance = nearest_distance(*slot.entry, view.camera_position);
+    const glm::vec3 ahead = view.camera_position + view.camera_velocity * static_cast<float>(settings.fade_frames);
+    const bool moving = ahead != view.camera_position;
+    for (ChunkSlot& slot : chunks) {
+        slot.distance = nearest_distance(*slot.entry, view.camera_position);
+        slot.cut_distance = moving ? std::max(slot.distance, nearest_distance(*slot.entry, ahead)) : slot.distance;
+    }
     choose_cut(view);
     for (std::size_t c = 0; c < chunks.size(); ++c) {
         ChunkSlot& slot = chunks[c];

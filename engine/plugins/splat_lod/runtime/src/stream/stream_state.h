@@ -52,6 +52,7 @@ struct ChunkSlot {
     std::filesystem::path file;  // manifest folder / entry->file
     std::array<LevelSlot, kLevels> levels;
     float distance = 0.0f;
+    float cut_distance = 0.0f;  // what the cut decides by: the farther of now and ahead ("anticipation")
     int finest_needed = kLevels;
     bool failed = false;
     bool failure_permanent = false;  // the manifest entry itself is wrong

@@ -59,9 +59,13 @@ struct ChunkLevel {
 };
 
 struct ChunkEntry {
-    std::string id;                                     // "chunk_+003_-002": grid column and row, signed
-    std::filesystem::path file;                         // relative to the manifest's folder
-    glm::ivec2 cell{0};                                 // grid column (x) and row (z)
+    std::string id;              // "chunk_+003_-002": grid column and row, signed
+    std::filesystem::path file;  // relative to the manifest's folder
+    glm::ivec2 cell{0};          // grid column (x) and row (z)
+    // A chunk of an imported capture may cover 2^span × 2^span grid cells where the capture is sparse
+    // (world_import.h, "quadtree"): `cell` is then its lowest cell, aligned to 2^span in grid indices
+    // (cell + count/2), and its parent in the quadtree is the group of depth span + 1. 0: one cell.
+    int span = 0;
     glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};       // of the Gaussians' means, world space
     std::array<std::uint64_t, kLevels> prefix_count{};  // [l − 1]: Gaussians with stream level ≥ l
     std::array<ChunkLevel, kLevels> levels{};           // [l − 1]

@@ -71,6 +71,15 @@
 // (its opacity is the node's times its own); one that arrives while the node is not shown takes the
 // node's. fade_frames = 0: every change at once.
 //
+// Anticipation: a fade takes fade_frames updates, so a cut that switched only when the camera got far
+// enough would keep the finer nodes (and their cost) for that long after. With a camera_velocity v,
+// the cut decides each node by the farther of its distance now and its distance from the camera
+// fade_frames updates ahead (p + fade_frames · v): a node the camera moves away from leaves the cut
+// early enough that its fade-out ends about when it is due; a node the camera approaches is decided
+// by its distance now, so refinement is never delayed. While the camera climbs, what is drawn is
+// coarser than the switch asks by at most the factor (z + fade_frames · |v|) / z, and only for nodes
+// fading out. Loads and the hysteresis band use the distance now.
+//
 // Oversized levels: a level is read and uploaded in parts of at most
 // floor(upload_budget / bytes per Gaussian) Gaussians, so no frame ever uploads more than the
 // budget; the constructor rejects a budget below one Gaussian.
@@ -132,6 +141,10 @@ struct StreamView {
     glm::vec3 camera_position{0.0f};
     float focal_length_px = 1000.0f;
     std::uint64_t frame_index = 0;
+    // How far the camera moves per update (world units), as the game expects it to go on; zero (the
+    // default) when it stands still, or after a cut or a teleport. The cut uses it to start a node's
+    // fade-out early (see "anticipation").
+    glm::vec3 camera_velocity{0.0f};
 };
 
 enum class LevelState {

@@ -9,14 +9,14 @@
 // What: a quadtree over the chunk grid. The group at depth d ≥ 1 and index g = (gx, gz) holds the
 // chunks whose grid index i = cell + count/2 (0 … count − 1 per axis) satisfies floor(i / 2^d) = g,
 // i.e. squares of 2^d × 2^d chunks; the root is the first depth at which one group holds every
-// chunk. Each group is one file of Gaussians pooled from the finest (level-1) Gaussians of all its
-// members on ONE world-aligned grid of cubic cells of edge cell_m(d) = base_cell_m · 2^(d − 1)
-// anchored at the world's corner: every cell is pooled from every member whose mean lies in it,
-// wherever the chunk borders fall, and since 2^d chunks are a whole number of cells, no cell
-// straddles a group border either. The streamer draws a group instead of its chunks when its cells
-// project to at most a set number of pixels (chunk_streamer.h), so a group is what the view would
-// see of its members at that distance, and the far field costs what the screen holds, not what the
-// world holds.
+// chunk. A chunk that covers 2^s × 2^s cells (ChunkEntry::span s, an import's sparse ground) belongs
+// to the groups of depth > s only: no group is made that such a chunk would fill or overflow. Each group is one file of
+// Gaussians pooled from the finest (level-1) Gaussians of all its members on ONE world-aligned grid of cubic cells of
+// edge cell_m(d) = base_cell_m · 2^(d − 1) anchored at the world's corner: every cell is pooled from every member whose
+// mean lies in it, wherever the chunk borders fall, and since 2^d chunks are a whole number of cells, no cell straddles
+// a group border either. The streamer draws a group instead of its chunks when its cells project to at most a set
+// number of pixels (chunk_streamer.h), so a group is what the view would see of its members at that distance, and the
+// far field costs what the screen holds, not what the world holds.
 //
 // Pooling a cell (moment matching, weights wᵢ = αᵢ·Aᵢ with Aᵢ the Gaussian's mean axis-projected area
 // √det of Σᵢ's three 2×2 projections, i.e. how much it covers):

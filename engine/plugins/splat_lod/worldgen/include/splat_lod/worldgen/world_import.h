@@ -8,7 +8,10 @@
 //      sign towards the longer tail of heights, where trees, buildings and sky stand; within 5° of a
 //      coordinate axis it snaps to that axis, within 30° for the thinnest axis). The footprint: the 1st–99th percentile
 //      box of the centres in the horizontal plane. The chunk size: the largest power-of-two fraction of the footprint
-//      at which no chunk of the sample holds more than max_chunk_gaussians.
+//      at which no chunk of the sample holds more than max_chunk_gaussians. Then the quadtree: where the
+//      capture is sparse, four sibling squares whose sample estimates sum to at most max_chunk_gaussians
+//      become one chunk, bottom-up, up to squares of half the root group's side (ChunkEntry::span); so
+//      the grid is as fine as the densest spot needs and the sparse ground has fewer, larger chunks.
 //   2. Binning (a second read): every Gaussian is turned into the world frame (Y up, the footprint's
 //      centre snapped to the chunk grid at the origin; SH rotated with it) and appended by its centre
 //      to its chunk's bin file on disk; buffers are flushed when they hold a quarter of the memory cap,
@@ -101,6 +104,8 @@ struct ImportSummary {
     std::uint64_t binned = 0;                            // in chunks
     std::uint64_t bin_flushes = 0;                       // times the bins' buffers were written out
     std::size_t unbaked_chunks = 0;                      // chunks no bake camera sees, written as they are
+    std::size_t merged_chunks = 0;                       // chunks of more than one grid cell (the quadtree)
+    int largest_span = 0;                                // the largest chunk: 2^span cells a side
     std::size_t training_cameras = 0;                    // read from options.cameras
     std::size_t training_camera_chunks = 0;              // chunks baked from training cameras
     std::uint64_t peak_rss_bytes = 0;                    // the process's high-water mark at the end
