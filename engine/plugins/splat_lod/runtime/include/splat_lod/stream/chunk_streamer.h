@@ -32,7 +32,8 @@
 //  7. publish the ResidencyReport.
 //
 // Chunk groups and the cut (world_groups.h): when the manifest has groups, every chunk and group is a
-// node of a quadtree (a chunk's parent is its depth-1 group, a group's the group one depth up), and
+// node of a quadtree (a chunk's parent is its depth-1 group, or the group of depth span + 1 for an
+// import's chunk of several cells, ChunkEntry::span; a group's the group one depth up), and
 // step 1 first chooses the cut, top-down from the roots: a group is drawn instead of everything below
 // it when its pooling cell projects to at most group_cell_px pixels at the group's nearest distance
 // (cell_m · f / z ≤ group_cell_px; z only grows and the cell only shrinks going down, so exactly one
