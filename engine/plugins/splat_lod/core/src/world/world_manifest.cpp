@@ -139,6 +139,7 @@ public:
 
 private:
     ChunkEntry chunk(const json& object, const std::string& key, bool group) const;
+    void chunks(const json& list, WorldManifest& m) const;
     void groups(const json& list, WorldManifest& m) const;
     ChunkLevel level(const json& object, const std::string& key) const;
     StreamLevelRule stream_level_rule(const json& object, const std::string& key) const;
@@ -329,23 +330,7 @@ WorldManifest ManifestReader::manifest(const json& document) const {
     if (document.contains("terrain_mesh"))
         m.terrain_mesh = relative_path(document["terrain_mesh"], "terrain_mesh", true);
 
-    const json& chunks = member(document, "", "chunks");
-    if (!chunks.is_array()) error("chunks", "expected an array");
-    std::set<std::string> ids;
-    std::set<std::pair<int, int>> cells;
-    GridCover covered(*this, chunks_per_side(m));
-    std::uint64_t total = 0;
-    for (std::size_t i = 0; i < chunks.size(); ++i) {
-        const std::string key = index("chunks", i);
-        m.chunks.push_back(chunk(chunks[i], key, false));
-        const ChunkEntry& c = m.chunks.back();
-        if (!ids.insert(c.id).second) error(join(key, "id"), "\"" + c.id + "\" is used by an earlier chunk");
-        if (!cells.insert({c.cell.x, c.cell.y}).second) error(join(key, "cell"), "is used by an earlier chunk");
-        covered.claim(c, key);
-        if (__builtin_add_overflow(total, c.prefix_count[0], &total)) error("gaussians", "the chunks' sum overflows");
-    }
-    if (total != m.gaussians)
-        error("gaussians", std::to_string(m.gaussians) + " but the chunks hold " + std::to_string(total));
+    chunks(member(document, "", "chunks"), m);
     if (document.contains("groups")) groups(document["groups"], m);
     if (document.contains("group_generator")) m.group_generator = text(document["group_generator"], "group_generator");
     if (document.contains("ground")) m.ground = parse_ground_grid(document["ground"], file_);
@@ -356,6 +341,27 @@ WorldManifest ManifestReader::manifest(const json& document) const {
         for (std::size_t i = 0; i < props.size(); ++i) m.props.push_back(prop(props[i], index("props", i)));
     }
     return m;
+}
+
+// The chunk list: ids and cells unique, the cells of chunks of several cells apart, and the counts
+// summing to the manifest's `gaussians`.
+void ManifestReader::chunks(const json& list, WorldManifest& m) const {
+    if (!list.is_array()) error("chunks", "expected an array");
+    std::set<std::string> ids;
+    std::set<std::pair<int, int>> cells;
+    GridCover covered(*this, chunks_per_side(m));
+    std::uint64_t total = 0;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+        const std::string key = index("chunks", i);
+        m.chunks.push_back(chunk(list[i], key, false));
+        const ChunkEntry& c = m.chunks.back();
+        if (!ids.insert(c.id).second) error(join(key, "id"), "\"" + c.id + "\" is used by an earlier chunk");
+        if (!cells.insert({c.cell.x, c.cell.y}).second) error(join(key, "cell"), "is used by an earlier chunk");
+        covered.claim(c, key);
+        if (__builtin_add_overflow(total, c.prefix_count[0], &total)) error("gaussians", "the chunks' sum overflows");
+    }
+    if (total != m.gaussians)
+        error("gaussians", std::to_string(m.gaussians) + " but the chunks hold " + std::to_string(total));
 }
 
 void ManifestReader::groups(const json& list, WorldManifest& m) const {
