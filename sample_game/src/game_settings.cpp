@@ -27,6 +27,7 @@ splat_lod::world::StreamerSettings streamer_settings(const GameSettings& s) {
     out.group_cell_px = s.group_cell_px;
     out.retry_failed_after_frames = s.retry_failed_after_frames;
     out.fade_frames = s.fade_frames;
+    out.anticipation_updates = s.anticipation_updates;
     out.background_thread = !s.sync_streaming;
     return out;
 }

@@ -117,6 +117,10 @@ void add_streaming_options(CLI::App& app, CommandLine& c) {
                    "Updates over which a chunk, group or arriving level fades in or out (0: at once)")
         ->check(CLI::Range(0, 1000))
         ->capture_default_str();
+    app.add_option("--anticipate", c.settings.anticipation_updates,
+                   "Updates ahead that the cut anticipates the moving camera by (0: not at all)")
+        ->check(CLI::Range(0, 1000))
+        ->capture_default_str();
     app.add_option("--sh-degree", c.settings.sh_degree, "SH degree stored on the GPU (the generated world has 0)")
         ->check(CLI::Range(0, 3))
         ->capture_default_str();

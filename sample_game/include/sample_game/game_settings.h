@@ -37,6 +37,9 @@ struct GameSettings {
     // Updates over which a chunk or group that starts or stops being drawn, or a level that arrives on
     // screen, fades in or out (StreamerSettings::fade_frames; 0: at once, as before fades existed).
     int fade_frames = 4;
+    // Updates ahead that the streamer's cut anticipates the moving camera by
+    // (StreamerSettings::anticipation_updates; 0: not at all).
+    int anticipation_updates = 4;
     bool sync_streaming = false;  // reads inside update() instead of on the background thread
     float fov_y_deg = 60.0f;
     // The walkthrough's poses or keys from this file (path_file.h) instead of the world's own path.

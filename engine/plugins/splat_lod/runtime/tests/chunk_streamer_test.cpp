@@ -272,6 +272,9 @@ TEST(ChunkStreamer, RejectsInvalidSettingsAndViews) {
     other = sync_settings();
     other.unload_distance_factor = 0.5f;
     EXPECT_THROW(streamer.set_settings(other), engine::Error);
+    other = sync_settings();
+    other.anticipation_updates = -1;
+    EXPECT_THROW(streamer.set_settings(other), engine::Error);
     EXPECT_THROW(streamer.update({{NAN, 0.0f, 0.0f}, kFocal, 0}), engine::Error);
     EXPECT_THROW(streamer.update({{0.0f, 0.0f, 0.0f}, 0.0f, 0}), engine::Error);
 }

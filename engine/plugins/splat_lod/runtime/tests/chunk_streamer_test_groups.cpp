@@ -287,30 +287,34 @@ TEST(ChunkStreamerGroups, AChunkOfSeveralCellsHangsFromTheGroupAboveItsSpan) {
 }
 
 // Anticipation (chunk_streamer.h): climbing 5 m per update straight above the world, the root (drawn
-// from 100 m) enters the cut fade_frames (4) updates earlier with the camera's velocity than without,
-// so its cross-fade ends about when the switch is due; descending, the finer groups enter the cut at
-// the same update with or without it (refinement is never delayed). No hole or overlap meanwhile.
+// from 100 m) enters the cut anticipation_updates (4 by default, 2, 0) updates earlier with the camera's
+// velocity than without, so its cross-fade ends about when the switch is due; descending, the finer
+// groups enter the cut at the same update with or without it (refinement is never delayed). No hole or
+// overlap meanwhile.
 TEST(ChunkStreamerGroups, TheCutCoarsensAheadOfAClimbingCameraOnly) {
     const sw::WorldManifest world = make_grouped_world();
-    // The first update at which `id` is in the cut, moving from y0 by dy per update (n updates).
-    const auto first_in_cut = [&](float y0, float dy, bool anticipate, const std::string& id) {
-        Harness h(sync_settings(), nullptr, world);
-        const glm::vec3 velocity = anticipate ? glm::vec3(0.0f, dy, 0.0f) : glm::vec3(0.0f);
+    // The first update at which `id` is in the cut, moving from y0 by dy per update, the velocity given to
+    // a cut anticipating `ahead` updates (0: the velocity is not given).
+    const auto first_in_cut = [&](float y0, float dy, int ahead, const std::string& id) {
+        sw::StreamerSettings settings = sync_settings();
+        settings.anticipation_updates = ahead;
+        Harness h(settings, nullptr, world);
         h.steps({20.0f, y0, 20.0f}, 12);
         for (int k = 0; k < 40; ++k) {
-            h.step({20.0f, y0 + dy * static_cast<float>(k + 1), 20.0f}, velocity);
+            h.step({20.0f, y0 + dy * static_cast<float>(k + 1), 20.0f}, {0.0f, dy, 0.0f});
             for (const std::string& problem : coverage_problems(h, world))
                 ADD_FAILURE() << "update " << k << ": " << problem;
             if (h.status(id).in_cut) return k;
         }
         return -1;
     };
-    const int climb = first_in_cut(62.0f, 5.0f, false, "group_2_+000_+000");
+    const int climb = first_in_cut(62.0f, 5.0f, 0, "group_2_+000_+000");
     ASSERT_GT(climb, 4) << "the climb starts well below the root's switch";
-    EXPECT_EQ(first_in_cut(62.0f, 5.0f, true, "group_2_+000_+000"), climb - 4);
-    const int descent = first_in_cut(200.0f, -5.0f, false, "group_1_+000_+000");
+    EXPECT_EQ(first_in_cut(62.0f, 5.0f, sw::StreamerSettings{}.anticipation_updates, "group_2_+000_+000"), climb - 4);
+    EXPECT_EQ(first_in_cut(62.0f, 5.0f, 2, "group_2_+000_+000"), climb - 2);
+    const int descent = first_in_cut(200.0f, -5.0f, 0, "group_1_+000_+000");
     ASSERT_GT(descent, 4);
-    EXPECT_EQ(first_in_cut(200.0f, -5.0f, true, "group_1_+000_+000"), descent);
+    EXPECT_EQ(first_in_cut(200.0f, -5.0f, 4, "group_1_+000_+000"), descent);
 
     Harness h(sync_settings(), nullptr, world);
     EXPECT_THROW(h.streamer.update({{20.0f, 62.0f, 20.0f}, kFocal, 0, {0.0f, NAN, 0.0f}}), engine::Error);

@@ -40,7 +40,8 @@ LevelRank ChunkStreamer::State::rank(std::size_t chunk, int level) const {
 void ChunkStreamer::State::plan(const StreamView& view) {
     const double keep_factor = settings.unload_distance_factor;
     order.clear();
-    const glm::vec3 ahead = view.camera_position + view.camera_velocity * static_cast<float>(settings.fade_frames);
+    const glm::vec3 ahead =
+        view.camera_position + view.camera_velocity * static_cast<float>(settings.anticipation_updates);
     const bool moving = ahead != view.camera_position;
     for (ChunkSlot& slot : chunks) {
         slot.distance = nearest_distance(*slot.entry, view.camera_position);

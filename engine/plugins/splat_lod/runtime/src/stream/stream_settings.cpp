@@ -36,6 +36,8 @@ void validate(const StreamerSettings& s) {
     if (s.unload_delay_frames < 0) settings_error("unload_delay_frames must not be negative");
     if (s.retry_failed_after_frames < 0) settings_error("retry_failed_after_frames must not be negative");
     if (s.fade_frames < 0 || s.fade_frames > 1000) settings_error("fade_frames must be in [0, 1000]");
+    if (s.anticipation_updates < 0 || s.anticipation_updates > 1000)
+        settings_error("anticipation_updates must be in [0, 1000]");
     if (!(s.group_cell_px >= 0.0f) || !std::isfinite(s.group_cell_px))
         settings_error("group_cell_px must be 0 (no groups) or positive, and finite");
 }

@@ -75,11 +75,11 @@
 // Anticipation: a fade takes fade_frames updates, so a cut that switched only when the camera got far
 // enough would keep the finer nodes (and their cost) for that long after. With a camera_velocity v,
 // the cut decides each node by the farther of its distance now and its distance from the camera
-// fade_frames updates ahead (p + fade_frames · v): a node the camera moves away from leaves the cut
-// early enough that its fade-out ends about when it is due; a node the camera approaches is decided
-// by its distance now, so refinement is never delayed. While the camera climbs, what is drawn is
-// coarser than the switch asks by at most the factor (z + fade_frames · |v|) / z, and only for nodes
-// fading out. Loads and the hysteresis band use the distance now.
+// n = anticipation_updates updates ahead (p + n · v): a node the camera moves away from leaves the cut
+// n updates early, so that with n = fade_frames its fade-out ends about when it is due; a node the
+// camera approaches is decided by its distance now, so refinement is never delayed. While the camera
+// moves away, what is drawn is coarser than the switch asks by at most the factor (z + n · |v|) / z.
+// Loads and the hysteresis band use the distance now.
 //
 // Oversized levels: a level is read and uploaded in parts of at most
 // floor(upload_budget / bytes per Gaussian) Gaussians, so no frame ever uploads more than the
@@ -134,6 +134,9 @@ struct StreamerSettings {
     // 4: on the default world's walkthrough 8 let fades overlap in the flyout (2.74 Gaussians per
     // pixel against 2.47 with 4; docs/world_lod.md, "Fades").
     int fade_frames = 4;
+    // Updates ahead that the cut anticipates a moving camera by (see "anticipation"); 0: not at all.
+    // The default is the fade's length, so that a fade-out ends about when its switch is due.
+    int anticipation_updates = 4;
 };
 
 // What update() needs from the camera. The focal length is in pixels of the output image (LOD
