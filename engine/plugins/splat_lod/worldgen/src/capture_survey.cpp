@@ -154,8 +154,9 @@ void choose_chunks(const std::vector<glm::vec3>& world, const Box2& box, std::ui
 }
 
 // The quadtree's spans (CaptureFrame::spans), bottom-up: a square of 2^s × 2^s cells inside the grid is
-// one chunk when its four quarters are and its sample estimate is at most the cap; at most span D − 1
-// for a grid of D group depths, so that a group stays above every chunk.
+// one chunk when its four quarters are and its sample estimate is at most the densest cell's (never above
+// the cap), so that no merged chunk is fuller than the grid already has one; at most span D − 1 for a grid
+// of D group depths, so that a group stays above every chunk.
 void choose_spans(const std::vector<glm::vec3>& world, std::uint64_t stride, std::uint64_t cap, CaptureFrame& frame) {
     const int n = frame.chunks_per_side;
     std::vector<std::uint64_t> counts(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0);
@@ -165,6 +166,7 @@ void choose_spans(const std::vector<glm::vec3>& world, std::uint64_t stride, std
         if (i.x >= 0 && i.y >= 0 && i.x < n && i.y < n) counts[static_cast<std::size_t>(i.y * n + i.x)] += stride;
     }
     frame.spans.assign(counts.size(), 0);
+    const std::uint64_t fullest = std::min(cap, *std::max_element(counts.begin(), counts.end()));
     std::vector<std::uint64_t> sums = counts;  // at span s: the square's estimate (cells at its lowest corner)
     std::vector<std::uint8_t> whole(counts.size(), 1);
     for (int s = 1; s < group_depths(n); ++s) {
@@ -174,8 +176,8 @@ void choose_spans(const std::vector<glm::vec3>& world, std::uint64_t stride, std
             for (int x = 0; x + side <= n; x += side) {
                 const auto at = [&](int dx, int dz) { return static_cast<std::size_t>((z + dz) * n + x + dx); };
                 const std::uint64_t sum = sums[at(0, 0)] + sums[at(half, 0)] + sums[at(0, half)] + sums[at(half, half)];
-                const bool merge =
-                    whole[at(0, 0)] && whole[at(half, 0)] && whole[at(0, half)] && whole[at(half, half)] && sum <= cap;
+                const bool merge = whole[at(0, 0)] && whole[at(half, 0)] && whole[at(0, half)] &&
+                                   whole[at(half, half)] && sum <= fullest;
                 sums[at(0, 0)] = sum;
                 whole[at(0, 0)] = merge ? 1 : 0;
                 if (!merge) continue;

@@ -41,7 +41,7 @@ struct CaptureFrame {
     float huge_extent = 0.0f;                  // above it a Gaussian goes to the far layer
     bool aerial = false;
     // The quadtree of chunks (ChunkEntry::span): per grid cell (cell_index order), the span of the chunk
-    // that holds it. Four sibling chunks whose sample estimates sum to at most the cap are one chunk.
+    // that holds it. Four sibling chunks whose sample estimates sum to at most the densest cell's are one chunk.
     std::vector<std::uint8_t> spans;
     float size() const { return chunk_size * static_cast<float>(chunks_per_side); }
     // The chunk holding grid `cell`: its lowest cell, and its span in `span`.

@@ -9,9 +9,10 @@
 //      coordinate axis it snaps to that axis, within 30° for the thinnest axis). The footprint: the 1st–99th percentile
 //      box of the centres in the horizontal plane. The chunk size: the largest power-of-two fraction of the footprint
 //      at which no chunk of the sample holds more than max_chunk_gaussians. Then the quadtree: where the
-//      capture is sparse, four sibling squares whose sample estimates sum to at most max_chunk_gaussians
+//      capture is sparse, four sibling squares whose sample estimates sum to at most the densest cell's
 //      become one chunk, bottom-up, up to squares of half the root group's side (ChunkEntry::span); so
-//      the grid is as fine as the densest spot needs and the sparse ground has fewer, larger chunks.
+//      the grid is as fine as the densest spot needs and the sparse ground has fewer, larger chunks, none
+//      fuller than the densest (the streamer's budgets are sized by what one chunk holds near the camera).
 //   2. Binning (a second read): every Gaussian is turned into the world frame (Y up, the footprint's
 //      centre snapped to the chunk grid at the origin; SH rotated with it) and appended by its centre
 //      to its chunk's bin file on disk; buffers are flushed when they hold a quarter of the memory cap,
