@@ -103,7 +103,7 @@ struct CommandLine {
     std::string from, up_text = "auto", memory_text = "3G", views_text = "auto";
     std::uint64_t max_chunk_gaussians = 262144;
     std::string cameras;
-    bool no_terrain_mesh = false, no_groups = false, count_only = false, merge = false;
+    bool no_terrain_mesh = false, no_groups = false, count_only = false, merge = false, quadtree = false;
     CLI::Option* shard_option = nullptr;  // given: bake a shard
 };
 
@@ -150,6 +150,8 @@ void add_import_options(CLI::App& app, CommandLine& c) {
                    "the chunk size is chosen so that no chunk holds more; 262144 by default (the generated world's 64 "
                    "m chunks hold up to 106k)")
         ->check(CLI::Range(std::uint64_t{1024}, std::uint64_t{1} << 26));
+    app.add_flag("--quadtree", c.quadtree,
+                 "with --from: merge sparse cells into larger chunks (fewer bakes; streams coarser near the camera)");
     app.add_option("--views", c.views_text, "chunk bake cameras: auto, ground (eye height and above) or aerial");
 }
 
@@ -175,6 +177,7 @@ int run_import(const CommandLine& c) {
     if (c.up_text != "auto") o.up = engine::parse_vec3(c.up_text, "--up");
     o.memory_bytes = parse_memory(c.memory_text);
     o.max_chunk_gaussians = c.max_chunk_gaussians;
+    o.quadtree = c.quadtree;
     o.cameras = c.cameras;
     if (c.views_text == "ground")
         o.views = world::CaptureViews::ground;

@@ -271,7 +271,7 @@ CaptureFrame choose_frame(const CaptureSample& sample, const ImportOptions& o, c
                    (o.views == CaptureViews::automatic && y_hi - y_lo < kAerialFlatness * footprint &&
                     sample.median_extent > kAerialCoarseness * footprint);
     choose_chunks(world, box, sample.stride, o.max_chunk_gaussians, frame);
-    choose_spans(world, sample.stride, o.max_chunk_gaussians, frame);
+    if (o.quadtree) choose_spans(world, sample.stride, o.max_chunk_gaussians, frame);
     // Huge: wider than half a chunk (its bounds would grow past its neighbours') and far wider than the
     // capture's typical Gaussian (sky and background are 100–1000× the median; a capture denser than any
     // chunk has small chunks, and its ordinary Gaussians must stay in them).

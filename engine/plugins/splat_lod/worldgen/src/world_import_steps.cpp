@@ -221,7 +221,7 @@ std::string capture_fingerprint(const Capture& capture, const ImportOptions& o) 
     text << kImportVersion << ' ' << (o.up ? glm::length(*o.up) : 0.0f) << ' ' << (o.up ? o.up->x : 0.0f) << ' '
          << (o.up ? o.up->y : 0.0f) << ' ' << (o.up ? o.up->z : 0.0f) << ' ' << static_cast<int>(o.views) << ' '
          << o.max_chunk_gaussians << ' ' << o.far_layer_max << ' ' << o.bake_width << 'x' << o.bake_height << ' '
-         << o.bake.refine_iterations << ' ' << o.groups;
+         << o.bake.refine_iterations << ' ' << o.groups << ' ' << o.quadtree;
     const std::string all = text.str();
     char hex[16];
     std::snprintf(hex, sizeof hex, "%08x",

@@ -146,11 +146,11 @@ TEST(WorldImport, FindsTheFrameAndTheCutCaptureDrawsLikeTheUncutFile) {
     EXPECT_GE(psnr(a, b), 60.0);
 }
 
-// The quadtree: a 64 × 64 unit field of sparse ground (one Gaussian per square unit) with a dense
-// 4 × 4 patch (6,000) in one corner. The patch sets the grid's cell (4 units: it falls in four cells of
-// 1,500, none over 2,048); the sparse ground (16 per cell) is merged into chunks of up to 8 × 8 cells (13
-// chunks instead of 256), each centre inside its chunk's square and every chunk under the group one
-// depth above its span. The cut world draws like the uncut file.
+// The quadtree (ImportOptions::quadtree): a 64 × 64 unit field of sparse ground (one Gaussian per square unit) with a
+// dense 4 × 4 patch (6,000) in one corner. The patch sets the grid's cell (4 units: it falls in four cells of 1,500,
+// none over 2,048); the sparse ground (16 per cell) is merged into chunks of up to 8 × 8 cells (13 chunks instead of
+// 256), each centre inside its chunk's square and every chunk under the group one depth above its span. The cut world
+// draws like the uncut file.
 TEST(WorldImport, SparseGroundIsCutIntoFewerLargerChunks) {
     const fs::path dir = fresh_dir("quadtree");
     std::mt19937 rng(11);
@@ -168,7 +168,9 @@ TEST(WorldImport, SparseGroundIsCutIntoFewerLargerChunks) {
         cloud.sh_dc[k] = {0.5f * unit(rng), 0.8f * unit(rng), 0.2f};
     }
     splat_lod::write_inria_ply(dir / "capture.ply", cloud);
-    const world::ImportResult result = world::import_world(fast_options(dir / "capture.ply", dir / "world"));
+    world::ImportOptions options = fast_options(dir / "capture.ply", dir / "world");
+    options.quadtree = true;
+    const world::ImportResult result = world::import_world(options);
     const world::WorldManifest& m = result.manifest;
     const int count = world::chunks_per_side(m);
     EXPECT_EQ(result.summary.binned, cloud.size());
@@ -190,6 +192,9 @@ TEST(WorldImport, SparseGroundIsCutIntoFewerLargerChunks) {
     }
     const SplatCloud chunks = splat_lod::read_capture(dir / "world" / world::kManifestFileName);
     EXPECT_EQ(chunks.size(), cloud.size());
+    const world::ImportResult grid = world::import_world(fast_options(dir / "capture.ply", dir / "grid"));
+    EXPECT_EQ(grid.manifest.chunks.size(), 256u) << "without the quadtree (the default) every cell its own chunk";
+    EXPECT_EQ(grid.summary.merged_chunks, 0u);
     const glm::dmat4 to_world =
         glm::translate(glm::dmat4(1.0), result.summary.translation) * glm::dmat4(result.summary.rotation);
     const auto camera = engine::make_look_at_camera({20.0f, 25.0f, 30.0f}, {-10.0f, 0.0f, -10.0f}, {0, 1, 0}, 1.0f, 160,

@@ -8,7 +8,7 @@
 //      sign towards the longer tail of heights, where trees, buildings and sky stand; within 5° of a
 //      coordinate axis it snaps to that axis, within 30° for the thinnest axis). The footprint: the 1st–99th percentile
 //      box of the centres in the horizontal plane. The chunk size: the largest power-of-two fraction of the footprint
-//      at which no chunk of the sample holds more than max_chunk_gaussians. Then the quadtree: where the
+//      at which no chunk of the sample holds more than max_chunk_gaussians. Then, with `quadtree`: where the
 //      capture is sparse, four sibling squares whose sample estimates sum to at most the densest cell's
 //      become one chunk, bottom-up, up to squares of half the root group's side (ChunkEntry::span); so
 //      the grid is as fine as the densest spot needs and the sparse ground has fewer, larger chunks, none
@@ -75,6 +75,10 @@ struct ImportOptions {
     bake::BakeOptions bake = default_world_bake_options();
     int bake_width = 512, bake_height = 384;
     bool groups = true;
+    // Merge sparse cells into chunks of several cells (step 1, "the quadtree"). Off by default: a merged
+    // chunk streams its finer levels over its whole square once the camera is near any of it, which cost
+    // the re-imported default world up to 1.0 dB on its ground and canopy frames (docs/results.md).
+    bool quadtree = false;
     // Tuning of the out-of-core path (0: from memory_bytes): the largest part of a cut PLY read at once,
     // and how many bytes of binned Gaussians are buffered before they are appended to the bin files.
     std::uint64_t part_records = 0, bin_flush_bytes = 0;
