@@ -93,9 +93,12 @@ std::string format_import_summary(const ImportSummary& s) {
             n(s.binned), n(s.dropped_by_reader), n(s.invisible), n(s.degenerate), n(s.far_huge), n(s.far_outside),
             n(s.far_layer), n(s.far_dropped), s.unbaked_chunks);
         out << line;
-        std::snprintf(line, sizeof line, "quadtree: %zu chunks merged from sparse cells, the largest %d x %d cells\n",
-                      s.merged_chunks, 1 << s.largest_span, 1 << s.largest_span);
-        out << line;
+        if (s.merged_chunks > 0) {  // --quadtree
+            std::snprintf(line, sizeof line,
+                          "quadtree: %zu chunks merged from sparse cells, the largest %d x %d cells\n", s.merged_chunks,
+                          1 << s.largest_span, 1 << s.largest_span);
+            out << line;
+        }
         if (s.training_cameras > 0) {
             std::snprintf(line, sizeof line,
                           "training cameras: %zu read; %zu chunks baked from them, the rest from the rings\n",
