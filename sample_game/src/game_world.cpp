@@ -94,24 +94,7 @@ GameWorld::~GameWorld() {
 }
 
 void GameWorld::load_meshes() {
-    engine::Node& props = scene_->root().add_child("props");
-    for (std::size_t i = 0; i < manifest_.props.size(); ++i) {
-        const sw::Prop& prop = manifest_.props[i];
-        engine::Node& node = props.add_child(prop.mesh.stem().string() + " " + std::to_string(i));
-        node.transform().translation = prop.translation;
-        node.transform().rotation = glm::quat(glm::radians(prop.rotation_euler_deg));
-        node.transform().scale = prop.scale;
-        auto mesh = std::make_unique<engine::MeshComponent>();
-        mesh->asset = folder_ / prop.mesh;
-        mesh->mesh = engine_.assets().mesh(mesh->asset);  // each file loads once, errors name it
-        node.attach(std::move(mesh));
-    }
-    if (manifest_.terrain_mesh.empty()) return;
-    engine::Node& ground = scene_->root().add_child("terrain");
-    auto mesh = std::make_unique<engine::MeshComponent>();
-    mesh->asset = folder_ / manifest_.terrain_mesh;
-    mesh->mesh = engine_.assets().mesh(mesh->asset);
-    ground.attach(std::move(mesh));
+    sw::add_world_props(scene_->root().add_child("props"), manifest_, folder_, engine_.assets(), settings_.sh_degree);
 }
 
 void GameWorld::start_streamer(const sw::StreamerSettings& settings) {

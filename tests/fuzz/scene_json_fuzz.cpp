@@ -16,6 +16,7 @@
 #include "engine/scene/json_fields.h"
 #include "engine/scene/scene_loader.h"
 #include "fuzz_support.h"
+#include "splat_lod/dropin/drop_in_lod.h"
 #include "splat_lod/splat_component.h"
 
 namespace {
@@ -28,9 +29,9 @@ const engine::ComponentRegistry& sandboxed_registry() {
     static const engine::ComponentRegistry real = [] {
         engine::ComponentRegistry registry;
         engine::register_builtin_components(registry);
-        splat_lod::DropInLodSettings lod;  // "lod": "auto" caches inside the sandbox too
+        splat_lod::dropin::DropInLodSettings lod;  // "lod": "auto" caches inside the sandbox too
         lod.cache_folder = splat_fuzz::sandbox_dir() / "lod_cache";
-        splat_lod::register_splat_component(registry, "splat_lod", std::move(lod));
+        splat_lod::register_splat_component(registry, "splat_lod", splat_lod::dropin::make_drop_in(std::move(lod)));
         return registry;
     }();
     static const engine::ComponentRegistry guarded = [] {

@@ -2,12 +2,16 @@
 // The splat_lod plugin: registers the "splat" component type and the splat render pass (its public
 // handle: splat_lod/splat_renderer.h).
 //   engine.plugins().add_static(splat_lod::make_plugin());
+// With the optional drop-in LOD ("lod": "auto"), splat_lod::dropin::make_plugin() makes the same
+// plugin with it (splat_lod/dropin/drop_in_lod.h); programs that start the engine's static plugins get
+// that one when the build has it (SPLAT_LOD_DROP_IN, on by default).
 #include <filesystem>
 #include <memory>
 
 #include "splat_lod/msgs/splat_statistics.h"
 
 #include "engine/plugin/plugin.h"
+#include "splat_lod/splat_component.h"
 
 namespace engine {
 class Engine;
@@ -18,7 +22,11 @@ struct CameraView;
 
 namespace splat_lod {
 
+// Without a drop-in LOD: "lod": "auto" draws the file as it is. (No default argument: the engine's
+// generated list of static plugins declares the factory without parameters.)
 std::unique_ptr<engine::Plugin> make_plugin();
+// `drop_in`: what "lod": "auto" does (splat_component.h).
+std::unique_ptr<engine::Plugin> make_plugin(DropInLod drop_in);
 
 // The folder of the plugin's shaders (the shader library's root for "splat_lod/..." files): the
 // environment's SPLAT_LOD_SHADER_DIR, else runtime/shaders in the source tree. The plugin adds it to the

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <limits>
 
-#include "drop_in_lod.h"
 #include "engine/assets/asset_cache.h"
 #include "engine/core/error.h"
+#include "engine/core/log.h"
 #include "engine/scene/component_registry.h"
 #include "engine/scene/json_fields.h"
 #include "splat_lod/core/splat_io.h"
@@ -22,11 +22,11 @@ std::optional<engine::Bounds> SplatComponent::local_bounds() const {
     return b;
 }
 
-void register_splat_component(engine::ComponentRegistry& registry, const std::string& owner, DropInLodSettings lod) {
+void register_splat_component(engine::ComponentRegistry& registry, const std::string& owner, DropInLod drop_in) {
     registry.add(
         "splat",
-        [lod = std::move(lod)](const nlohmann::json& spec,
-                               const engine::ComponentLoadContext& ctx) -> std::unique_ptr<engine::Component> {
+        [drop_in = std::move(drop_in)](const nlohmann::json& spec,
+                                       const engine::ComponentLoadContext& ctx) -> std::unique_ptr<engine::Component> {
             namespace jf = engine::json_fields;
             jf::only_keys(spec, {"type", "asset", "sh_degree", "lod"}, ctx);
             auto component = std::make_unique<SplatComponent>();
@@ -46,7 +46,14 @@ void register_splat_component(engine::ComponentRegistry& registry, const std::st
             } catch (const engine::Error& e) {
                 ctx.error("asset", e.what());
             }
-            if (lod_mode == "auto") start_drop_in_lod(*component, lod, *ctx.assets);
+            if (lod_mode != "auto") return component;
+            if (drop_in)
+                drop_in(*component, *ctx.assets);
+            else
+                engine::log_warning(
+                    "splat_lod: " + component->asset.filename().string() +
+                    ": \"lod\": \"auto\" needs the drop-in LOD (the splat_lod_dropin library, "
+                    "splat_lod/dropin/drop_in_lod.h), which this program was built without; drawn as it is");
             return component;
         },
         owner);

@@ -1,14 +1,15 @@
 #include "splat_lod/splat_lod_plugin.h"
 
 #include <cstdlib>
+#include <utility>
 
 #include "engine/core/error.h"
 #include "engine/core/message_bus.h"
 #include "engine/engine.h"
 #include "engine/render/renderer.h"
 #include "engine/scene/component_registry.h"
-#include "module/drop_in_lod.h"
 #include "module/gltf_splat_companion.h"
+#include "module/lod_update_pass.h"
 #include "passes/splat_pass.h"
 #include "splat_lod/lod_panel.h"
 #include "splat_lod/splat_component.h"
@@ -18,16 +19,18 @@ namespace {
 
 class SplatLodPlugin : public engine::Plugin {
 public:
+    explicit SplatLodPlugin(DropInLod drop_in) : drop_in_(std::move(drop_in)) {}
+
     // From the plugin's descriptor, engine/plugins/splat_lod/plugin.json.
     std::string name() const override { return SPLAT_LOD_PLUGIN_NAME; }
     std::string version() const override { return SPLAT_LOD_PLUGIN_VERSION; }
 
     void startup(engine::PluginContext& context) override {
-        register_splat_component(context.components, name());
+        register_splat_component(context.components, name(), drop_in_);
         register_gltf_splat_companion(context.components, name());  // the splats of a glTF mesh asset
         context.renderer.add_shader_root(shader_dir());
-        context.renderer.add_pass(std::make_shared<LodSwapPass>());  // "lod": "auto" (drop_in_lod.h)
         auto pass = std::make_shared<SplatPass>();
+        context.renderer.add_pass(std::make_shared<LodSwapPass>(pass.get()));  // "lod": "auto" (lod_update_pass.h)
         // Settings arrive as plugin_msgs::LodSettings from the UI, tools or the game.
         settings_ = context.bus.subscribe<plugin_msgs::LodSettings>(
             [pass = pass.get()](const plugin_msgs::LodSettings& lod) { pass->apply(lod); });
@@ -38,20 +41,25 @@ public:
 
     void shutdown(engine::PluginContext& context) override {
         settings_.reset();
+        context.renderer.remove_pass(LodSwapPass().name());  // first: it reads the splat pass's settings
         context.renderer.remove_pass("splat");
-        context.renderer.remove_pass(LodSwapPass().name());
         context.components.remove("splat");
         context.components.remove_companions(name());
     }
 
 private:
+    DropInLod drop_in_;
     engine::Subscription settings_;
 };
 
 }  // namespace
 
 std::unique_ptr<engine::Plugin> make_plugin() {
-    return std::make_unique<SplatLodPlugin>();
+    return make_plugin(DropInLod{});
+}
+
+std::unique_ptr<engine::Plugin> make_plugin(DropInLod drop_in) {
+    return std::make_unique<SplatLodPlugin>(std::move(drop_in));
 }
 
 std::filesystem::path shader_dir() {

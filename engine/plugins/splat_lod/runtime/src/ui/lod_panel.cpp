@@ -9,7 +9,6 @@
 #include <string>
 
 #include "engine/ui/overlay.h"
-#include "splat_lod/bake/lod_cache.h"
 
 namespace splat_lod {
 namespace {
@@ -40,6 +39,8 @@ LodPanel::LodPanel(engine::MessageBus& bus, const plugin_msgs::LodSettings& init
     });
     statistics_subscription_ =
         bus.subscribe<plugin_msgs::SplatStatistics>([this](const plugin_msgs::SplatStatistics& s) { statistics_ = s; });
+    drop_in_subscription_ = bus.subscribe<plugin_msgs::DropInLodStatus>(
+        [this](const plugin_msgs::DropInLodStatus& s) { drop_in_lines_ = s.lines; });
 }
 
 std::string LodPanel::submit(const plugin_msgs::LodSettings& edited) {
@@ -78,7 +79,7 @@ void LodPanel::draw() {
     enum_combo("upscaler", edit.upscaler, plugin_msgs::kUpscalerNames);
     submit(edit);
     if (!error_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", error_.c_str());
-    for (const std::string& line : bake::running_bake_lines()) ImGui::TextUnformatted(line.c_str());  // "lod": "auto"
+    for (const std::string& line : drop_in_lines_) ImGui::TextUnformatted(line.c_str());  // "lod": "auto"
 
     ImGui::Separator();
     if (!statistics_) {

@@ -3,15 +3,28 @@
 // per uploaded part, under a root node the game owns. The splat pass's incremental GPU scene
 // (gpu/gpu_scene.h) then uploads exactly that part's pages and frees them when the node goes, so
 // the streamer's byte counts (stream_policy.h, PageLayout) are the GPU's.
+#include <filesystem>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "engine/scene/node.h"
+#include "splat_lod/core/world_manifest.h"
 #include "splat_lod/stream/stream_interfaces.h"
 
+namespace engine {
+class AssetCache;
+}
+
 namespace splat_lod::world {
+
+// A world's props and terrain mesh under `parent` (one node per prop, "<file stem> <index>", with the
+// prop's transform, and "terrain"): a glTF's triangles as a mesh component (drawn by the mesh pass and
+// composited with the splats by depth), its Gaussian splats (an import's far layer) as a splat component
+// of at most `sh_degree_cap`. Files are relative to `folder`; errors name them.
+void add_world_props(engine::Node& parent, const WorldManifest& manifest, const std::filesystem::path& folder,
+                     engine::AssetCache& assets, int sh_degree_cap = kMaxShDegree);
 
 class SceneResidencySink final : public ResidencySink {
 public:

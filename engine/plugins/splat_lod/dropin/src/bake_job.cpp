@@ -1,18 +1,17 @@
-#include "drop_in_lod.h"
-
+// The drop-in LOD's bake (drop_in_jobs.h): the cache lookup when a scene loads, the background bake,
+// and the swap between two frames.
 #include <algorithm>
 #include <system_error>
 #include <vector>
 
+#include "drop_in_jobs.h"
 #include "engine/assets/asset_cache.h"
-#include "engine/core/error.h"
 #include "engine/core/file_io.h"
 #include "engine/core/log.h"
-#include "engine/scene/scene.h"
 #include "splat_lod/bake/lod_cache.h"
 #include "splat_lod/core/splat_io.h"
 
-namespace splat_lod {
+namespace splat_lod::dropin {
 namespace fs = std::filesystem;
 
 namespace {
@@ -38,18 +37,44 @@ std::vector<std::uint8_t> input_bytes(const fs::path& asset) {
     return bytes;
 }
 
+// A running bake, swapped in by the first frame after it is done.
+class BakeJob final : public LodJob {
+public:
+    explicit BakeJob(std::shared_ptr<bake::BackgroundBake> bake) : bake_(std::move(bake)) {}
+    const std::shared_ptr<bake::BackgroundBake>& bake() const { return bake_; }
+
+    bool update(SplatComponent& component, const LodFrame&) override {
+        switch (bake_->state()) {
+            case bake::BackgroundBake::State::running:
+                return true;
+            case bake::BackgroundBake::State::done:
+                component.cloud = bake_->result();
+                engine::log_info("splat_lod: " + bake_->name() + ": drawn with its levels of detail from now on");
+                return false;
+            case bake::BackgroundBake::State::failed:
+            case bake::BackgroundBake::State::cancelled:
+                break;
+        }
+        return false;  // already logged; the trained scene stays
+    }
+
+    std::string status() const override {
+        return "baking " + bake_->name() + ": " + std::to_string(bake_->percent()) + " %";
+    }
+
+private:
+    std::shared_ptr<bake::BackgroundBake> bake_;
+};
+
 }  // namespace
 
-void start_drop_in_lod(SplatComponent& component, const DropInLodSettings& settings, engine::AssetCache& assets) {
-    if (!component.cloud || component.cloud->has_lod_attributes()) return;
+std::shared_ptr<bake::BackgroundBake> background_bake(const SplatComponent& component) {
+    const auto* job = dynamic_cast<const BakeJob*>(component.lod_job.get());
+    return job ? job->bake() : nullptr;
+}
+
+void start_bake(SplatComponent& component, const DropInLodSettings& settings, engine::AssetCache& assets) {
     const std::string name = component.asset.filename().string();
-    if (const std::string why = settings.world_advice ? settings.world_advice(*component.cloud) : ""; !why.empty()) {
-        engine::log_warning("splat_lod: " + name + ": " + why +
-                            ": drawn as trained, without levels of detail (baking it as one file would take long and "
-                            "serve it badly); make it a streamed world: splat_world --from " +
-                            component.asset.string() + " --out <folder> (docs/world_lod.md, \"Importing a capture\")");
-        return;
-    }
     fs::path entry;
     try {
         const fs::path folder = settings.cache_folder.empty() ? bake::lod_cache_folder() : settings.cache_folder;
@@ -70,30 +95,8 @@ void start_drop_in_lod(SplatComponent& component, const DropInLodSettings& setti
                                 e.what() + ")");
         }
     }
-    component.lod_bake =
-        std::make_shared<bake::BackgroundBake>(component.cloud, entry, settings.setup, name, settings.observer);
+    component.lod_job = std::make_shared<BakeJob>(
+        std::make_shared<bake::BackgroundBake>(component.cloud, entry, settings.setup, name, settings.observer));
 }
 
-bool SplatComponent::update_lod() {
-    if (!lod_bake) return false;
-    switch (lod_bake->state()) {
-        case bake::BackgroundBake::State::running:
-            return false;
-        case bake::BackgroundBake::State::done:
-            cloud = lod_bake->result();
-            engine::log_info("splat_lod: " + lod_bake->name() + ": drawn with its levels of detail from now on");
-            lod_bake.reset();
-            return true;
-        case bake::BackgroundBake::State::failed:
-        case bake::BackgroundBake::State::cancelled:
-            break;
-    }
-    lod_bake.reset();  // already logged; the trained scene stays
-    return false;
-}
-
-void LodSwapPass::execute(engine::FrameContext& frame) {
-    for (SplatComponent* component : frame.scene.components<SplatComponent>()) component->update_lod();
-}
-
-}  // namespace splat_lod
+}  // namespace splat_lod::dropin

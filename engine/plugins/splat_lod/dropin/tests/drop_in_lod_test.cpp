@@ -42,15 +42,15 @@ TEST(DropInLod, FirstLoadDrawsTheTrainedSceneThenTheBakeAndTheNextLoadHitsTheCac
         ASSERT_NE(splat.cloud, nullptr);
         EXPECT_FALSE(splat.cloud->has_lod_attributes());
         EXPECT_EQ(splat.cloud->size(), trained.size());
-        const auto job = splat.lod_bake;
+        const auto job = splat_lod::dropin::background_bake(splat);
         ASSERT_NE(job, nullptr);
         EXPECT_FALSE(splat.update_lod()) << "a running bake keeps the trained scene";
-        EXPECT_EQ(splat.lod_bake, job);
+        EXPECT_EQ(splat_lod::dropin::background_bake(splat), job);
         release = true;
         ASSERT_TRUE(job->wait(120.0));
         ASSERT_EQ(job->state(), BackgroundBake::State::done) << job->error();
         EXPECT_TRUE(splat.update_lod());
-        EXPECT_EQ(splat.lod_bake, nullptr);
+        EXPECT_EQ(splat_lod::dropin::background_bake(splat), nullptr);
         baked = splat.cloud;
         EXPECT_TRUE(baked->has_lod_attributes());
         EXPECT_GT(baked->size(), trained.size());
@@ -64,7 +64,7 @@ TEST(DropInLod, FirstLoadDrawsTheTrainedSceneThenTheBakeAndTheNextLoadHitsTheCac
     auto engine = make_engine();
     auto scene = engine->load_scene(scene_file);
     auto& splat = splat_of(*scene);
-    EXPECT_EQ(splat.lod_bake, nullptr) << "no bake on a cache hit";
+    EXPECT_EQ(splat_lod::dropin::background_bake(splat), nullptr) << "no bake on a cache hit";
     ASSERT_TRUE(splat.cloud->has_lod_attributes());
     EXPECT_EQ(splat.cloud->size(), baked->size());
     EXPECT_EQ(splat.cloud->lod_level, baked->lod_level);
@@ -73,30 +73,20 @@ TEST(DropInLod, FirstLoadDrawsTheTrainedSceneThenTheBakeAndTheNextLoadHitsTheCac
     settings.setup.options.refine_iterations = 21;
     auto other_engine = make_engine(settings);
     auto other = other_engine->load_scene(scene_file);
-    EXPECT_NE(splat_of(*other).lod_bake, nullptr);
+    EXPECT_NE(splat_lod::dropin::background_bake(splat_of(*other)), nullptr);
 }
 
-TEST(DropInLod, ACaptureBetterAsAStreamedWorldIsDrawnAsTrainedWithoutABake) {
+TEST(DropInLod, TheRealAdviceKeepsASmallSceneBaking) {
     const fs::path dir = engine::test::output_dir("DropInLod");
     fs::remove_all(dir);
     auto settings = quick_settings();
     settings.cache_folder = dir / "cache";
-    std::size_t asked = 0;
-    settings.world_advice = [&](const splat_lod::SplatCloud& cloud) {
-        ++asked;
-        return "a flat capture of " + std::to_string(cloud.size()) + " Gaussians";
-    };
     auto engine = make_engine(settings);
     auto scene = engine->load_scene(write_scene(dir, R"(, "lod": "auto")"));
     auto& splat = splat_of(*scene);
-    EXPECT_EQ(asked, 1u);
-    ASSERT_NE(splat.cloud, nullptr);
-    EXPECT_FALSE(splat.cloud->has_lod_attributes());
-    EXPECT_EQ(splat.lod_bake, nullptr) << "no bake of one file for it";
-    EXPECT_FALSE(splat.update_lod());
-    EXPECT_TRUE(entries(dir / "cache").empty());
-    // The real rule keeps small scenes baking.
     EXPECT_EQ(splat_lod::bake::streamed_world_advice(*splat.cloud), "");
+    EXPECT_NE(splat_lod::dropin::background_bake(splat), nullptr);
+    EXPECT_EQ(splat_lod::dropin::world_status(splat).state, splat_lod::dropin::WorldStatus::State::none);
 }
 
 TEST(DropInLod, FailedBakeKeepsTheTrainedSceneAndCachesNothing) {
@@ -112,12 +102,12 @@ TEST(DropInLod, FailedBakeKeepsTheTrainedSceneAndCachesNothing) {
     auto scene = engine->load_scene(write_scene(dir, R"(, "lod": "auto")"));
     auto& splat = splat_of(*scene);
     const auto trained = splat.cloud;
-    ASSERT_NE(splat.lod_bake, nullptr);
-    ASSERT_TRUE(splat.lod_bake->wait(60.0));
-    EXPECT_EQ(splat.lod_bake->state(), BackgroundBake::State::failed);
-    EXPECT_EQ(splat.lod_bake->error(), "scene.ply: forced failure");
+    ASSERT_NE(splat_lod::dropin::background_bake(splat), nullptr);
+    ASSERT_TRUE(splat_lod::dropin::background_bake(splat)->wait(60.0));
+    EXPECT_EQ(splat_lod::dropin::background_bake(splat)->state(), BackgroundBake::State::failed);
+    EXPECT_EQ(splat_lod::dropin::background_bake(splat)->error(), "scene.ply: forced failure");
     EXPECT_FALSE(splat.update_lod());
-    EXPECT_EQ(splat.lod_bake, nullptr);
+    EXPECT_EQ(splat_lod::dropin::background_bake(splat), nullptr);
     EXPECT_EQ(splat.cloud, trained) << "the trained scene keeps drawing";
     EXPECT_TRUE(entries(cache).empty());
 }
@@ -140,13 +130,14 @@ TEST(DropInLod, BakeCancelledMidwayOrByClosingTheSceneCachesNothing) {
         auto scene = engine->load_scene(scene_file);
         const ReleaseOnExit guard{release};
         auto& splat = splat_of(*scene);
-        ASSERT_NE(splat.lod_bake, nullptr);
-        while (!midway && splat.lod_bake->state() == BackgroundBake::State::running) std::this_thread::yield();
+        ASSERT_NE(splat_lod::dropin::background_bake(splat), nullptr);
+        while (!midway && splat_lod::dropin::background_bake(splat)->state() == BackgroundBake::State::running)
+            std::this_thread::yield();
         ASSERT_TRUE(midway.load());
-        splat.lod_bake->cancel();
+        splat_lod::dropin::background_bake(splat)->cancel();
         release = true;
-        ASSERT_TRUE(splat.lod_bake->wait(60.0));
-        EXPECT_EQ(splat.lod_bake->state(), BackgroundBake::State::cancelled);
+        ASSERT_TRUE(splat_lod::dropin::background_bake(splat)->wait(60.0));
+        EXPECT_EQ(splat_lod::dropin::background_bake(splat)->state(), BackgroundBake::State::cancelled);
         EXPECT_FALSE(splat.update_lod());
         EXPECT_FALSE(splat.cloud->has_lod_attributes());
     }
@@ -156,7 +147,7 @@ TEST(DropInLod, BakeCancelledMidwayOrByClosingTheSceneCachesNothing) {
     {
         auto scene = engine->load_scene(scene_file);
         const ReleaseOnExit guard{release};
-        const auto job = splat_of(*scene).lod_bake;
+        const auto job = splat_lod::dropin::background_bake(splat_of(*scene));
         ASSERT_NE(job, nullptr);
         while (!midway && job->state() == BackgroundBake::State::running) std::this_thread::yield();
         EXPECT_TRUE(midway.load());
@@ -172,7 +163,7 @@ TEST(DropInLod, NoLodKeyDrawsTheFileAsItIs) {
     settings.cache_folder = dir / "cache";
     auto engine = make_engine(settings);
     auto scene = engine->load_scene(write_scene(dir, ""));
-    EXPECT_EQ(splat_of(*scene).lod_bake, nullptr);
+    EXPECT_EQ(splat_lod::dropin::background_bake(splat_of(*scene)), nullptr);
     EXPECT_FALSE(splat_of(*scene).cloud->has_lod_attributes());
     EXPECT_FALSE(fs::exists(dir / "cache"));
 }

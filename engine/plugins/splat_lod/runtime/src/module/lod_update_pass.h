@@ -1,0 +1,28 @@
+#pragma once
+// The pass that runs the drop-in LOD's work ("lod": "auto", splat_component.h) first in every frame:
+// SplatComponent::update_lod() for each splat component of the scene, with the frame's camera and the
+// splat pass's thresholds, and the work's status lines on the bus (plugin_msgs::DropInLodStatus).
+#include <string>
+#include <vector>
+
+#include "engine/render/render_pass.h"
+#include "splat_lod/splat_component.h"
+
+namespace splat_lod {
+
+class SplatPass;
+
+class LodSwapPass : public engine::RenderPass {
+public:
+    // `splat` (may be null) gives the thresholds; it must outlive this pass.
+    explicit LodSwapPass(const SplatPass* splat = nullptr) : splat_(splat) {}
+    std::string name() const override { return "splat.lod_swap"; }
+    int order() const override { return engine::pass_order::mesh - 50; }
+    void execute(engine::FrameContext& frame) override;
+
+private:
+    const SplatPass* splat_;
+    std::vector<std::string> published_;  // the status lines last published
+};
+
+}  // namespace splat_lod
