@@ -1,11 +1,17 @@
 // engine_render: renders a scene file to PNG, headless.
 //   engine_render --scene content/scenes/helmet.json --out helmet.png [--width 960 --height 540]
 //                 [--camera NODE | --eye X,Y,Z --target X,Y,Z [--up X,Y,Z] [--fov-y DEG]]
-//                 [--plugin LIB.so ...] [--frames N]
+//                 [--plugin LIB.so ...] [--frames N] [--settle SECONDS]
 // Static plugins built with the engine (e.g. splat_lod) are always started; --plugin loads more.
+// --settle: before the N frames, renders frames while a plugin reports background work
+// (plugin_msgs::BackgroundWork: a drop-in LOD baking or importing a capture), printing its lines as they
+// change, for at most SECONDS; the output is then the finished picture (an error if the work is not done).
 // Prints the GL renderer and the per-pass CPU/GPU times of the last frame.
+#include <chrono>
 #include <cstdio>
+#include <map>
 
+#include <plugin_msgs/background_work.h>
 #include <plugin_msgs/frame_statistics.h>
 #include <CLI/CLI.hpp>
 
@@ -25,6 +31,7 @@ struct Options {
     std::vector<std::string> plugins;
     int width = 960, height = 540, frames = 1;
     float fov_y_deg = 50.0f;
+    double settle_seconds = 0.0;
 };
 
 engine::CameraView choose_camera(const engine::Scene& scene, const Options& o) {
@@ -41,6 +48,41 @@ engine::CameraView choose_camera(const engine::Scene& scene, const Options& o) {
     return engine::framing_camera(scene, o.width, o.height, fov);
 }
 
+// Renders frames while any plugin reports background work, at most `seconds`; throws when it is still
+// going then. Prints each new set of lines with the time since the start.
+void settle(engine::Engine& engine, const engine::Scene& scene, const engine::CameraView& camera,
+            engine::RenderTarget& target, double seconds) {
+    std::map<std::string, std::vector<std::string>> work;  // by source
+    bool changed = false;
+    const auto subscription =
+        engine.bus().subscribe<plugin_msgs::BackgroundWork>([&](const plugin_msgs::BackgroundWork& w) {
+            work[w.source] = w.lines;
+            changed = true;
+        });
+    const auto start = std::chrono::steady_clock::now();
+    const auto elapsed = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    for (int frame = 1;; ++frame) {
+        engine.renderer().render(scene, camera, target);
+        if (changed)
+            for (const auto& [source, lines] : work)
+                for (const auto& line : lines)
+                    std::printf("  %7.1f s, frame %d: %s: %s\n", elapsed(), frame, source.c_str(), line.c_str());
+        changed = false;
+        std::fflush(stdout);  // progress, also when stdout is a file
+        bool busy = false;
+        for (const auto& [source, lines] : work) busy = busy || !lines.empty();
+        if (!busy) {
+            std::printf("settled after %d frames, %.1f s\n", frame, elapsed());
+            return;
+        }
+        if (elapsed() > seconds)
+            engine::fail("--settle " + std::to_string(seconds) + ": background work still running after " +
+                         std::to_string(frame) + " frames");
+    }
+}
+
 int run(const Options& o) {
     auto context = engine::HeadlessGlContext::create();
     engine::Engine engine;
@@ -49,6 +91,7 @@ int run(const Options& o) {
     const auto scene = engine.load_scene(o.scene);
     const engine::CameraView camera = choose_camera(*scene, o);
     engine::RenderTarget target(o.width, o.height);
+    if (o.settle_seconds > 0.0) settle(engine, *scene, camera, target, o.settle_seconds);
     for (int i = 0; i < o.frames; ++i) engine.renderer().render(*scene, camera, target);
     engine::write_png(o.out, target.read_color());
 
@@ -84,6 +127,9 @@ int main(int argc, char** argv) {
     app.add_option("--fov-y", o.fov_y_deg, "vertical field of view in degrees")->check(CLI::Range(1.0f, 179.0f));
     app.add_option("--plugin", o.plugins, "shared-library plugin to load (repeatable)");
     app.add_option("--frames", o.frames, "frames to render (timings are from the last)")->check(CLI::Range(1, 100000));
+    app.add_option("--settle", o.settle_seconds,
+                   "first render while plugins report background work (a drop-in LOD), at most this many seconds")
+        ->check(CLI::Range(0.0, 1e6));
     CLI11_PARSE(app, argc, argv);
     try {
         return run(o);

@@ -82,6 +82,7 @@ void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::Ca
 void record_streaming(GameWorld& world, FrameRecord& record) {
     const auto& streamer = world.streamer();
     record.resident_bytes = streamer.resident_bytes();
+    record.props_gpu_bytes = world.props_gpu_bytes();
     record.stream_upload_bytes = streamer.stats().uploaded_bytes_last_update;
     record.failures_total = streamer.stats().failures;
     record.chunks = world.census();

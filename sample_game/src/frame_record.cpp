@@ -140,7 +140,9 @@ std::vector<FrameColumn> memory_columns() {
     return {
         {"resident_bytes", "streamed GPU bytes resident at the end of the frame (streamer's count, whole pages)",
          [](R r) { return integer(r.resident_bytes); }},
-        {"gpu_page_bytes", "GPU scene pages in use x bytes per page (equals resident_bytes)",
+        {"props_gpu_bytes", "GPU bytes of the props' splats (an import's far layer; not streamed, whole pages)",
+         [](R r) { return integer(r.props_gpu_bytes); }},
+        {"gpu_page_bytes", "GPU scene pages in use x bytes per page (equals resident_bytes + props_gpu_bytes)",
          [](R r) { return integer(r.gpu_page_bytes); }},
         {"gpu_total_bytes", "all GPU buffers of the splat pass: scene capacity plus per-frame buffers",
          [](R r) { return integer(r.gpu_total_bytes); }},

@@ -94,7 +94,14 @@ GameWorld::~GameWorld() {
 }
 
 void GameWorld::load_meshes() {
-    sw::add_world_props(scene_->root().add_child("props"), manifest_, folder_, engine_.assets(), settings_.sh_degree);
+    engine::Node& props = scene_->root().add_child("props");
+    sw::add_world_props(props, manifest_, folder_, engine_.assets(), settings_.sh_degree);
+    const sw::PageLayout pages = streamer_settings(settings_).gpu_pages;
+    props.visit([&](const engine::Node& node) {
+        if (const auto* splats = node.find_component<splat_lod::SplatComponent>(); splats && splats->cloud)
+            props_gpu_bytes_ +=
+                sw::gpu_bytes(splats->cloud->size(), std::min(splats->sh_degree_cap, splats->cloud->sh_degree), pages);
+    });
 }
 
 void GameWorld::start_streamer(const sw::StreamerSettings& settings) {

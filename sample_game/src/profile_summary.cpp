@@ -50,7 +50,7 @@ void budget_checks(const std::vector<FrameRecord>& lod, ProfileSummary& s) {
         s.total_upload_bytes += r.stream_upload_bytes;
         s.frames_over_memory += r.resident_bytes > s.memory_budget_bytes ? 1 : 0;
         s.frames_over_upload += r.stream_upload_bytes > s.upload_budget_bytes ? 1 : 0;
-        s.frames_pages_differ += r.gpu_page_bytes != r.resident_bytes ? 1 : 0;
+        s.frames_pages_differ += r.gpu_page_bytes != r.resident_bytes + r.props_gpu_bytes ? 1 : 0;
         s.failures = std::max(s.failures, r.failures_total);
     }
     s.memory.measured = !lod.empty();

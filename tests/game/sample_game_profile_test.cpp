@@ -1,8 +1,8 @@
 // sample_game on a tiny generated world through the real engine (headless EGL): the profile walks
 // the whole path with binding budgets and writes one CSV row per frame with the documented
 // columns, budgets respected on every frame, the baseline's frames, plots, frames and summary;
-// the world's props and terrain mesh become mesh nodes; loading the whole world holds exactly its
-// bytes on the GPU.
+// the world's props and terrain mesh become mesh nodes, an imported world's far layer a splat node;
+// loading the whole world holds exactly its bytes on the GPU.
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -17,12 +17,14 @@
 #include "sample_game/frame_record.h"
 #include "sample_game/game_world.h"
 #include "sample_game/profile_run.h"
+#include "splat_lod/core/splat_io.h"
 #include "splat_lod/eval/sheet_drawing.h"
 #include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_lod/splat_renderer.h"
 #include "splat_lod/stream/stream_policy.h"
 #include "splat_lod/worldgen/world_generator.h"
+#include "splat_lod/worldgen/world_import.h"
 #include "test_support.h"
 #include "tiny_world.h"
 
@@ -78,7 +80,7 @@ TEST_F(SampleGameTest, ProfileWalksThePathWithinItsBudgetsAndWritesEveryOutput) 
         EXPECT_EQ(lod.number(r, "frame"), static_cast<double>(r));
         segments.insert(lod.rows[r][lod.column("segment")]);
         EXPECT_LE(lod.number(r, "resident_bytes"), static_cast<double>(o.settings.memory_budget_bytes));
-        EXPECT_EQ(lod.number(r, "gpu_page_bytes"), lod.number(r, "resident_bytes"));
+        EXPECT_EQ(lod.number(r, "gpu_page_bytes"), lod.number(r, "resident_bytes") + lod.number(r, "props_gpu_bytes"));
         EXPECT_LE(lod.number(r, "upload_bytes"), static_cast<double>(o.settings.upload_budget_bytes));
         EXPECT_EQ(lod.number(r, "failures_total"), 0.0);
         EXPECT_GT(lod.number(r, "frame_ms"), 0.0);
@@ -168,6 +170,58 @@ TEST_F(SampleGameTest, WorldPutsPropsAndTerrainInTheSceneAndCanHoldAllOfIt) {
                                target);
     EXPECT_EQ(std::uint64_t(world.pass().memory().pages_in_use) * world.pass().memory().page_bytes,
               whole_world_bytes(m));
+}
+
+// An imported capture's far layer (a splat glTF prop) is drawn beside the streamed chunks, and the GPU holds
+// exactly the streamer's pages plus the far layer's.
+TEST_F(SampleGameTest, AnImportedWorldDrawsItsFarLayerBesideTheChunks) {
+    const auto dir = engine::test::output_dir("sample_game") / "imported";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    splat_lod::SplatCloud capture;  // 64 × 64 ground Gaussians over 32 units and two huge ones above them
+    capture.resize(64 * 64 + 2);
+    for (std::size_t k = 0; k < 64 * 64; ++k) {
+        capture.positions[k] = {-16.0f + 0.5f * static_cast<float>(k % 64), 0.0f,
+                                -16.0f + 0.5f * static_cast<float>(k / 64)};
+        capture.log_scales[k] = {std::log(0.3f), std::log(0.01f), std::log(0.3f)};
+        capture.opacity_logits[k] = 3.0f;
+        capture.sh_dc[k] = {0.4f, 0.6f, 0.2f};
+    }
+    for (std::size_t k = 64 * 64; k < capture.size(); ++k) {
+        capture.positions[k] = {k % 2 == 0 ? -6.0f : 6.0f, 20.0f, 0.0f};
+        capture.log_scales[k] = glm::vec3(std::log(25.0f));
+        capture.opacity_logits[k] = -2.0f;
+    }
+    splat_lod::write_inria_ply(dir / "capture.ply", capture);
+    sw::ImportOptions import;
+    import.capture = dir / "capture.ply";
+    import.output = dir / "world";
+    import.max_chunk_gaussians = 1024;
+    import.bake.refine_iterations = 0;
+    import.bake_width = import.bake_height = 64;
+    const sw::ImportResult imported = sw::import_world(import);
+    ASSERT_EQ(imported.manifest.props.size(), 1u) << "the far layer";
+    ASSERT_GE(imported.summary.far_layer, 2u);
+
+    engine::Engine engine;
+    engine.plugins().add_static(splat_lod::make_plugin());
+    GameSettings settings;
+    settings.sync_streaming = true;
+    GameWorld world(engine, dir / "world", settings);
+    const auto splats = world.scene().components<splat_lod::SplatComponent>();
+    ASSERT_EQ(splats.size(), 1u) << "before any update, only the far layer";
+    EXPECT_EQ(splats[0]->cloud->size(), imported.summary.far_layer);
+    EXPECT_EQ(world.props_gpu_bytes(),
+              sw::gpu_bytes(imported.summary.far_layer, std::min(3, splats[0]->cloud->sh_degree), sw::PageLayout{}));
+    engine::RenderTarget target(96, 64);
+    const auto camera = world.camera({0.0f, 30.0f, 30.0f}, glm::normalize(glm::vec3(0.0f, -1.0f, -1.0f)), 96, 64);
+    for (std::uint64_t frame = 0; frame < 6; ++frame) {
+        world.update_streaming(camera, frame);
+        splat_lod::render_complete(engine, world.scene(), camera, target);
+    }
+    EXPECT_GT(world.streamer().resident_bytes(), 0u);
+    EXPECT_EQ(std::uint64_t(world.pass().memory().pages_in_use) * world.pass().memory().page_bytes,
+              world.streamer().resident_bytes() + world.props_gpu_bytes());
 }
 
 TEST(SampleGameWorld, AMissingWorldSaysHowToMakeIt) {

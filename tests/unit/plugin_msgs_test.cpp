@@ -53,7 +53,7 @@ void expect_rejected(const std::vector<Rejection>& cases) {
 
 TEST(PluginMsgs, KindsAreDistinct) {
     const std::vector<std::string_view> kinds{CameraState::kind, FrameStatistics::kind, LodSettings::kind,
-                                              StreamEvent::kind, ResidencyReport::kind};
+                                              StreamEvent::kind, ResidencyReport::kind, BackgroundWork::kind};
     for (std::size_t i = 0; i < kinds.size(); ++i)
         for (std::size_t j = i + 1; j < kinds.size(); ++j) EXPECT_NE(kinds[i], kinds[j]);
     EXPECT_EQ(LodSettings::kind, "lod_settings");
@@ -82,6 +82,14 @@ TEST(PluginMsgs, FrameStatisticsRoundTrips) {
     stats.passes = {{"mesh", 1.25, 0.5}, {"splat_lod.raster", 3.0, -1.0}};
     expect_round_trip(stats);
     expect_round_trip(FrameStatistics{});
+}
+
+TEST(PluginMsgs, BackgroundWorkRoundTripsAndRejectsWhatIsNotAList) {
+    expect_round_trip(BackgroundWork{"splat_lod", 7, {"baking scene.ply: 42 %", "importing park.ply: chunks 3 %"}});
+    expect_round_trip(BackgroundWork{});
+    expect_rejected<BackgroundWork>({{R"({"lines": "baking"})", "background_work.lines"},
+                                     {R"({"frame_index": -1})", "background_work.frame_index"},
+                                     {R"({"job": 1})", "background_work"}});
 }
 
 TEST(PluginMsgs, LodSettingsDefaultsFollowTheDesign) {

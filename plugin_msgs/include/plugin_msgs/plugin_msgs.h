@@ -4,5 +4,6 @@
 // header-only, with no GL and no engine dependency. A plugin's own messages follow the same pattern
 // (plugin_msgs/detail/ has the JSON helpers) and live in the plugin's folder, e.g. splat_lod's in
 // engine/plugins/splat_lod/msgs/include/splat_lod/msgs/.
+#include "plugin_msgs/background_work.h"
 #include "plugin_msgs/camera_state.h"
 #include "plugin_msgs/frame_statistics.h"

@@ -46,7 +46,8 @@ struct FrameRecord {
     std::array<std::uint64_t, 4> drawn_per_level{};  // visible per LOD level 1..4
 
     std::uint64_t resident_bytes = 0;   // the streamer's count of resident GPU bytes (pages)
-    std::uint64_t gpu_page_bytes = 0;   // the GPU scene's pages in use × bytes per page (must equal it)
+    std::uint64_t props_gpu_bytes = 0;  // the splats of the world's props (an import's far layer), always resident
+    std::uint64_t gpu_page_bytes = 0;   // the GPU scene's pages in use × bytes per page (must equal the two above)
     std::uint64_t gpu_total_bytes = 0;  // everything the splat pass holds: scene buffers' capacity + frame buffers
     std::uint64_t stream_upload_bytes =
         0;                               // bytes the streamer handed to the GPU side this frame (the budgeted amount)

@@ -73,6 +73,8 @@ public:
     ChunkCensus census() const;
     // GPU bytes of every chunk fully resident (every level in whole pages), what the baseline holds.
     std::uint64_t whole_world_gpu_bytes() const;
+    // GPU bytes of the props' splats (an import's far layer), resident all the time beside the streamed chunks.
+    std::uint64_t props_gpu_bytes() const { return props_gpu_bytes_; }
 
     // Draws one frame with a few Gaussians of the first chunk so that every shader of the frame
     // is compiled before anything is timed, then removes them (nothing stays resident).
@@ -96,6 +98,7 @@ private:
     WorldGround ground_;
     std::unique_ptr<engine::Scene> scene_;
     engine::Node* chunks_root_ = nullptr;
+    std::uint64_t props_gpu_bytes_ = 0;
     splat_lod::world::FileChunkSource source_;
     std::unique_ptr<splat_lod::world::SceneResidencySink> sink_;
     std::unique_ptr<splat_lod::world::ChunkStreamer> streamer_;

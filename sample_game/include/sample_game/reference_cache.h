@@ -26,8 +26,9 @@
 namespace sample_game {
 
 // 2: the world by chunks_checksum; 3: each chosen frame with its successor; 4: every chunk drawn whole
-// (version 3 could draw its first frames while the last levels loaded were still fading in)
-inline constexpr int kReferenceFormatVersion = 4;
+// (version 3 could draw its first frames while the last levels loaded were still fading in); 5: the splats
+// of the world's props drawn (an import's far layer; version 4 left them out, in the walk as well)
+inline constexpr int kReferenceFormatVersion = 5;
 inline constexpr int kDefaultReferenceSupersample = 3;
 // The largest side of one render; a larger supersampled frame is drawn in tiles of at most this.
 inline constexpr int kReferenceMaxRenderSide = 2048;

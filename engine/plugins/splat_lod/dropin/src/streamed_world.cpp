@@ -26,7 +26,8 @@ engine::Transform capture_from_world(const sw::WorldManifest& manifest, const fs
     if (manifest.capture.empty()) return t;  // a generated world: its own frame
     glm::dmat3 r;
     for (int row = 0; row < 3; ++row)
-        for (int col = 0; col < 3; ++col) r[col][row] = manifest.capture.rotation[static_cast<std::size_t>(row * 3 + col)];
+        for (int col = 0; col < 3; ++col)
+            r[col][row] = manifest.capture.rotation[static_cast<std::size_t>(row * 3 + col)];
     if (std::abs(glm::determinant(r) - 1.0) > 1e-3)
         engine::fail((folder / sw::kManifestFileName).string() + ": the capture's rotation is not a rotation");
     const glm::dmat3 back = glm::transpose(r);

@@ -1,9 +1,9 @@
 // The drop-in LOD's world (drop_in_jobs.h): the capture imported in the background into the cache's
 // worlds/ folder, then streamed under the component's node (streamed_world.h).
 #include <atomic>
-#include <cstdio>
 #include <chrono>
 #include <condition_variable>
+#include <cstdio>
 #include <mutex>
 #include <thread>
 
@@ -68,7 +68,8 @@ private:
         std::string error;
         try {
             const world::ImportResult result = world::import_world(options);
-            engine::log_info("splat_lod: " + name_ + (result.summary.cached ? ": its streamed world is " : ": imported as ") +
+            engine::log_info("splat_lod: " + name_ +
+                             (result.summary.cached ? ": its streamed world is " : ": imported as ") +
                              options.output.string() + (result.summary.cached ? " already" : ""));
         } catch (const std::exception& e) {
             error = e.what();
@@ -95,11 +96,11 @@ class WorldJob final : public LodJob {
 public:
     WorldJob(const SplatComponent& component, const DropInLodSettings& settings, engine::AssetCache& assets,
              fs::path folder)
-        : settings_(settings), assets_(assets), folder_(std::move(folder)) {
+        : settings_(settings), assets_(assets), folder_(std::move(folder)), name_(component.asset.filename().string()) {
         world::ImportOptions options = settings.import;
         options.capture = component.asset;
         options.output = folder_;
-        import_ = std::make_unique<BackgroundImport>(options, component.asset.filename().string(), settings.observer);
+        import_ = std::make_unique<BackgroundImport>(options, name_, settings.observer);
     }
 
     bool update(SplatComponent& component, const LodFrame& frame) override {
@@ -110,7 +111,9 @@ public:
     }
 
     std::string status() const override {
-        if (import_ && !import_->finished()) return import_->line();
+        if (import_) return import_->line();
+        if (world_ && world_->holding())
+            return "streaming " + name_ + ": loading the first view (the trained scene meanwhile)";
         return "";
     }
 
@@ -150,6 +153,7 @@ private:
     DropInLodSettings settings_;
     engine::AssetCache& assets_;
     fs::path folder_;
+    std::string name_;
     std::unique_ptr<BackgroundImport> import_;
     std::unique_ptr<StreamedWorld> world_;
     std::string error_;
@@ -159,11 +163,14 @@ private:
 
 fs::path world_cache_folder(const fs::path& cache_folder, const fs::path& capture) {
     const std::string path = fs::absolute(capture).lexically_normal().string();
-    const auto crc = static_cast<unsigned>(
-        crc32(0L, reinterpret_cast<const Bytef*>(path.data()), static_cast<uInt>(path.size())));
+    const auto crc =
+        static_cast<unsigned>(crc32(0L, reinterpret_cast<const Bytef*>(path.data()), static_cast<uInt>(path.size())));
     char hash[9];
     std::snprintf(hash, sizeof hash, "%08x", crc);
-    return cache_folder / "worlds" / (capture.stem().string() + "-" + hash);
+    // A streamed SOG or SOG folder is named by its folder ("lod-meta" says nothing).
+    const bool generic = capture.filename() == "lod-meta.json" || capture.filename() == "meta.json";
+    const std::string name = generic ? capture.parent_path().filename().string() : capture.stem().string();
+    return cache_folder / "worlds" / (name + "-" + hash);
 }
 
 WorldStatus world_status(const SplatComponent& component) {

@@ -150,6 +150,16 @@ TEST(DropInWorld, ClosingTheSceneCancelsTheImport) {
     EXPECT_FALSE(fs::exists(folder / splat_lod::world::kManifestFileName));
 }
 
+TEST(DropInWorld, EachCaptureHasItsOwnFolderNamedAfterIt) {
+    using splat_lod::dropin::world_cache_folder;
+    const fs::path park = world_cache_folder("/cache", "/data/park/lod-meta.json");
+    EXPECT_EQ(park.parent_path(), fs::path("/cache/worlds"));
+    EXPECT_EQ(park.filename().string().rfind("park-", 0), 0u) << park << ": a streamed SOG is named by its folder";
+    EXPECT_EQ(world_cache_folder("/cache", "/data/site.ply").filename().string().rfind("site-", 0), 0u);
+    EXPECT_NE(world_cache_folder("/cache", "/data/a/site.ply"), world_cache_folder("/cache", "/data/b/site.ply"));
+    EXPECT_EQ(world_cache_folder("/cache", "/data/./a/site.ply"), world_cache_folder("/cache", "/data/a/site.ply"));
+}
+
 TEST(DropInWorld, WithoutTheDropInLodAutoDrawsTheFileAsItIs) {
     const fs::path dir = engine::test::output_dir("DropInWorld");
     fs::remove_all(dir);

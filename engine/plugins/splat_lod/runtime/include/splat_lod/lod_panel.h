@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "splat_lod/msgs/drop_in_status.h"
+#include "plugin_msgs/background_work.h"
 #include "splat_lod/msgs/lod_settings.h"
 #include "splat_lod/msgs/splat_statistics.h"
 
@@ -37,7 +37,7 @@ public:
     const plugin_msgs::LodSettings& settings() const { return settings_; }
     const std::string& error() const { return error_; }
     const std::optional<plugin_msgs::SplatStatistics>& statistics() const { return statistics_; }
-    // The drop-in LOD's background work, as last published (plugin_msgs::DropInLodStatus).
+    // The drop-in LOD's background work, as last published (plugin_msgs::BackgroundWork).
     const std::vector<std::string>& drop_in_lines() const { return drop_in_lines_; }
 
 private:

@@ -3,7 +3,7 @@
 #include "engine/core/message_bus.h"
 #include "engine/scene/scene.h"
 #include "passes/splat_pass.h"
-#include "splat_lod/msgs/drop_in_status.h"
+#include "plugin_msgs/background_work.h"
 
 namespace splat_lod {
 
@@ -32,7 +32,7 @@ void LodSwapPass::execute(engine::FrameContext& frame) {
     }
     if (lines == published_) return;
     published_ = lines;
-    frame.bus.publish(plugin_msgs::DropInLodStatus{frame.frame_index, std::move(lines)});
+    frame.bus.publish(plugin_msgs::BackgroundWork{source_, frame.frame_index, std::move(lines)});
 }
 
 }  // namespace splat_lod

@@ -30,7 +30,8 @@ public:
         register_gltf_splat_companion(context.components, name());  // the splats of a glTF mesh asset
         context.renderer.add_shader_root(shader_dir());
         auto pass = std::make_shared<SplatPass>();
-        context.renderer.add_pass(std::make_shared<LodSwapPass>(pass.get()));  // "lod": "auto" (lod_update_pass.h)
+        context.renderer.add_pass(
+            std::make_shared<LodSwapPass>(pass.get(), name()));  // "lod": "auto" (lod_update_pass.h)
         // Settings arrive as plugin_msgs::LodSettings from the UI, tools or the game.
         settings_ = context.bus.subscribe<plugin_msgs::LodSettings>(
             [pass = pass.get()](const plugin_msgs::LodSettings& lod) { pass->apply(lod); });

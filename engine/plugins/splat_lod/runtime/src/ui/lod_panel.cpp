@@ -39,8 +39,8 @@ LodPanel::LodPanel(engine::MessageBus& bus, const plugin_msgs::LodSettings& init
     });
     statistics_subscription_ =
         bus.subscribe<plugin_msgs::SplatStatistics>([this](const plugin_msgs::SplatStatistics& s) { statistics_ = s; });
-    drop_in_subscription_ = bus.subscribe<plugin_msgs::DropInLodStatus>(
-        [this](const plugin_msgs::DropInLodStatus& s) { drop_in_lines_ = s.lines; });
+    drop_in_subscription_ = bus.subscribe<plugin_msgs::BackgroundWork>(
+        [this](const plugin_msgs::BackgroundWork& w) { drop_in_lines_ = w.lines; });
 }
 
 std::string LodPanel::submit(const plugin_msgs::LodSettings& edited) {

@@ -63,7 +63,8 @@ DropInLod make_drop_in(DropInLodSettings settings = {});
 // The splat_lod plugin with make_drop_in()'s defaults.
 std::unique_ptr<engine::Plugin> make_plugin();
 
-// The folder "lod": "auto" imports `capture` into: <cache>/worlds/<name>-<hash of its absolute path>.
+// The folder "lod": "auto" imports `capture` into: <cache>/worlds/<name>-<CRC-32 of its absolute path>, the
+// name being the file's stem, or its folder's name for a streamed SOG (lod-meta.json) or a SOG's meta.json.
 std::filesystem::path world_cache_folder(const std::filesystem::path& cache_folder,
                                          const std::filesystem::path& capture);
 
@@ -75,7 +76,7 @@ struct WorldStatus {
     enum class State { none, importing, failed, holding, streaming };
     State state = State::none;  // holding: streamed, the trained scene still drawn until the cut is
     std::filesystem::path folder;
-    std::string error;            // once failed
+    std::string error;                         // once failed
     world::ChunkStreamer* streamer = nullptr;  // holding and streaming
 };
 WorldStatus world_status(const SplatComponent& component);
