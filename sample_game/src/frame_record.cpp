@@ -131,6 +131,10 @@ std::vector<FrameColumn> image_columns() {
          "frames f whose f-1 has a reference too: mean over pixels and RGB of |(M_f - M_f-1) - (R_f - R_f-1)|, "
          "0..255, M this run's images, R the reference (-1: none)",
          [](R r) { return r.temporal_error < 0.0 ? std::string("-1") : decimal(r.temporal_error, 3); }},
+        {"pop",
+         "the same pair: the 99.9th percentile over pixels of that difference averaged over RGB, 0..255 (a switch in "
+         "one frame counts whole, a fade over k frames 1/k; -1: none)",
+         [](R r) { return r.pop < 0.0 ? std::string("-1") : decimal(r.pop, 3); }},
     };
 }
 

@@ -23,6 +23,7 @@
 #include "sample_game/reference_cache.h"
 #include "sample_game/world_path.h"
 #include "splat_lod/eval/image_metrics.h"
+#include "splat_lod/eval/temporal_sweep.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_lod/splat_renderer.h"
 
@@ -120,8 +121,10 @@ struct Run {
             engine::write_png(options.out / "frames" / ("seams_" + frame_name(r.run, r)),
                               seam_picture(image, *truth, map));
         const splat_lod::eval::FloatImage* truth_before = reference_of(r.frame - 1);
-        if (truth_before && previous.frame == r.frame - 1)
+        if (truth_before && previous.frame == r.frame - 1) {
             r.temporal_error = temporal_error(previous.image, image, *truth_before, *truth);
+            r.pop = splat_lod::eval::temporal_pair_pop(previous.image, image, *truth_before, *truth);
+        }
         previous = {r.frame, std::move(image)};
     }
 

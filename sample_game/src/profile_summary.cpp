@@ -288,6 +288,13 @@ std::string temporal_line(const ProfileSummary& s) {
     out += base.pairs > 0 ? formatted(", baseline %.3f over %d pairs (largest %.2f, frame %d)\n", base.mean, base.pairs,
                                       base.largest, base.largest_frame)
                           : std::string(", no baseline pairs\n");
+    out += formatted(
+        "pop (99.9th percentile over pixels of the same difference, per pair, 0..255): LOD peak %.2f "
+        "(frame %d), mean %.2f",
+        lod.pop_peak, lod.pop_peak_frame, lod.pop_mean);
+    out += base.pairs > 0 ? formatted("; baseline peak %.2f (frame %d), mean %.2f\n", base.pop_peak,
+                                      base.pop_peak_frame, base.pop_mean)
+                          : std::string("\n");
     return out;
 }
 
@@ -320,15 +327,18 @@ std::string verdict(const Check& check) {
 
 TemporalErrors temporal_errors(const std::vector<FrameRecord>& rows) {
     TemporalErrors t;
-    double sum = 0.0;
+    double sum = 0.0, pop_sum = 0.0;
     for (const auto& r : rows) {
         if (r.temporal_error < 0.0) continue;
         ++t.pairs;
         sum += r.temporal_error;
         if (t.largest_frame < 0 || r.temporal_error > t.largest)
             t.largest = r.temporal_error, t.largest_frame = r.frame;
+        pop_sum += std::max(r.pop, 0.0);
+        if (t.pop_peak_frame < 0 || r.pop > t.pop_peak) t.pop_peak = std::max(r.pop, 0.0), t.pop_peak_frame = r.frame;
     }
     t.mean = t.pairs > 0 ? sum / t.pairs : 0.0;
+    t.pop_mean = t.pairs > 0 ? pop_sum / t.pairs : 0.0;
     return t;
 }
 

@@ -160,17 +160,23 @@ TEST(ProfileSummary, ReportsEachRunsMeanTemporalError) {
     for (int f = 0; f < 10; ++f) lod[std::size_t(f)].frame = f;
     lod[5].temporal_error = 2.0;
     lod[8].temporal_error = 4.0;
+    lod[5].pop = 40.0;  // a pop where the mean error is small
+    lod[8].pop = 10.0;
     lod[5].psnr_vs_reference = lod[4].psnr_vs_reference = lod[8].psnr_vs_reference = 30.0;
     FrameRecord b;
     b.run = "baseline";
     b.frame = 5;
     b.temporal_error = 6.5;
+    b.pop = 7.0;
     b.psnr_vs_reference = 28.0;
     baseline.push_back(b);
     const ProfileSummary s = summarize(lod, baseline, 128 * kMiB, 4 * kMiB);
     EXPECT_EQ(s.lod_temporal.pairs, 2);
     EXPECT_DOUBLE_EQ(s.lod_temporal.mean, 3.0);
     EXPECT_EQ(s.lod_temporal.largest_frame, 8);
+    EXPECT_DOUBLE_EQ(s.lod_temporal.pop_peak, 40.0);
+    EXPECT_EQ(s.lod_temporal.pop_peak_frame, 5) << "the pop's peak, not the mean error's";
+    EXPECT_DOUBLE_EQ(s.lod_temporal.pop_mean, 25.0);
     EXPECT_EQ(s.baseline_temporal.pairs, 1);
     EXPECT_DOUBLE_EQ(s.baseline_temporal.mean, 6.5);
     ASSERT_EQ(s.reference_frames.size(), 3u);
@@ -180,5 +186,7 @@ TEST(ProfileSummary, ReportsEachRunsMeanTemporalError) {
     const std::string text = format_summary(s, {});
     EXPECT_NE(text.find("LOD 3.000 over 2 pairs"), std::string::npos) << text;
     EXPECT_NE(text.find("baseline 6.500 over 1 pairs"), std::string::npos) << text;
+    EXPECT_NE(text.find("LOD peak 40.00 (frame 5), mean 25.00; baseline peak 7.00 (frame 5)"), std::string::npos)
+        << text;
     EXPECT_EQ(temporal_errors({}).pairs, 0);
 }

@@ -73,6 +73,7 @@ struct FrameRecord {
     // M this run's images, R the reference's): change between consecutive frames that the reference
     // does not have, such as a level popping; −1 elsewhere.
     double temporal_error = -1.0;
+    double pop = -1.0;  // the same pair's pop: splat_lod::eval::temporal_pair_pop (−1: none)
 };
 
 struct FrameColumn {

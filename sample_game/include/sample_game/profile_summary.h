@@ -81,6 +81,8 @@ struct TemporalErrors {
     int pairs = 0;
     double mean = 0.0, largest = 0.0;
     int largest_frame = -1;
+    double pop_mean = 0.0, pop_peak = 0.0;  // over the same pairs (FrameRecord::pop)
+    int pop_peak_frame = -1;
 };
 
 struct ProfileSummary {

@@ -46,6 +46,25 @@ double temporal_pair_error(const FloatImage& method_previous, const FloatImage& 
     return 255.0 * sum / static_cast<double>(method.rgb.size());
 }
 
+double temporal_pair_pop(const FloatImage& method_previous, const FloatImage& method,
+                         const FloatImage& reference_previous, const FloatImage& reference) {
+    check_same_sizes(method_previous, method, reference_previous, reference);
+    if (method.rgb.empty()) return 0.0;
+    std::vector<double> pixels(method.rgb.size() / 3);
+    for (std::size_t p = 0; p < pixels.size(); ++p) {
+        double sum = 0.0;
+        for (std::size_t c = 3 * p; c < 3 * p + 3; ++c)
+            sum += std::abs(static_cast<double>(method.rgb[c]) - method_previous.rgb[c] -
+                            (static_cast<double>(reference.rgb[c]) - reference_previous.rgb[c]));
+        pixels[p] = 255.0 * sum / 3.0;
+    }
+    // Nearest rank: the ⌈q·n⌉-th smallest value.
+    const auto rank = static_cast<std::size_t>(std::ceil(kPopPercentile * static_cast<double>(pixels.size())));
+    const auto nth = pixels.begin() + static_cast<std::ptrdiff_t>(std::clamp<std::size_t>(rank, 1, pixels.size()) - 1);
+    std::nth_element(pixels.begin(), nth, pixels.end());
+    return *nth;
+}
+
 engine::Image temporal_difference_image(const FloatImage& method_previous, const FloatImage& method,
                                         const FloatImage& reference_previous, const FloatImage& reference, float gain) {
     check_same_sizes(method_previous, method, reference_previous, reference);

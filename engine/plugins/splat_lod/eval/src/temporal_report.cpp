@@ -108,16 +108,20 @@ std::string markdown(const TemporalResults& results, const std::string& renderer
         << "; reference: the baseline render of the fine model at " << s * o.width << "\u00d7" << s * o.height
         << " (supersampling s = " << s << ") area-averaged by " << s << "\u00d7" << s
         << ". Temporal error: the mean over consecutive frame pairs of the mean |(M_t \u2212 M_{t\u22121}) \u2212 "
-           "(R_t \u2212 R_{t\u22121})| over pixels and RGB channels, in 8-bit units (0\u2013255). Splat ms: the mean "
+           "(R_t \u2212 R_{t\u22121})| over pixels and RGB channels, in 8-bit units (0\u2013255). Pop: the 99.9th "
+           "percentile over pixels of the same difference averaged over RGB, per pair (a switch in one frame counts "
+           "whole, a fade over k frames 1/k): its largest and mean over the path. Splat ms: the mean "
            "over the frames of the splat pass's GPU time, one timed frame each (GPU: "
         << renderer << "; compare methods within one run).\n\n"
-        << "| path | frames | method | temporal error | largest pair (frame) | PSNR mean (dB) | splat ms mean |\n"
-           "|---|---|---|---|---|---|---|\n";
+        << "| path | frames | method | temporal error | largest pair (frame) | pop peak | pop mean | PSNR mean (dB) | "
+           "splat ms mean |\n"
+           "|---|---|---|---|---|---|---|---|---|\n";
     for (const TemporalRow& row : results.rows) {
         int frame = 0;
         const double peak = max_pair_error(row, frame);
         out << "| " << row.path << " | " << row.frames << " | " << row.method << " | " << number(row.temporal_error, 3)
-            << " | " << number(peak, 2) << " (" << frame << ") | " << number(row.psnr_mean, 2) << " | "
+            << " | " << number(peak, 2) << " (" << frame << ") | " << number(row.pop_peak, 2) << " | "
+            << number(row.pop_mean, 2) << " | " << number(row.psnr_mean, 2) << " | "
             << (row.splat_ms_mean ? number(*row.splat_ms_mean, 2) : "\u2013") << " |\n";
     }
     out << '\n';
@@ -131,10 +135,11 @@ std::string markdown(const TemporalResults& results, const std::string& renderer
 }  // namespace
 
 void write_temporal_csv(const TemporalResults& results, const std::filesystem::path& path) {
-    std::string text = "method,path,frames,temporal_error,psnr_mean,splat_ms_mean\n";
+    std::string text = "method,path,frames,temporal_error,psnr_mean,splat_ms_mean,pop_peak,pop_mean\n";
     for (const TemporalRow& row : results.rows)
         text += row.method + ',' + row.path + ',' + std::to_string(row.frames) + ',' + number(row.temporal_error, 4) +
-                ',' + number(row.psnr_mean, 4) + ',' + optional_number(row.splat_ms_mean, 3) + '\n';
+                ',' + number(row.psnr_mean, 4) + ',' + optional_number(row.splat_ms_mean, 3) + ',' +
+                number(row.pop_peak, 3) + ',' + number(row.pop_mean, 3) + '\n';
     engine::write_text_file_atomic(path, text);
 }
 

@@ -54,8 +54,10 @@ std::vector<TemporalRow> render_path(FrameMeasurer& measurer, const TemporalPath
             row.psnr.push_back(psnr(image, reference));
             if (const auto it = measured.gpu_ms.find("splat"); it != measured.gpu_ms.end())
                 row.splat_ms.push_back(it->second);
-            if (t > 0)
+            if (t > 0) {
                 row.pair_errors.push_back(temporal_pair_error(previous[m], image, reference_previous, reference));
+                row.pair_pops.push_back(temporal_pair_pop(previous[m], image, reference_previous, reference));
+            }
             previous[m] = std::move(image);
         }
         reference_previous = std::move(reference);
@@ -66,6 +68,8 @@ std::vector<TemporalRow> render_path(FrameMeasurer& measurer, const TemporalPath
         row.path = path.name;
         row.frames = static_cast<int>(path.poses.size());
         row.temporal_error = mean(row.pair_errors);
+        row.pop_mean = mean(row.pair_pops);
+        row.pop_peak = row.pair_pops.empty() ? 0.0 : *std::max_element(row.pair_pops.begin(), row.pair_pops.end());
         row.psnr_mean = mean(row.psnr);
         if (!row.splat_ms.empty()) row.splat_ms_mean = mean(row.splat_ms);
     }

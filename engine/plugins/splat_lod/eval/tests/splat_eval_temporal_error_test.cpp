@@ -1,6 +1,8 @@
-// The temporal sweep without GL: the pair error on synthetic frames with closed-form answers, the
+// The temporal sweep without GL: the pair error and the pop on synthetic frames with closed-form answers
+// (a pop, a fade over k frames, a pan), the
 // supersampling factor, the dolly and orbit paths, path names and the checks of the options.
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -60,6 +62,53 @@ TEST(TemporalError, PairErrorsOfASequenceAndSizeChecks) {
     expect_error(
         [&] { eval::temporal_pair_error(frame(0, 0), eval::make_float_image(2, 2), frame(0, 0), frame(0, 0)); },
         {"sizes differ", "4x2 vs 2x2"});
+}
+
+// A 100 × 100 frame of `value` with the square [0, side)² set to `square` (every channel).
+eval::FloatImage square_frame(float value, int side, float square) {
+    eval::FloatImage image = eval::make_float_image(100, 100, value);
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x)
+            for (int c = 0; c < 3; ++c) image.at(x, y, c) = square;
+    return image;
+}
+
+TEST(TemporalPop, ASwitchInOneFrameCountsWholeWhereThePairErrorAveragesItAway) {
+    // A 4 × 4 patch (0.16 % of the pixels) that the method switches by 0.4 while the reference stands still.
+    const eval::FloatImage still = square_frame(0.3f, 4, 0.3f), popped = square_frame(0.3f, 4, 0.7f);
+    EXPECT_NEAR(eval::temporal_pair_pop(still, popped, still, still), 0.4 * 255.0, 1e-3);
+    EXPECT_NEAR(eval::temporal_pair_error(still, popped, still, still), 0.4 * 255.0 * 16.0 / 10000.0, 1e-3);
+    // A patch of 9 pixels, under 0.1 % of the image, is below the percentile: no pop.
+    EXPECT_NEAR(eval::temporal_pair_pop(still, square_frame(0.3f, 3, 0.7f), still, still), 0.0, 1e-9);
+}
+
+TEST(TemporalPop, TheSameSwitchFadedOverKFramesPopsOneKthPerPair) {
+    const int k = 8;
+    std::vector<eval::FloatImage> method, reference;
+    for (int t = 0; t <= k; ++t) {
+        method.push_back(square_frame(0.3f, 10, 0.3f + 0.4f * static_cast<float>(t) / k));
+        reference.push_back(square_frame(0.3f, 10, 0.3f));
+    }
+    for (int t = 1; t <= k; ++t)
+        EXPECT_NEAR(eval::temporal_pair_pop(method[t - 1], method[t], reference[t - 1], reference[t]), 0.4 * 255.0 / k,
+                    1e-3)
+            << "pair " << t;
+}
+
+TEST(TemporalPop, MotionTheReferenceHasTooCancels) {
+    // A pan: the patch moves one pixel to the right per frame in both.
+    std::vector<eval::FloatImage> frames;
+    for (int t = 0; t < 4; ++t) {
+        eval::FloatImage image = eval::make_float_image(100, 100, 0.2f);
+        for (int y = 0; y < 20; ++y)
+            for (int x = t; x < t + 20; ++x)
+                for (int c = 0; c < 3; ++c) image.at(x, y, c) = 0.9f;
+        frames.push_back(image);
+    }
+    for (int t = 1; t < 4; ++t)
+        EXPECT_EQ(eval::temporal_pair_pop(frames[t - 1], frames[t], frames[t - 1], frames[t]), 0.0);
+    expect_error([&] { eval::temporal_pair_pop(frames[0], eval::make_float_image(2, 2), frames[0], frames[0]); },
+                 {"sizes differ"});
 }
 
 TEST(TemporalSweepSetup, SupersamplingIsTheLargestFactorUpTo4ThatFits) {

@@ -60,9 +60,12 @@ struct TemporalRow {
     std::string path;
     int frames = 0;
     double temporal_error = 0.0;  // the mean of pair_errors (8-bit units)
+    double pop_peak = 0.0;        // the largest of pair_pops (8-bit units)
+    double pop_mean = 0.0;        // the mean of pair_pops
     double psnr_mean = 0.0;       // the mean of psnr (dB; +inf when every frame matches exactly)
     std::optional<double> splat_ms_mean;
     std::vector<double> pair_errors;  // index t−1: the pair (t−1, t)
+    std::vector<double> pair_pops;    // index t−1: temporal_pair_pop of the pair (t−1, t)
     std::vector<double> psnr;         // per frame, against the reference frame
     std::vector<double> splat_ms;     // per frame, the "splat" GPU span (absent spans are left out)
 };
@@ -95,6 +98,14 @@ int temporal_supersampling(int width, int height, int max_reference_side);
 // The pair error of two consecutive frames (8-bit units). Throws engine::Error when sizes differ.
 double temporal_pair_error(const FloatImage& method_previous, const FloatImage& method,
                            const FloatImage& reference_previous, const FloatImage& reference);
+// The pop of two consecutive frames, the measure that a fade lowers and a pop does not: the
+// kPopPercentile quantile over pixels (nearest rank) of |(M_t − M_{t−1}) − (R_t − R_{t−1})| averaged over
+// RGB, in 8-bit units. A level that switches in one frame over more than 0.1 % of the image counts at its
+// full size where the pair error averages it away; faded over k frames it counts 1/k per pair; change that
+// the reference has too (the camera's motion) cancels. Throws engine::Error when sizes differ.
+inline constexpr double kPopPercentile = 0.999;
+double temporal_pair_pop(const FloatImage& method_previous, const FloatImage& method,
+                         const FloatImage& reference_previous, const FloatImage& reference);
 // |(M_t − M_{t−1}) − (R_t − R_{t−1})| per pixel, averaged over RGB, times `gain`, as grey RGBA8.
 engine::Image temporal_difference_image(const FloatImage& method_previous, const FloatImage& method,
                                         const FloatImage& reference_previous, const FloatImage& reference, float gain);
@@ -126,7 +137,7 @@ void validate_temporal_options(const TemporalOptions& options);
 TemporalResults run_temporal_sweep(FrameMeasurer& measurer, const std::vector<TemporalPath>& paths,
                                    const TemporalOptions& options);
 
-// temporal.csv: method,path,frames,temporal_error,psnr_mean,splat_ms_mean.
+// temporal.csv: method,path,frames,temporal_error,psnr_mean,splat_ms_mean,pop_peak,pop_mean.
 void write_temporal_csv(const TemporalResults& results, const std::filesystem::path& path);
 // The strip of one path: a header of frame numbers, one row per image source, the peak method's
 // differences below.
