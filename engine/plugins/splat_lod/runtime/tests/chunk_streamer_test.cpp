@@ -251,6 +251,31 @@ TEST(ChunkStreamer, PublishesItsEventsAndOneResidencyReportPerFrame) {
     EXPECT_EQ(reports[0].chunks.requested, 16u);
 }
 
+// The thresholds are the splat pass's: with a bus, the latest LodSettings when the streamer is made and every
+// later one from the next update on, so a game never copies them by hand.
+TEST(ChunkStreamer, FollowsTheSplatPassesThresholdsOnTheBus) {
+    engine::MessageBus bus;
+    plugin_msgs::LodSettings lod;
+    lod.size_threshold_px = 3.0f;
+    lod.rel_min = 0.25f;
+    bus.publish(lod);
+    Harness h(sync_settings(), &bus);
+    EXPECT_EQ(h.streamer.settings().lod.size_threshold_px, 3.0f) << "the latest when made";
+    EXPECT_EQ(h.streamer.settings().lod.rel_min, 0.25f);
+    const auto close = before_chunk_0_0(10.0f);
+    h.steps(close, 2);
+    const int needed = h.streamer.chunk_status(0).finest_needed_level;
+    // A larger S_T selects fine levels only nearer: the same camera needs coarser levels of chunk 0.
+    lod.size_threshold_px = 64.0f;
+    bus.publish(lod);
+    EXPECT_EQ(h.streamer.settings().lod.size_threshold_px, 64.0f) << "from the next update on";
+    h.steps(close, 2);
+    EXPECT_GT(h.streamer.chunk_status(0).finest_needed_level, needed);
+    // Without a bus the settings' own thresholds stay.
+    Harness alone(sync_settings());
+    EXPECT_EQ(alone.streamer.settings().lod.size_threshold_px, sw::LodThresholds{}.size_threshold_px);
+}
+
 TEST(ChunkStreamer, RejectsInvalidSettingsAndViews) {
     FakeSource source;
     RecordingSink sink;

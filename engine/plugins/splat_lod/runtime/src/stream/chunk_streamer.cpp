@@ -94,9 +94,18 @@ ChunkStreamer::State::State(WorldManifest world, std::filesystem::path root, Str
         layout_levels(slot);
     }
     link_groups();
-    if (bus)
+    if (bus) {
         statistics_subscription = bus->subscribe<plugin_msgs::SplatStatistics>(
             [this](const plugin_msgs::SplatStatistics& latest) { statistics = latest; });
+        // The thresholds the splat pass draws with: the latest LodSettings now, and every later one from the
+        // next update on.
+        if (const auto lod = bus->latest<plugin_msgs::LodSettings>()) settings.lod = thresholds_of(*lod);
+        lod_subscription = bus->subscribe<plugin_msgs::LodSettings>([this](const plugin_msgs::LodSettings& lod) {
+            StreamerSettings next = pending_settings ? *pending_settings : settings;
+            next.lod = thresholds_of(lod);
+            pending_settings = next;
+        });
+    }
     report.budget_bytes = settings.memory_budget_bytes;
     // Decoded parts are checked on the reader's thread, off the frame.
     reader = std::make_unique<StreamReader>(
@@ -121,6 +130,10 @@ void ChunkStreamer::State::layout_levels(ChunkSlot& slot) const {
             s.planned_bytes += gpu_bytes(s.parts.back().count, settings.gpu_sh_degree, settings.gpu_pages);
         }
     }
+}
+
+LodThresholds ChunkStreamer::State::thresholds_of(const plugin_msgs::LodSettings& lod) {
+    return {static_cast<float>(lod.size_threshold_px), static_cast<float>(lod.rel_min)};
 }
 
 void ChunkStreamer::State::apply_pending_settings() {

@@ -14,7 +14,8 @@ namespace splat_lod::world {
 
 // The two thresholds of the selection rule that decide whether a Gaussian is "not too small"
 // (docs/algorithms.md §3): S ≥ S_T or S / S_min ≥ S_rel_min. plugin_msgs::LodSettings carries the same
-// values for the renderer; the streamer must use the ones the renderer draws with.
+// values for the renderer; a streamer with a bus takes them from that message (chunk_streamer.h,
+// StreamerSettings::lod), so the two cannot disagree.
 struct LodThresholds {
     float size_threshold_px = 2.0f;  // S_T
     float rel_min = 0.5f;            // S_rel_min
