@@ -77,8 +77,7 @@ void start_bake(SplatComponent& component, const DropInLodSettings& settings, en
     const std::string name = component.asset.filename().string();
     fs::path entry;
     try {
-        const fs::path folder = settings.cache_folder.empty() ? bake::lod_cache_folder() : settings.cache_folder;
-        entry = folder / bake::lod_cache_name(input_bytes(component.asset), settings.setup);
+        entry = cache_root(settings) / bake::lod_cache_name(input_bytes(component.asset), settings.setup);
     } catch (const std::exception& e) {
         engine::log_warning("splat_lod: " + name + ": no levels of detail (" + e.what() + ")");
         return;

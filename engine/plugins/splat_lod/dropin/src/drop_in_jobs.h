@@ -12,6 +12,9 @@ class AssetCache;
 
 namespace splat_lod::dropin {
 
+// settings.cache_folder, else the user's cache (bake::lod_cache_folder(), which throws when there is none).
+std::filesystem::path cache_root(const DropInLodSettings& settings);
+
 // Bakes `component`'s trained cloud in the background (cache hit: swaps the cached asset in at once).
 void start_bake(SplatComponent& component, const DropInLodSettings& settings, engine::AssetCache& assets);
 

@@ -3,9 +3,14 @@
 #include <utility>
 
 #include "drop_in_jobs.h"
+#include "splat_lod/bake/lod_cache.h"
 #include "splat_lod/splat_lod_plugin.h"
 
 namespace splat_lod::dropin {
+
+std::filesystem::path cache_root(const DropInLodSettings& settings) {
+    return settings.cache_folder.empty() ? bake::lod_cache_folder() : settings.cache_folder;
+}
 
 DropInLod make_drop_in(DropInLodSettings settings) {
     return [settings = std::move(settings)](SplatComponent& component, engine::AssetCache& assets) {

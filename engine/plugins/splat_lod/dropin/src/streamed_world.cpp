@@ -86,14 +86,9 @@ bool StreamedWorld::cut_drawn() const {
 
 void StreamedWorld::update(SplatComponent& component, const LodFrame& frame) {
     if (frame.focal_length_px <= 0.0f) return;  // no camera: nothing to stream for
-    sw::StreamerSettings wanted = settings_;
-    wanted.lod.size_threshold_px = static_cast<float>(frame.lod.size_threshold_px);
-    wanted.lod.rel_min = static_cast<float>(frame.lod.rel_min);
+    // With the bus the streamer takes the splat pass's thresholds from its LodSettings (chunk_streamer.h).
     if (!streamer_)
-        streamer_ = std::make_unique<sw::ChunkStreamer>(manifest_, folder_, wanted, source_, *sink_, frame.bus);
-    else if (wanted.lod.size_threshold_px != streamer_->settings().lod.size_threshold_px ||
-             wanted.lod.rel_min != streamer_->settings().lod.rel_min)
-        streamer_->set_settings(wanted);
+        streamer_ = std::make_unique<sw::ChunkStreamer>(manifest_, folder_, settings_, source_, *sink_, frame.bus);
     // The camera in the world's frame; the velocity from the last frame's (none after a gap or a jump
     // of more than a chunk).
     const glm::vec3 eye = glm::vec3(glm::inverse(root_->world_matrix()) * glm::vec4(frame.camera_position, 1.0f));

@@ -14,7 +14,6 @@
 #include "drop_in_jobs.h"
 #include "engine/core/error.h"
 #include "engine/core/log.h"
-#include "splat_lod/bake/lod_cache.h"
 #include "streamed_world.h"
 
 namespace splat_lod::dropin {
@@ -43,11 +42,8 @@ public:
         std::unique_lock lock(mutex_);
         return ended_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return finished_.load(); });
     }
-    // Once finished: empty when the world is there, else why not.
-    std::string error() const {
-        const std::lock_guard lock(mutex_);
-        return error_;
-    }
+    // Once finished: whether the world is there (a failure was logged).
+    bool imported() const { return imported_.load(); }
     std::string line() const {
         const std::lock_guard lock(mutex_);
         return "importing " + name_ + " as a streamed world: " + stage_;
@@ -65,19 +61,19 @@ private:
         // Below the frames, as the bake: each Linux thread has its own nice value and the import's helper
         // threads inherit this one's.
         (void)::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), 10);
-        std::string error;
+        bool imported = false;
         try {
             const world::ImportResult result = world::import_world(options);
             engine::log_info("splat_lod: " + name_ +
                              (result.summary.cached ? ": its streamed world is " : ": imported as ") +
                              options.output.string() + (result.summary.cached ? " already" : ""));
+            imported = true;
         } catch (const std::exception& e) {
-            error = e.what();
-            if (!cancel_) engine::log_warning("splat_lod: " + name_ + ": not streamed as a world (" + error + ")");
+            if (!cancel_) engine::log_warning("splat_lod: " + name_ + ": not streamed as a world (" + e.what() + ")");
         }
         {
             const std::lock_guard lock(mutex_);
-            error_ = cancel_ && !error.empty() ? "cancelled" : error;
+            imported_ = imported;
             finished_ = true;
         }
         ended_.notify_all();
@@ -85,10 +81,10 @@ private:
 
     std::string name_;
     std::function<void(const std::string&, double)> observer_;
-    std::atomic<bool> cancel_{false}, finished_{false};
+    std::atomic<bool> cancel_{false}, finished_{false}, imported_{false};
     mutable std::mutex mutex_;
     mutable std::condition_variable ended_;
-    std::string error_, stage_ = "starting";
+    std::string stage_ = "starting";
     std::thread thread_;
 };
 
@@ -122,10 +118,7 @@ public:
         s.folder = folder_;
         if (import_) {
             s.state = WorldStatus::State::importing;  // until the frame after it ended opens the world
-        } else if (!world_) {
-            s.state = WorldStatus::State::failed;
-            s.error = error_;
-        } else {
+        } else if (world_) {
             s.state = world_->holding() ? WorldStatus::State::holding : WorldStatus::State::streaming;
             s.streamer = &world_->streamer();
         }
@@ -136,16 +129,14 @@ public:
 private:
     // The import has ended: the world under the component's node, or false (the trained scene stays).
     bool open(SplatComponent& component) {
-        error_ = import_->error();
+        const bool imported = import_->imported();  // else the import logged why not
         import_.reset();
-        if (!error_.empty()) return false;
+        if (!imported) return false;
         try {
             world_ = std::make_unique<StreamedWorld>(component, folder_, settings_, assets_);
             return true;
         } catch (const std::exception& e) {
-            error_ = e.what();
-            engine::log_warning("splat_lod: " + component.asset.filename().string() + ": not streamed as a world (" +
-                                error_ + ")");
+            engine::log_warning("splat_lod: " + name_ + ": not streamed as a world (" + e.what() + ")");
             return false;
         }
     }
@@ -156,7 +147,6 @@ private:
     std::string name_;
     std::unique_ptr<BackgroundImport> import_;
     std::unique_ptr<StreamedWorld> world_;
-    std::string error_;
 };
 
 }  // namespace
@@ -188,8 +178,7 @@ void start_world(SplatComponent& component, const DropInLodSettings& settings, e
     const std::string name = component.asset.filename().string();
     fs::path folder;
     try {
-        folder = world_cache_folder(settings.cache_folder.empty() ? bake::lod_cache_folder() : settings.cache_folder,
-                                    component.asset);
+        folder = world_cache_folder(cache_root(settings), component.asset);
     } catch (const std::exception& e) {
         engine::log_warning("splat_lod: " + name + ": no levels of detail (" + e.what() + ")");
         return;

@@ -70,7 +70,7 @@ TEST(DropInWorld, ACaptureIsImportedThenStreamedWhereItWasAndTheNextLoadStreamsA
         ASSERT_TRUE(splat_lod::dropin::wait_for_import(splat, 300.0));
         const int frames = stream_until_released(splat, 400);
         const WorldStatus status = splat_lod::dropin::world_status(splat);
-        ASSERT_EQ(status.state, WorldStatus::State::streaming) << status.error << " after " << frames << " frames";
+        ASSERT_EQ(status.state, WorldStatus::State::streaming) << "after " << frames << " frames";
         EXPECT_EQ(status.folder, splat_lod::dropin::world_cache_folder(dir / "cache", dir / "capture.ply"));
         EXPECT_TRUE(fs::exists(status.folder / splat_lod::world::kManifestFileName));
         EXPECT_GT(status.streamer->chunk_count(), 4u);

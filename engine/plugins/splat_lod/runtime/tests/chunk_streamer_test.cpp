@@ -271,6 +271,11 @@ TEST(ChunkStreamer, FollowsTheSplatPassesThresholdsOnTheBus) {
     EXPECT_EQ(h.streamer.settings().lod.size_threshold_px, 64.0f) << "from the next update on";
     h.steps(close, 2);
     EXPECT_GT(h.streamer.chunk_status(0).finest_needed_level, needed);
+    // New budgets from the game keep the bus's thresholds, not the copy in the settings given.
+    sw::StreamerSettings budgets = sync_settings();
+    budgets.lod.size_threshold_px = 1.0f;
+    h.streamer.set_settings(budgets);
+    EXPECT_EQ(h.streamer.settings().lod.size_threshold_px, 64.0f);
     // Without a bus the settings' own thresholds stay.
     Harness alone(sync_settings());
     EXPECT_EQ(alone.streamer.settings().lod.size_threshold_px, sw::LodThresholds{}.size_threshold_px);

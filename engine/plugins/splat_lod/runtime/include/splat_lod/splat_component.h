@@ -17,7 +17,6 @@
 #include <glm/vec3.hpp>
 
 #include "engine/scene/component.h"
-#include "splat_lod/core/lod_selection.h"
 #include "splat_lod/core/splat_cloud.h"
 
 namespace engine {
@@ -35,8 +34,7 @@ struct LodFrame {
     glm::vec3 camera_position{0.0f};  // world space
     float focal_length_px = 0.0f;     // of the output image; 0 when there is no camera (nothing streams)
     std::uint64_t frame_index = 0;
-    LodRule lod;                        // the splat pass's thresholds
-    engine::MessageBus* bus = nullptr;  // the engine's, when there is one
+    engine::MessageBus* bus = nullptr;  // the engine's, when there is one (the splat pass's settings are on it)
 };
 
 // The work "lod": "auto" does for one component (a bake, an import, a streamer), owned by it.

@@ -2,7 +2,6 @@
 
 #include "engine/core/message_bus.h"
 #include "engine/scene/scene.h"
-#include "passes/splat_pass.h"
 #include "plugin_msgs/background_work.h"
 
 namespace splat_lod {
@@ -21,7 +20,6 @@ void LodSwapPass::execute(engine::FrameContext& frame) {
     view.camera_position = frame.camera.position;
     view.focal_length_px = frame.camera.focal_length();
     view.frame_index = frame.frame_index;
-    if (splat_ != nullptr) view.lod = splat_->settings.lod;
     view.bus = &frame.bus;
     std::vector<std::string> lines;
     for (SplatComponent* component : frame.scene.components<SplatComponent>()) {

@@ -1,7 +1,7 @@
 #pragma once
 // The pass that runs the drop-in LOD's work ("lod": "auto", splat_component.h) first in every frame:
 // SplatComponent::update_lod() for each splat component of the scene, with the frame's camera and the
-// splat pass's thresholds, and the work's status lines on the bus (plugin_msgs::BackgroundWork).
+// engine's bus, and the work's status lines on the bus (plugin_msgs::BackgroundWork).
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,20 +11,15 @@
 
 namespace splat_lod {
 
-class SplatPass;
-
 class LodSwapPass : public engine::RenderPass {
 public:
-    // `splat` (may be null) gives the thresholds; it must outlive this pass. `source` names the plugin in
-    // the status messages.
-    explicit LodSwapPass(const SplatPass* splat = nullptr, std::string source = "splat_lod")
-        : splat_(splat), source_(std::move(source)) {}
+    // `source` names the plugin in the status messages.
+    explicit LodSwapPass(std::string source = "splat_lod") : source_(std::move(source)) {}
     std::string name() const override { return "splat.lod_swap"; }
     int order() const override { return engine::pass_order::mesh - 50; }
     void execute(engine::FrameContext& frame) override;
 
 private:
-    const SplatPass* splat_;
     std::string source_;
     std::vector<std::string> published_;  // the status lines last published
 };

@@ -29,9 +29,8 @@ public:
         register_splat_component(context.components, name(), drop_in_);
         register_gltf_splat_companion(context.components, name());  // the splats of a glTF mesh asset
         context.renderer.add_shader_root(shader_dir());
+        context.renderer.add_pass(std::make_shared<LodSwapPass>(name()));  // "lod": "auto" (lod_update_pass.h)
         auto pass = std::make_shared<SplatPass>();
-        context.renderer.add_pass(
-            std::make_shared<LodSwapPass>(pass.get(), name()));  // "lod": "auto" (lod_update_pass.h)
         // Settings arrive as plugin_msgs::LodSettings from the UI, tools or the game.
         settings_ = context.bus.subscribe<plugin_msgs::LodSettings>(
             [pass = pass.get()](const plugin_msgs::LodSettings& lod) { pass->apply(lod); });
@@ -42,8 +41,8 @@ public:
 
     void shutdown(engine::PluginContext& context) override {
         settings_.reset();
-        context.renderer.remove_pass(LodSwapPass().name());  // first: it reads the splat pass's settings
         context.renderer.remove_pass("splat");
+        context.renderer.remove_pass(LodSwapPass().name());
         context.components.remove("splat");
         context.components.remove_companions(name());
     }

@@ -99,10 +99,10 @@ ChunkStreamer::State::State(WorldManifest world, std::filesystem::path root, Str
             [this](const plugin_msgs::SplatStatistics& latest) { statistics = latest; });
         // The thresholds the splat pass draws with: the latest LodSettings now, and every later one from the
         // next update on.
-        if (const auto lod = bus->latest<plugin_msgs::LodSettings>()) settings.lod = thresholds_of(*lod);
+        if (const auto lod = bus->latest<plugin_msgs::LodSettings>()) settings.lod = *(bus_lod = thresholds_of(*lod));
         lod_subscription = bus->subscribe<plugin_msgs::LodSettings>([this](const plugin_msgs::LodSettings& lod) {
             StreamerSettings next = pending_settings ? *pending_settings : settings;
-            next.lod = thresholds_of(lod);
+            next.lod = *(bus_lod = thresholds_of(lod));
             pending_settings = next;
         });
     }
@@ -420,6 +420,7 @@ void ChunkStreamer::set_settings(const StreamerSettings& settings) {
         settings.gpu_pages.page_overhead_bytes != state_->settings.gpu_pages.page_overhead_bytes)
         engine::fail("splat_lod::world::ChunkStreamer::set_settings(): gpu_pages cannot change while streaming");
     state_->pending_settings = settings;
+    if (state_->bus_lod) state_->pending_settings->lod = *state_->bus_lod;  // the splat pass's, not a copy
 }
 
 const StreamerSettings& ChunkStreamer::settings() const {

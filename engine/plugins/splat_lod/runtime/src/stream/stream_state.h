@@ -119,6 +119,7 @@ struct ChunkStreamer::State {
     // The splat budget's feedback to the cut (chunk_streamer.h): the newest statistics not yet used.
     std::optional<plugin_msgs::SplatStatistics> statistics;
     engine::Subscription statistics_subscription, lod_subscription;
+    std::optional<LodThresholds> bus_lod;  // the latest LodSettings' thresholds on the bus, once there is one
     float group_cell_scale = 1.0f;
     std::unique_ptr<StreamReader> reader;  // last: destroyed (and joined) first
 

@@ -14,9 +14,9 @@
 //     imported in the background into a world folder in the same cache (the import of `splat_world
 //     --from`, out of core), while the trained scene is drawn. Then the component streams the world under
 //     its own node: a child node "streamed world" placed where the capture was (the import's capture →
-//     world map, undone), the chunk streamer driven by the frame's camera and the splat pass's
-//     thresholds, the world's far layer and props beside the chunks. The trained scene is drawn until the
-//     streamer's cut is drawn everywhere (no hole), then released. A later load finds the import done
+//     world map, undone), the chunk streamer driven by the frame's camera (its thresholds are
+//     the splat pass's LodSettings on the bus), the world's far layer and props beside the chunks. The trained scene is
+//     drawn until the streamer's cut is drawn everywhere (no hole), then released. A later load finds the import done
 //     (same capture files, same options) and streams at once.
 // Problems (no cache folder, an unreadable entry, a failed bake or import) are logged; the trained scene
 // stays drawn and nothing half-made is left in the cache.
@@ -52,8 +52,8 @@ struct DropInLodSettings {
     std::function<std::string(const SplatCloud&)> world_advice = bake::streamed_world_advice;
     // The import of such a scene: `capture`, `output` and `progress` are set per scene.
     world::ImportOptions import;
-    // Its streaming: budgets, fades, groups. The thresholds follow the splat pass's every frame and
-    // the SH degree is the component's cap.
+    // Its streaming: budgets, fades, groups. The thresholds follow the splat pass's LodSettings on the
+    // engine's bus (chunk_streamer.h) and the SH degree is capped by the component's.
     world::StreamerSettings streaming;
 };
 
@@ -73,10 +73,11 @@ std::shared_ptr<bake::BackgroundBake> background_bake(const SplatComponent& comp
 
 // For tools and tests: where a component's drop-in world stands.
 struct WorldStatus {
-    enum class State { none, importing, failed, holding, streaming };
-    State state = State::none;  // holding: streamed, the trained scene still drawn until the cut is
+    // none: no world (a failed import or world ends the job, which logs why); holding: streamed, the
+    // trained scene still drawn until the cut is drawn everywhere.
+    enum class State { none, importing, holding, streaming };
+    State state = State::none;
     std::filesystem::path folder;
-    std::string error;                         // once failed
     world::ChunkStreamer* streamer = nullptr;  // holding and streaming
 };
 WorldStatus world_status(const SplatComponent& component);

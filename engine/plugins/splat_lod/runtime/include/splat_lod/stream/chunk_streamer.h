@@ -118,7 +118,7 @@ struct StreamerSettings {
     PageLayout gpu_pages;   // how the GPU scene stores an upload (whole pages; stream_policy.h)
     // S_T and S_rel_min, as the renderer uses them. With a bus the streamer follows the splat pass's
     // plugin_msgs::LodSettings on it instead (the latest one when it is made, every later one from the next
-    // update on), so these are used only until one is published.
+    // update on): these are used only until one is published, and set_settings() keeps the bus's.
     LodThresholds lod;
     // Multiplies the manifest's load distances. The bound 2·e·f / z holds on the view axis; off axis
     // the perspective Jacobian enlarges a Gaussian by up to about 1 / cos²θ (θ: angle from the axis,
