@@ -202,7 +202,7 @@ struct Run {
         Progress loading(progress, "baseline: chunks loaded", world.manifest().chunks.size());
         load_seconds = world.load_whole_world([&](std::size_t done, std::size_t) { loading.step(done, ""); });
         plugin_msgs::LodSettings lod = world.settings().lod;
-        lod.mode = plugin_msgs::LodMode::baseline;
+        lod.rule.mode = plugin_msgs::LodMode::baseline;
         lod.splat_budget = 0;  // the baseline draws everything, whatever the game's budget
         engine.bus().publish(lod);
         const std::vector<std::size_t> chosen = baseline_frame_indices(poses, options, reference_frames());
@@ -254,10 +254,10 @@ std::string describe_settings(const ProfileOptions& o) {
         "%dx%d, %d path frames, LOD mode %s (S_T %.2f px, rel %.2f/%.2f, transition band %.4g octaves), "
         "streamer fades over %d updates, cut anticipates %d, render scale %.3f (%s), "
         "memory budget %.0f MiB, upload budget %.2f MiB/frame, load distance x%.2f, streaming %s, fov %.0f deg",
-        o.width, o.height, o.frames, std::string(plugin_msgs::to_string(s.lod.mode)).c_str(), s.lod.size_threshold_px,
-        s.lod.rel_min, s.lod.rel_max, s.lod.transition_band, s.fade_frames, s.anticipation_updates, s.lod.render_scale,
-        std::string(plugin_msgs::to_string(s.lod.upscaler)).c_str(), mib(s.memory_budget_bytes),
-        mib(s.upload_budget_bytes), s.load_distance_scale,
+        o.width, o.height, o.frames, std::string(plugin_msgs::to_string(s.lod.rule.mode)).c_str(),
+        s.lod.rule.size_threshold_px, s.lod.rule.rel_min, s.lod.rule.rel_max, s.lod.rule.transition_band, s.fade_frames,
+        s.anticipation_updates, s.lod.render_scale, std::string(plugin_msgs::to_string(s.lod.upscaler)).c_str(),
+        mib(s.memory_budget_bytes), mib(s.upload_budget_bytes), s.load_distance_scale,
         s.sync_streaming ? "synchronous (--sync-streaming)" : "on the background thread", s.fov_y_deg);
 }
 

@@ -108,7 +108,7 @@ ReferenceOutcome make_reference(const ReferenceOptions& o, std::FILE* progress) 
     // The defaults (full resolution, no level colours, no filter or budget) in baseline mode: the
     // reference depends on none of the game's LOD settings.
     plugin_msgs::LodSettings lod;
-    lod.mode = plugin_msgs::LodMode::baseline;
+    lod.rule.mode = plugin_msgs::LodMode::baseline;
     engine.bus().publish(lod);
 
     const int s = o.supersample;

@@ -55,12 +55,13 @@ E enum_named(const std::array<std::string_view, N>& names, const std::string& te
 // The LOD rule and raster options (renderer and streamer alike).
 void add_lod_options(CLI::App& app, CommandLine& c) {
     auto& lod = c.settings.lod;
-    app.add_option("--lod-mode", c.mode, "baseline, filter_small, insert_large or full (default)")
-        ->check(CLI::IsMember({"baseline", "filter_small", "insert_large", "full"}));
-    app.add_option("--lod-size-threshold", lod.size_threshold_px, "S_T in pixels")->capture_default_str();
-    app.add_option("--lod-rel-min", lod.rel_min, "S_rel_min")->capture_default_str();
-    app.add_option("--lod-rel-max", lod.rel_max, "S_rel_max")->capture_default_str();
-    app.add_option("--lod-transition-band", lod.transition_band,
+    app.add_option("--lod-mode", c.mode, "LOD selection mode (plugin_msgs::LodMode; default full)")
+        ->check(CLI::IsMember(
+            std::vector<std::string>(plugin_msgs::kLodModeNames.begin(), plugin_msgs::kLodModeNames.end())));
+    app.add_option("--lod-size-threshold", lod.rule.size_threshold_px, "S_T in pixels")->capture_default_str();
+    app.add_option("--lod-rel-min", lod.rule.rel_min, "S_rel_min")->capture_default_str();
+    app.add_option("--lod-rel-max", lod.rule.rel_max, "S_rel_max")->capture_default_str();
+    app.add_option("--lod-transition-band", lod.rule.transition_band,
                    "Octaves of coverage over which a Gaussian fades into its coarser level (0: hard switching)")
         ->capture_default_str();
     app.add_option("--render-scale", lod.render_scale, "Splat raster resolution relative to the output, (0, 1]")
@@ -173,7 +174,8 @@ void add_options(CLI::App& app, CommandLine& c) {
 }
 
 void apply_common(CommandLine& c) {
-    if (!c.mode.empty()) c.settings.lod.mode = enum_named<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, c.mode);
+    if (!c.mode.empty())
+        c.settings.lod.rule.mode = enum_named<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, c.mode);
     if (!c.upscaler.empty())
         c.settings.lod.upscaler = enum_named<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, c.upscaler);
     if (c.memory_budget_mib > 0.0)

@@ -192,28 +192,28 @@ TEST(StreamingPanel, KeepsTheLastFramesAndTheFailures) {
 
 TEST(GameSettings, TheStreamerUsesTheRenderersThresholds) {
     GameSettings s;
-    s.lod.size_threshold_px = 3.5f;
-    s.lod.rel_min = 0.7f;
+    s.lod.rule.size_threshold_px = 3.5f;
+    s.lod.rule.rel_min = 0.7f;
     s.memory_budget_bytes = 64 * kMiB;
     s.upload_budget_bytes = 2 * kMiB;
     s.sync_streaming = true;
     const auto streamer = streamer_settings(s);
-    EXPECT_EQ(streamer.lod.size_threshold_px, 3.5f);
-    EXPECT_EQ(streamer.lod.rel_min, 0.7f);
+    EXPECT_EQ(streamer.rule.size_threshold_px, 3.5f);
+    EXPECT_EQ(streamer.rule.rel_min, 0.7f);
     EXPECT_EQ(streamer.memory_budget_bytes, 64 * kMiB);
     EXPECT_EQ(streamer.upload_budget_bytes_per_frame, 2 * kMiB);
     EXPECT_FALSE(streamer.background_thread);
     EXPECT_EQ(streamer.gpu_sh_degree, 0);
     EXPECT_NO_THROW(validate(s));
 
-    s.lod.rel_min = 2.0f;  // above rel_max
+    s.lod.rule.rel_min = 2.0f;  // above rel_max
     try {
         validate(s);
         FAIL() << "rel_min above rel_max was accepted";
     } catch (const engine::Error& e) {
         EXPECT_NE(std::string(e.what()).find("lod_settings.rel_min"), std::string::npos) << e.what();
     }
-    s.lod.rel_min = 0.5f;
+    s.lod.rule.rel_min = 0.5f;
     s.upload_budget_bytes = 100;  // below one GPU page
     EXPECT_THROW(validate(s), engine::Error);
 }

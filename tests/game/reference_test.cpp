@@ -60,7 +60,7 @@ TEST_F(ReferenceTest, ATiledRenderEqualsTheUntiledOne) {
     GameWorld world(engine, engine::test::cached_tiny_world("reference_world"), settings);
     world.load_whole_world({});
     plugin_msgs::LodSettings lod;
-    lod.mode = plugin_msgs::LodMode::baseline;
+    lod.rule.mode = plugin_msgs::LodMode::baseline;
     engine.bus().publish(lod);
     const std::vector<PathPose> poses = world.path(20);
     // A ground, a flyout and an overview view, at a size the tiles do not divide evenly.

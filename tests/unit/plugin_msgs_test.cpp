@@ -94,10 +94,10 @@ TEST(PluginMsgs, BackgroundWorkRoundTripsAndRejectsWhatIsNotAList) {
 
 TEST(PluginMsgs, LodSettingsDefaultsFollowTheDesign) {
     const LodSettings settings;
-    EXPECT_EQ(settings.mode, LodMode::full);
-    EXPECT_EQ(settings.size_threshold_px, 2.0f);
-    EXPECT_EQ(settings.rel_min, 0.5f);
-    EXPECT_EQ(settings.rel_max, 1.5f);
+    EXPECT_EQ(settings.rule.mode, LodMode::full);
+    EXPECT_EQ(settings.rule.size_threshold_px, 2.0f);
+    EXPECT_EQ(settings.rule.rel_min, 0.5f);
+    EXPECT_EQ(settings.rule.rel_max, 1.5f);
     EXPECT_EQ(settings.render_scale, 1.0f);
     EXPECT_EQ(settings.upscaler, Upscaler::spline);
     EXPECT_FALSE(settings.mip_filter);
@@ -108,27 +108,60 @@ TEST(PluginMsgs, LodSettingsDefaultsFollowTheDesign) {
 }
 
 TEST(PluginMsgs, LodSettingsRoundTripEveryModeAndUpscaler) {
-    for (const auto mode : {LodMode::baseline, LodMode::filter_small, LodMode::insert_large, LodMode::full}) {
+    for (std::size_t m = 0; m < plugin_msgs::kLodModeNames.size(); ++m) {
+        const auto mode = static_cast<LodMode>(m);
         for (const auto upscaler : {Upscaler::spline, Upscaler::bicubic, Upscaler::bilinear, Upscaler::lanczos3}) {
             LodSettings settings;
-            settings.mode = mode;
+            settings.rule.mode = mode;
             settings.upscaler = upscaler;
-            settings.size_threshold_px = 3.7f;
-            settings.rel_min = 0.25f;
-            settings.rel_max = 2.0f;
+            settings.rule.size_threshold_px = 3.7f;
+            settings.rule.rel_min = 0.25f;
+            settings.rule.rel_max = 2.0f;
             settings.render_scale = 1.0f / 3.0f;
             settings.mip_filter = true;
             settings.level_colouring = true;
             settings.splat_budget = 200000;
-            settings.transition_band = 0.75f;
+            settings.rule.transition_band = 0.75f;
             expect_round_trip(settings);
         }
     }
 }
 
+// The rule's modes differ only by their traits: the four of the multi-scale method's ablation, each
+// a different row, and the JSON keys of a rule sit flat in the object that carries it.
+TEST(PluginMsgs, LodRuleModesAreTheirTraits) {
+    using plugin_msgs::traits;
+    EXPECT_FALSE(traits(LodMode::baseline).all_levels);
+    EXPECT_FALSE(traits(LodMode::baseline).coverage_rule);
+    EXPECT_TRUE(traits(LodMode::filter_small).coverage_rule);
+    EXPECT_FALSE(traits(LodMode::filter_small).all_levels);
+    EXPECT_TRUE(traits(LodMode::insert_large).all_levels);
+    EXPECT_FALSE(traits(LodMode::insert_large).coverage_rule);
+    EXPECT_TRUE(traits(LodMode::full).all_levels && traits(LodMode::full).coverage_rule &&
+                traits(LodMode::full).transitions);
+    for (std::size_t a = 0; a < plugin_msgs::kLodModeNames.size(); ++a)
+        for (std::size_t b = a + 1; b < plugin_msgs::kLodModeNames.size(); ++b) {
+            const auto ta = traits(static_cast<LodMode>(a)), tb = traits(static_cast<LodMode>(b));
+            EXPECT_FALSE(ta.all_levels == tb.all_levels && ta.coverage_rule == tb.coverage_rule &&
+                         ta.transitions == tb.transitions)
+                << plugin_msgs::kLodModeNames[a] << " and " << plugin_msgs::kLodModeNames[b] << " do the same";
+        }
+    plugin_msgs::LodRule rule;
+    rule.rel_min = 0.75f;
+    json object = json::object();
+    plugin_msgs::write_rule(object, rule);
+    EXPECT_EQ(object.at("rel_min").get<float>(), 0.75f);
+    plugin_msgs::LodRule read;
+    plugin_msgs::read_rule(object, "test", read);
+    EXPECT_EQ(read, rule);
+    EXPECT_EQ(rule.validate(), "");
+    rule.rel_min = 2.0f;
+    EXPECT_EQ(rule.validate("streamer.rule").rfind("streamer.rule.rel_min: ", 0), 0u) << rule.validate();
+}
+
 TEST(PluginMsgs, LodSettingsEnumsTravelAsNames) {
     LodSettings settings;
-    settings.mode = LodMode::insert_large;
+    settings.rule.mode = LodMode::insert_large;
     settings.upscaler = Upscaler::lanczos3;
     const json j = settings;
     EXPECT_EQ(j.at("mode"), "insert_large");
@@ -187,10 +220,10 @@ TEST(PluginMsgs, LodSettingsValidateCatchesValuesSetInCode) {
     settings.render_scale = std::numeric_limits<float>::quiet_NaN();
     EXPECT_NE(settings.validate().find("lod_settings.render_scale"), std::string::npos);
     settings = LodSettings{};
-    settings.size_threshold_px = std::numeric_limits<float>::infinity();
+    settings.rule.size_threshold_px = std::numeric_limits<float>::infinity();
     EXPECT_NE(settings.validate().find("lod_settings.size_threshold_px"), std::string::npos);
     settings = LodSettings{};
-    settings.rel_min = settings.rel_max;  // the upper end of (0, rel_max] is allowed
+    settings.rule.rel_min = settings.rule.rel_max;  // the upper end of (0, rel_max] is allowed
     EXPECT_EQ(settings.validate(), "");
 }
 

@@ -181,7 +181,7 @@ void add_camera_options(CLI::App& app, Options& o) {
 ShapeOptions add_bake_options(CLI::App& app, Options& o) {
     ShapeOptions shape{};
     app.add_option("--levels", o.bake.coarsest_level, "coarsest level to build (1..4)")->check(CLI::Range(1, 4));
-    app.add_option("--size-threshold", o.bake.size_threshold_px, "S_T in pixels");
+    app.add_option("--size-threshold", o.bake.rule.size_threshold_px, "S_T in pixels");
     app.add_option("--refine-iterations", o.bake.refine_iterations, "Adam iterations per coarse level (0: off)")
         ->check(CLI::Range(0, 100000));
     shape.refine_cameras =

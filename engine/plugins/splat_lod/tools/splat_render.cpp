@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <string>
+#include <vector>
 
 #include <plugin_msgs/frame_statistics.h>
 #include <CLI/CLI.hpp>
@@ -35,24 +37,24 @@ struct Options {
     std::string raster_fetch = "automatic";
     bool bbox_tiles = false, wide_sort_keys = false;
     std::string lod_mode = "full";
-    float transition_band = plugin_msgs::LodSettings::kDefaultTransitionBand;
+    float transition_band = plugin_msgs::LodRule::kDefaultTransitionBand;
 };
 
 void apply_settings(splat_lod::SplatPassSettings& settings, const Options& o) {
-    settings.mip_filter = o.mip_filter;
-    settings.render_scale = o.render_scale;
+    settings.lod.mip_filter = o.mip_filter;
+    settings.lod.render_scale = o.render_scale;
     settings.tile_size = o.tile;
     settings.low_res_tile_size = o.low_res_tile;
-    settings.upscaler =
+    settings.lod.upscaler =
         plugin_msgs::detail::enum_from_json<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, o.upscaler);
     settings.raster_fetch = o.raster_fetch == "texel"    ? splat_lod::RasterFetch::texel
                             : o.raster_fetch == "shared" ? splat_lod::RasterFetch::shared
                                                          : splat_lod::RasterFetch::automatic;
     settings.exact_tiles = !o.bbox_tiles;
     settings.compact_sort_keys = !o.wide_sort_keys;
-    settings.lod.mode =
+    settings.lod.rule.mode =
         plugin_msgs::detail::enum_from_json<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, o.lod_mode);
-    settings.lod.transition_band = o.transition_band;
+    settings.lod.rule.transition_band = o.transition_band;
 }
 
 double median(std::vector<double> v) {
@@ -134,13 +136,13 @@ int main(int argc, char** argv) {
     app.add_option("--tile", o.tile, "raster tile side at render scale 1")->check(CLI::IsMember({4u, 8u, 16u}));
     app.add_option("--low-res-tile", o.low_res_tile, "raster tile side below render scale 1")
         ->check(CLI::IsMember({4u, 8u, 16u}));
-    app.add_option("--lod-mode", o.lod_mode,
-                   "LOD selection of a baked file: baseline, filter_small, insert_large or full")
-        ->check(CLI::IsMember({"baseline", "filter_small", "insert_large", "full"}))
+    app.add_option("--lod-mode", o.lod_mode, "LOD selection of a baked file (plugin_msgs::LodMode)")
+        ->check(CLI::IsMember(
+            std::vector<std::string>(plugin_msgs::kLodModeNames.begin(), plugin_msgs::kLodModeNames.end())))
         ->capture_default_str();
     app.add_option("--transition-band", o.transition_band,
                    "mode full: octaves of coverage over which a Gaussian fades into its coarser level (0: hard)")
-        ->check(CLI::Range(0.0f, plugin_msgs::LodSettings::kMaxTransitionBand))
+        ->check(CLI::Range(0.0f, plugin_msgs::LodRule::kMaxTransitionBand))
         ->capture_default_str();
     app.add_option("--raster-fetch", o.raster_fetch, "how the raster reads splats: automatic, texel or shared")
         ->check(CLI::IsMember({"automatic", "texel", "shared"}));

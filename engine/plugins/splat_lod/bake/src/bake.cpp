@@ -84,7 +84,7 @@ CellMembers small_by_cell(const SplatCloud& cloud, const detail::CoverageTable& 
             }
         if (!seen) continue;
         ++summary.candidates;
-        if (smallest >= options.size_threshold_px) continue;
+        if (smallest >= options.rule.size_threshold_px) continue;
         ++summary.small;
         keyed.emplace_back(detail::cell_key(glm::dvec3(cloud.positions[i]), level, cells, normaliser, cameras, options),
                            static_cast<std::uint32_t>(i));
@@ -133,7 +133,7 @@ CellMembers build_level(SplatCloud& cloud, detail::CoverageTable& table, int lev
             detail::pool(cloud, cell, cloud, out);
             detail::thicken(cloud, out, options.min_axis_ratio);
             const double s_avg = detail::mean_median_coverage(table, cell, scale);
-            factors[g] = detail::enlargement(options.size_threshold_px, s_avg, options.max_enlargement);
+            factors[g] = detail::enlargement(options.rule.size_threshold_px, s_avg, options.max_enlargement);
             cloud.log_scales[out] += glm::vec3(static_cast<float>(std::log(factors[g])));
         });
     double sum = 0.0;
@@ -160,8 +160,8 @@ void set_ranges(SplatCloud& cloud, const detail::CoverageTable& table, const std
 void validate(const BakeOptions& o) {
     const auto bad = [](const std::string& what) { engine::fail("bake options: " + what); };
     if (o.coarsest_level < 1 || o.coarsest_level > kMaxLevel) bad("the coarsest level must be 1..4");
-    if (!(o.size_threshold_px > 0.0) || !std::isfinite(o.size_threshold_px)) bad("S_T must be positive");
-    if (!(o.rel_min > 0.0 && o.rel_max > 0.0) || !std::isfinite(o.rel_min + o.rel_max))
+    if (!(o.rule.size_threshold_px > 0.0f) || !std::isfinite(o.rule.size_threshold_px)) bad("S_T must be positive");
+    if (!(o.rule.rel_min > 0.0f && o.rule.rel_max > 0.0f) || !std::isfinite(o.rule.rel_min + o.rule.rel_max))
         bad("S_rel_min/max must be positive");
     if (!(o.znear > 0.0) || !std::isfinite(o.znear)) bad("znear must be positive");
     if (o.grid_cells < 1 || o.grid_cells > 2'000'000) bad("grid cells must be 1..2000000");

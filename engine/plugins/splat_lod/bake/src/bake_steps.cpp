@@ -174,8 +174,8 @@ std::uint64_t cell_key(const glm::dvec3& p, int level, int grid_cells, const Nor
     }
     const double d = std::max(options.znear, nearest);
     const int b = static_cast<int>(std::floor(std::log2(d)));
-    const double edge =
-        2.0 * options.size_threshold_px * std::ldexp(1.0, b) * level_scale(level) / std::max(camera->fx, camera->fy);
+    const double edge = 2.0 * double(options.rule.size_threshold_px) * std::ldexp(1.0, b) * level_scale(level) /
+                        std::max(camera->fx, camera->fy);
     if (!(edge > grid_edge) || !std::isfinite(edge)) return grid_key & ~(1ULL << 63);
     // Distance cell: (b, floor(p / edge)) hashed into the 63 low bits, the top bit set.
     std::uint64_t hash = 1469598103934665603ULL ^ static_cast<std::uint64_t>(static_cast<std::int64_t>(b) + 1024);
@@ -322,8 +322,9 @@ double member_cap(std::span<const float> coarse, const std::vector<std::span<con
     if (ratios.empty()) return -1.0;
     std::vector<double> drop;
     for (const float m : member_min)
-        drop.push_back(std::max(options.size_threshold_px, m > 0.0f ? options.rel_min * m : 0.0));
-    return percentile(ratios, 50.0) * percentile(drop, 50.0) / options.rel_max;
+        drop.push_back(
+            std::max(double(options.rule.size_threshold_px), m > 0.0f ? double(options.rule.rel_min) * m : 0.0));
+    return percentile(ratios, 50.0) * percentile(drop, 50.0) / double(options.rule.rel_max);
 }
 
 void cap_coverage_max(SplatCloud& cloud, const CoverageTable& table, const std::vector<LevelMembers>& levels,

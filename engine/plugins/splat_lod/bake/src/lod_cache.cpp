@@ -70,8 +70,8 @@ std::string bake_settings_text(const BakeSetup& s) {
     text += format("given %d%d%d%d%d%d%d; ", s.given.cells, s.given.enlargement, s.given.pooling, s.given.margin,
                    s.given.axis_ratio, s.given.member, s.given.refine_cameras);
     text += format("levels %d; S_T %.17g; rel %.17g,%.17g; znear %.17g; margin %.17g; axis %.17g; grid %d; ",
-                   o.coarsest_level, o.size_threshold_px, o.rel_min, o.rel_max, o.znear, o.view_margin,
-                   o.min_axis_ratio, o.grid_cells);
+                   o.coarsest_level, double(o.rule.size_threshold_px), double(o.rule.rel_min), double(o.rule.rel_max),
+                   o.znear, o.view_margin, o.min_axis_ratio, o.grid_cells);
     text += format("cells %d; pooling %d; choose %d; enlargement %.17g; member %d; percentiles %.17g,%.17g; ",
                    static_cast<int>(o.cells), static_cast<int>(o.pooling), o.choose_recipe, o.max_enlargement,
                    o.member_ranges, o.range_low_percentile, o.range_high_percentile);

@@ -91,12 +91,8 @@ std::vector<std::uint32_t> select_full(const SplatCloud& cloud, const reference:
                                        const BakeOptions& options, int coarsest) {
     const auto settings = coverage_settings(options.znear);
     const auto frame = reference::detail::make_instance_frame(cloud, glm::dmat4(1.0), camera, settings, 0);
-    LodRule rule;
-    rule.mode = plugin_msgs::LodMode::full;
-    rule.size_threshold_px = options.size_threshold_px;
-    rule.rel_min = options.rel_min;
-    rule.rel_max = options.rel_max;
-    rule.coarsest_level = coarsest;
+    LodRule rule = options.rule;
+    rule.mode = plugin_msgs::LodMode::full;  // lod_selected: the hard rule
     std::vector<std::uint8_t> keep(cloud.size(), 0);
     const std::size_t tasks = (cloud.size() + kChunk - 1) / kChunk;
     reference::detail::parallel_for(
@@ -105,8 +101,8 @@ std::vector<std::uint32_t> select_full(const SplatCloud& cloud, const reference:
                 const double coverage =
                     projected_coverage(reference::detail::project_in_frame(cloud, i, frame, camera, settings));
                 if (coverage < 0.0) continue;
-                keep[i] =
-                    lod_selected(rule, cloud.lod_level[i], coverage, cloud.coverage_min[i], cloud.coverage_max[i]);
+                keep[i] = lod_selected(rule, cloud.lod_level[i], coverage, cloud.coverage_min[i], cloud.coverage_max[i],
+                                       coarsest);
             }
         });
     std::vector<std::uint32_t> selected;

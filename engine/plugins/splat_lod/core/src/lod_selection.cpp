@@ -14,32 +14,35 @@ double pixel_coverage(double cov_xx, double cov_xy, double cov_yy, double opacit
     return 2.0 * std::min(std::sqrt(level_set * det / cov_yy), std::sqrt(level_set * det / cov_xx));
 }
 
-bool lod_selected(const LodRule& rule, int level, double coverage, double coverage_min, double coverage_max) {
-    using plugin_msgs::LodMode;
-    const bool all_levels = rule.mode == LodMode::insert_large || rule.mode == LodMode::full;
-    if (!all_levels && level != rule.finest_level) return false;
-    if (rule.mode == LodMode::baseline || rule.mode == LodMode::insert_large) return true;
+bool lod_selected(const LodRule& rule, int level, double coverage, double coverage_min, double coverage_max,
+                  int coarsest_level) {
+    const plugin_msgs::LodModeTraits mode = plugin_msgs::traits(rule.mode);
+    if (!mode.all_levels && level != kFinestLevel) return false;
+    if (!mode.coverage_rule) return true;
     // Eq. 6: not too large for its level (unless finest) and not too small (unless large enough
     // on screen, or coarsest).
     const bool not_too_large =
-        level == rule.finest_level || coverage_max < 0.0 || coverage / coverage_max <= rule.rel_max;
-    const bool not_too_small = level == rule.coarsest_level || coverage_min < 0.0 ||
-                               coverage >= rule.size_threshold_px || coverage / coverage_min >= rule.rel_min;
+        level == kFinestLevel || coverage_max < 0.0 || coverage / coverage_max <= double(rule.rel_max);
+    const bool not_too_small = level == coarsest_level || coverage_min < 0.0 ||
+                               coverage >= double(rule.size_threshold_px) ||
+                               coverage / coverage_min >= double(rule.rel_min);
     return not_too_large && not_too_small;
 }
 
-double lod_weight(const LodRule& rule, int level, double coverage, double coverage_min, double coverage_max) {
+double lod_weight(const LodRule& rule, int level, double coverage, double coverage_min, double coverage_max,
+                  int coarsest_level) {
     const double band = rule.transition_band;
-    if (rule.mode != plugin_msgs::LodMode::full || !(band > 0.0) || !(coverage > 0.0))
-        return lod_selected(rule, level, coverage, coverage_min, coverage_max) ? 1.0 : 0.0;
+    const plugin_msgs::LodModeTraits mode = plugin_msgs::traits(rule.mode);
+    if (!mode.transitions || !mode.coverage_rule || !(band > 0.0) || !(coverage > 0.0))
+        return lod_selected(rule, level, coverage, coverage_min, coverage_max, coarsest_level) ? 1.0 : 0.0;
     double weight = 1.0;
-    if (level != rule.finest_level && coverage_max >= 0.0) {
-        const double x = std::log2(coverage / (coverage_max * rule.rel_max));
+    if (level != kFinestLevel && coverage_max >= 0.0) {
+        const double x = std::log2(coverage / (coverage_max * double(rule.rel_max)));
         weight *= std::clamp(1.0 - x / band, 0.0, 1.0);
     }
-    if (level != rule.coarsest_level && coverage_min >= 0.0) {
-        const double y =
-            std::log2(std::max(coverage / rule.size_threshold_px, coverage / (coverage_min * rule.rel_min)));
+    if (level != coarsest_level && coverage_min >= 0.0) {
+        const double y = std::log2(
+            std::max(coverage / double(rule.size_threshold_px), coverage / (coverage_min * double(rule.rel_min))));
         weight *= std::clamp(y / band, 0.0, 1.0);
     }
     return weight;

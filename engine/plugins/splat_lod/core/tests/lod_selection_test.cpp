@@ -52,9 +52,7 @@ TEST(LodSelection, FullRuleWithExemptions) {
     EXPECT_FALSE(lod_selected(rule, 4, 30.0, 5.0, 10.0));
     EXPECT_TRUE(lod_selected(rule, 1, 300.0, 5.0, 10.0));  // finest is never too large
     EXPECT_TRUE(lod_selected(rule, 3, 0.01, -1.0, -1.0));  // unset bounds filter nothing
-    LodRule two_levels = rule;
-    two_levels.coarsest_level = 2;
-    EXPECT_TRUE(lod_selected(two_levels, 2, 0.01, 5.0, 10.0));
+    EXPECT_TRUE(lod_selected(rule, 2, 0.01, 5.0, 10.0, /*coarsest_level=*/2));
 }
 
 using splat_lod::lod_weight;

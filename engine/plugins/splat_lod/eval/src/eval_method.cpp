@@ -12,23 +12,23 @@ namespace splat_lod::eval {
 const std::vector<Method>& method_registry() {
     static const std::vector<Method> methods = {
         {"baseline", "the baseline renderer, every Gaussian of the fine model (level 1)",
-         [](SplatPassSettings& settings) { settings.lod.mode = plugin_msgs::LodMode::baseline; }},
+         [](SplatPassSettings& settings) { settings.lod.rule.mode = plugin_msgs::LodMode::baseline; }},
         {"baseline_mip", "the baseline renderer with the optional 2D mip filter",
          [](SplatPassSettings& settings) {
-             settings.lod.mode = plugin_msgs::LodMode::baseline;
-             settings.mip_filter = true;
+             settings.lod.rule.mode = plugin_msgs::LodMode::baseline;
+             settings.lod.mip_filter = true;
          }},
         // The LOD ablation modes (docs/algorithms.md §3); on a scene without baked levels they equal baseline.
         {"filter_small", "level 1 only, Gaussians too small for this view left out",
-         [](SplatPassSettings& settings) { settings.lod.mode = plugin_msgs::LodMode::filter_small; }},
+         [](SplatPassSettings& settings) { settings.lod.rule.mode = plugin_msgs::LodMode::filter_small; }},
         {"insert_large", "every level, no filtering",
-         [](SplatPassSettings& settings) { settings.lod.mode = plugin_msgs::LodMode::insert_large; }},
+         [](SplatPassSettings& settings) { settings.lod.rule.mode = plugin_msgs::LodMode::insert_large; }},
         {"full", "every level, selected by pixel coverage (the multi-scale method), smooth transitions",
-         [](SplatPassSettings& settings) { settings.lod.mode = plugin_msgs::LodMode::full; }},
+         [](SplatPassSettings& settings) { settings.lod.rule.mode = plugin_msgs::LodMode::full; }},
         {"full_hard", "every level, selected by pixel coverage, each Gaussian switched on or off at once",
          [](SplatPassSettings& settings) {
-             settings.lod.mode = plugin_msgs::LodMode::full;
-             settings.lod.transition_band = 0.0;
+             settings.lod.rule.mode = plugin_msgs::LodMode::full;
+             settings.lod.rule.transition_band = 0.0;
          }},
     };
     return methods;
@@ -41,8 +41,8 @@ const Method& reference_method() {
 const Method& level_colouring_method() {
     static const Method method{"full", "every level, selected by pixel coverage, each Gaussian tinted by its level",
                                [](SplatPassSettings& settings) {
-                                   settings.lod.mode = plugin_msgs::LodMode::full;
-                                   settings.level_colouring = true;
+                                   settings.lod.rule.mode = plugin_msgs::LodMode::full;
+                                   settings.lod.level_colouring = true;
                                }};
     return method;
 }
@@ -92,8 +92,8 @@ Method upscaled_method(const Method& mode, const UpscalerVariant& variant, int f
     return {variant.name, variant.description + ", " + mode.name + " at 1/" + std::to_string(factor),
             [configure_mode, variant, factor](SplatPassSettings& settings) {
                 if (configure_mode) configure_mode(settings);
-                settings.render_scale = 1.0f / static_cast<float>(factor);
-                settings.upscaler = variant.upscaler;
+                settings.lod.render_scale = 1.0f / static_cast<float>(factor);
+                settings.lod.upscaler = variant.upscaler;
                 settings.scaled_dilation = variant.scaled_dilation;
             }};
 }
@@ -102,7 +102,7 @@ Method native_method(const Method& mode) {
     const auto configure_mode = mode.configure;
     return {"native", mode.name + " at render scale 1", [configure_mode](SplatPassSettings& settings) {
                 if (configure_mode) configure_mode(settings);
-                settings.render_scale = 1.0f;
+                settings.lod.render_scale = 1.0f;
             }};
 }
 
@@ -121,12 +121,12 @@ std::optional<Method> banded_full(const std::string& name) {
     } catch (const std::exception&) {
         used = 0;
     }
-    if (used != text.size() || !(band >= 0.0 && band <= plugin_msgs::LodSettings::kMaxTransitionBand))
+    if (used != text.size() || !(band >= 0.0 && band <= plugin_msgs::LodRule::kMaxTransitionBand))
         engine::fail("--methods: \"" + name + "\": expected full@B with a transition band B in [0, 4] octaves");
     return Method{name, "every level, selected by pixel coverage, transition band " + text + " octaves",
                   [band](SplatPassSettings& settings) {
-                      settings.lod.mode = plugin_msgs::LodMode::full;
-                      settings.lod.transition_band = band;
+                      settings.lod.rule.mode = plugin_msgs::LodMode::full;
+                      settings.lod.rule.transition_band = band;
                   }};
 }
 

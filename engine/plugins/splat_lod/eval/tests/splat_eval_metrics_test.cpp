@@ -130,10 +130,10 @@ TEST(SplatEvalMetrics, FullWithABandIsAMethod) {
     for (const auto& method : methods) {
         splat_lod::SplatPassSettings settings;
         method.configure(settings);
-        EXPECT_EQ(settings.lod.mode, plugin_msgs::LodMode::full);
-        bands.push_back(settings.lod.transition_band);
+        EXPECT_EQ(settings.lod.rule.mode, plugin_msgs::LodMode::full);
+        bands.push_back(settings.lod.rule.transition_band);
     }
-    EXPECT_EQ(bands, (std::vector<double>{plugin_msgs::LodSettings::kDefaultTransitionBand, 0.0, 0.5}));
+    EXPECT_EQ(bands, (std::vector<double>{plugin_msgs::LodRule::kDefaultTransitionBand, 0.0, 0.5}));
     expect_error([] { eval::select_methods("full@-1"); }, {"full@-1", "[0, 4] octaves"});
     expect_error([] { eval::select_methods("full@wide"); }, {"full@wide"});
     expect_error([] { eval::select_methods("full@0.5,full@0.5"); }, {"listed twice"});

@@ -281,18 +281,18 @@ TEST_F(SplatEvalTest, UpscaleMethodsSetTheSplatPassAndBadFactorsFailFirst) {
     splat_lod::SplatRenderer pass(engine.renderer());
     const eval::UpscalerVariant plain = eval::select_upscalers("spline_plain").front();
     eval::upscaled_method(eval::find_method("full", "--upscale-mode"), plain, 4).configure(pass.settings());
-    EXPECT_FLOAT_EQ(pass.settings().render_scale, 0.25f);
-    EXPECT_EQ(pass.settings().upscaler, plugin_msgs::Upscaler::spline);
+    EXPECT_FLOAT_EQ(pass.settings().lod.render_scale, 0.25f);
+    EXPECT_EQ(pass.settings().lod.upscaler, plugin_msgs::Upscaler::spline);
     EXPECT_FALSE(pass.settings().scaled_dilation);
-    EXPECT_EQ(pass.settings().lod.mode, plugin_msgs::LodMode::full);
+    EXPECT_EQ(pass.settings().lod.rule.mode, plugin_msgs::LodMode::full);
     pass.settings() = splat_lod::SplatPassSettings{};
     eval::upscaled_method(eval::reference_method(), eval::select_upscalers("lanczos3").front(), 3)
         .configure(pass.settings());
-    EXPECT_FLOAT_EQ(pass.settings().render_scale, 1.0f / 3.0f);
-    EXPECT_EQ(pass.settings().upscaler, plugin_msgs::Upscaler::lanczos3);
+    EXPECT_FLOAT_EQ(pass.settings().lod.render_scale, 1.0f / 3.0f);
+    EXPECT_EQ(pass.settings().lod.upscaler, plugin_msgs::Upscaler::lanczos3);
     EXPECT_TRUE(pass.settings().scaled_dilation);
     eval::native_method(eval::reference_method()).configure(pass.settings());
-    EXPECT_FLOAT_EQ(pass.settings().render_scale, 1.0f);
+    EXPECT_FLOAT_EQ(pass.settings().lod.render_scale, 1.0f);
 
     eval::EvalScene scene = eval::make_splat_scene(small_cloud());
     eval::FrameMeasurer measurer(engine, *scene.scene);

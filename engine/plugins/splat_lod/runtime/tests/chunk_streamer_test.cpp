@@ -19,6 +19,7 @@
 #include "chunk_streamer_test_helpers.h"
 #include "engine/core/error.h"
 #include "engine/core/message_bus.h"
+#include "splat_lod/msgs/lod_settings.h"
 #include "splat_lod/msgs/stream_events.h"
 #include "splat_lod/stream/chunk_streamer.h"
 
@@ -41,7 +42,7 @@ TEST(StreamPolicy, GpuBytesDistancesAndLoadDistances) {
     const sw::ChunkEntry e = make_chunk(0, 0);
     EXPECT_EQ(sw::nearest_distance(e, {5.0f, 1.0f, 5.0f}), 0.0f);
     EXPECT_FLOAT_EQ(sw::nearest_distance(e, {13.0f, 1.0f, 14.0f}), 5.0f);
-    sw::LodThresholds lod;  // smooth transitions or not: a Gaussian is never drawn past its hard switch
+    plugin_msgs::LodRule lod;  // smooth transitions or not: a Gaussian is never drawn past its hard switch
     EXPECT_NEAR(sw::level_load_distance(e, 3, kFocal, lod), 60.0, 1e-4);
     EXPECT_NEAR(sw::level_load_distance(e, 1, kFocal, lod), 15.0, 1e-4);
     sw::ChunkEntry ratio = e;
@@ -256,29 +257,29 @@ TEST(ChunkStreamer, PublishesItsEventsAndOneResidencyReportPerFrame) {
 TEST(ChunkStreamer, FollowsTheSplatPassesThresholdsOnTheBus) {
     engine::MessageBus bus;
     plugin_msgs::LodSettings lod;
-    lod.size_threshold_px = 3.0f;
-    lod.rel_min = 0.25f;
+    lod.rule.size_threshold_px = 3.0f;
+    lod.rule.rel_min = 0.25f;
     bus.publish(lod);
     Harness h(sync_settings(), &bus);
-    EXPECT_EQ(h.streamer.settings().lod.size_threshold_px, 3.0f) << "the latest when made";
-    EXPECT_EQ(h.streamer.settings().lod.rel_min, 0.25f);
+    EXPECT_EQ(h.streamer.settings().rule.size_threshold_px, 3.0f) << "the latest when made";
+    EXPECT_EQ(h.streamer.settings().rule.rel_min, 0.25f);
     const auto close = before_chunk_0_0(10.0f);
     h.steps(close, 2);
     const int needed = h.streamer.chunk_status(0).finest_needed_level;
     // A larger S_T selects fine levels only nearer: the same camera needs coarser levels of chunk 0.
-    lod.size_threshold_px = 64.0f;
+    lod.rule.size_threshold_px = 64.0f;
     bus.publish(lod);
-    EXPECT_EQ(h.streamer.settings().lod.size_threshold_px, 64.0f) << "from the next update on";
+    EXPECT_EQ(h.streamer.settings().rule.size_threshold_px, 64.0f) << "from the next update on";
     h.steps(close, 2);
     EXPECT_GT(h.streamer.chunk_status(0).finest_needed_level, needed);
     // New budgets from the game keep the bus's thresholds, not the copy in the settings given.
     sw::StreamerSettings budgets = sync_settings();
-    budgets.lod.size_threshold_px = 1.0f;
+    budgets.rule.size_threshold_px = 1.0f;
     h.streamer.set_settings(budgets);
-    EXPECT_EQ(h.streamer.settings().lod.size_threshold_px, 64.0f);
+    EXPECT_EQ(h.streamer.settings().rule.size_threshold_px, 64.0f);
     // Without a bus the settings' own thresholds stay.
     Harness alone(sync_settings());
-    EXPECT_EQ(alone.streamer.settings().lod.size_threshold_px, sw::LodThresholds{}.size_threshold_px);
+    EXPECT_EQ(alone.streamer.settings().rule.size_threshold_px, plugin_msgs::LodRule{}.size_threshold_px);
 }
 
 TEST(ChunkStreamer, RejectsInvalidSettingsAndViews) {

@@ -28,7 +28,7 @@ TEST(LodPanel, ValidEditsArePublishedInvalidOnesAreNot) {
     EXPECT_EQ(panel.settings(), edit);
 
     plugin_msgs::LodSettings bad = edit;
-    bad.rel_min = 2.0f;  // above rel_max
+    bad.rule.rel_min = 2.0f;  // above rel_max
     EXPECT_NE(panel.submit(bad).find("rel_min"), std::string::npos);
     EXPECT_EQ(received.size(), 1u);
     EXPECT_EQ(panel.settings(), edit) << "the panel keeps showing the settings in force";
@@ -39,7 +39,7 @@ TEST(LodPanel, FollowsSettingsAndStatisticsFromTheBus) {
     engine::MessageBus bus;
     splat_lod::LodPanel panel(bus);
     plugin_msgs::LodSettings game;
-    game.mode = plugin_msgs::LodMode::baseline;
+    game.rule.mode = plugin_msgs::LodMode::baseline;
     game.render_scale = 0.5f;
     bus.publish(game);
     EXPECT_EQ(panel.settings(), game);

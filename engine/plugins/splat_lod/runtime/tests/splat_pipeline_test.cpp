@@ -255,9 +255,9 @@ TEST_F(SplatPipelineTest, MeshesAndSplatsCompositeByDepth) {
 }
 
 // The GPU's selection (splat_project) against splat_lod::lod_selected on the CPU, for every
-// mode: the same Gaussians per level are drawn, and the image equals the reference render of
-// exactly the CPU-selected Gaussians. Coverage bounds are placed away from the decision
-// thresholds so float and double cannot disagree.
+// mode of plugin_msgs::kLodModeNames: the same Gaussians per level are drawn, and the image equals the reference render
+// of exactly the CPU-selected Gaussians. Coverage bounds are placed away from the decision thresholds so float and
+// double cannot disagree.
 TEST_F(SplatPipelineTest, LodSelectionMatchesTheCpuRule) {
     std::vector<GaussianSpec> specs;
     for (int i = 0; i < 400; ++i) {
@@ -287,16 +287,15 @@ TEST_F(SplatPipelineTest, LodSelectionMatchesTheCpuRule) {
     const auto shared_cloud = shared(cloud);
     splat_lod::SplatRenderer pass(harness.engine().renderer());
     std::map<plugin_msgs::LodMode, std::array<std::uint64_t, 4>> counts;
-    for (const auto mode : {plugin_msgs::LodMode::baseline, plugin_msgs::LodMode::filter_small,
-                            plugin_msgs::LodMode::insert_large, plugin_msgs::LodMode::full}) {
+    for (std::size_t m = 0; m < plugin_msgs::kLodModeNames.size(); ++m) {  // every mode, a new one included
+        const auto mode = static_cast<plugin_msgs::LodMode>(m);
         SCOPED_TRACE(std::string(plugin_msgs::to_string(mode)));
         plugin_msgs::LodSettings lod;
-        lod.mode = mode;
-        lod.transition_band = 0.0f;           // hard switching: the rule itself
+        lod.rule.mode = mode;
+        lod.rule.transition_band = 0.0f;      // hard switching: the rule itself
         harness.engine().bus().publish(lod);  // the plugin takes settings from the bus
-        ASSERT_EQ(pass.settings().lod.mode, mode);
-        splat_lod::LodRule rule = pass.settings().lod;
-        rule.coarsest_level = 4;
+        ASSERT_EQ(pass.settings().lod.rule.mode, mode);
+        const splat_lod::LodRule rule = pass.settings().lod.rule;
         std::vector<std::uint8_t> keep(cloud.size());
         std::array<std::uint64_t, 4> per_level{0, 0, 0, 0};
         for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -326,7 +325,7 @@ TEST_F(SplatPipelineTest, LevelColouringTintsEachLevel) {
                                            {{0.6f, 0, 0}, glm::vec3(-1.5f), {1, 0, 0, 0}, 4.0f, {0.9f, 0.9f, 0.9f}}});
     cloud.lod_level[1] = 2;
     plugin_msgs::LodSettings lod;
-    lod.mode = plugin_msgs::LodMode::insert_large;
+    lod.rule.mode = plugin_msgs::LodMode::insert_large;
     lod.level_colouring = true;
     harness.engine().bus().publish(lod);
     const auto camera =
@@ -361,11 +360,10 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     const ref::ReferenceSettings settings;
     splat_lod::SplatRenderer pass(harness.engine().renderer());
     harness.engine().bus().publish(plugin_msgs::LodSettings{});  // full, the default band
-    splat_lod::LodRule rule = pass.settings().lod;
-    const double band = plugin_msgs::LodSettings::kDefaultTransitionBand;
+    const splat_lod::LodRule rule = pass.settings().lod.rule;
+    const double band = plugin_msgs::LodRule::kDefaultTransitionBand;
     ASSERT_EQ(rule.transition_band, band);
     ASSERT_GT(band, 0.0);
-    rule.coarsest_level = 4;
     auto weighted = cloud;
     std::vector<std::uint8_t> keep(cloud.size());
     int partial = 0;
@@ -398,7 +396,7 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     EXPECT_EQ(harness.render({shared_cloud}, camera).rgba, gpu.rgba) << "the same frame twice";
     // Hard switching draws another image from the same cloud.
     plugin_msgs::LodSettings hard;
-    hard.transition_band = 0.0f;
+    hard.rule.transition_band = 0.0f;
     harness.engine().bus().publish(hard);
     EXPECT_LT(engine::compare_images(harness.render({shared_cloud}, camera), gpu).psnr_db, 40.0);
 }

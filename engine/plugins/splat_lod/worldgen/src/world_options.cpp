@@ -59,8 +59,7 @@ void validate(const WorldOptions& o) {
 
 StreamLevelRule stream_level_rule(const WorldOptions& o) {
     StreamLevelRule rule;
-    rule.size_threshold_px = static_cast<float>(o.bake.size_threshold_px);
-    rule.rel_min = static_cast<float>(o.bake.rel_min);
+    rule.lod = o.bake.rule;
     rule.reach_min = o.stream_reach_min;
     return rule;
 }
@@ -69,8 +68,8 @@ std::string generator_settings(const WorldOptions& o) {
     const bake::BakeOptions& b = o.bake;
     std::ostringstream s;
     s << "splat_lod world content " << kContentVersion << "; bake " << o.bake_width << "x" << o.bake_height
-      << " rings 3x8; levels " << b.coarsest_level << ", S_T " << number(b.size_threshold_px) << ", rel "
-      << number(b.rel_min) << "/" << number(b.rel_max) << ", znear " << number(b.znear) << ", "
+      << " rings 3x8; levels " << b.coarsest_level << ", S_T " << number(b.rule.size_threshold_px) << ", rel "
+      << number(b.rule.rel_min) << "/" << number(b.rule.rel_max) << ", znear " << number(b.znear) << ", "
       << (b.choose_recipe ? "chosen recipe"
                           : std::string(b.cells == bake::CellRule::grid ? "grid" : "adaptive") +
                                 " cells, enlargement <= " + number(b.max_enlargement))

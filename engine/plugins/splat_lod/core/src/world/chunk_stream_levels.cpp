@@ -16,8 +16,8 @@ double gaussian_reach(const SplatCloud& cloud, std::size_t i, const StreamLevelR
     const float coverage_min = cloud.coverage_min.empty() ? -1.0f : cloud.coverage_min[i];
     if (level >= coarsest_level || !(coverage_min > 0.0f)) return std::numeric_limits<double>::infinity();
     const double extent = gaussian_extent(cloud.log_scales[i], cloud.opacity_logits[i]);
-    const double threshold = std::min(static_cast<double>(rule.size_threshold_px),
-                                      static_cast<double>(rule.rel_min) * static_cast<double>(coverage_min));
+    const double threshold = std::min(static_cast<double>(rule.lod.size_threshold_px),
+                                      static_cast<double>(rule.lod.rel_min) * static_cast<double>(coverage_min));
     return 2.0 * extent / threshold;
 }
 
@@ -44,9 +44,9 @@ std::vector<std::uint32_t> stream_order(const SplatCloud& cloud, const StreamLev
 }
 
 std::string check_stream_level_rule(const StreamLevelRule& rule) {
-    if (!(std::isfinite(rule.size_threshold_px) && rule.size_threshold_px > 0.0f))
+    if (!(std::isfinite(rule.lod.size_threshold_px) && rule.lod.size_threshold_px > 0.0f))
         return "S_T must be positive and finite";
-    if (!(std::isfinite(rule.rel_min) && rule.rel_min > 0.0f)) return "S_rel_min must be positive and finite";
+    if (!(std::isfinite(rule.lod.rel_min) && rule.lod.rel_min > 0.0f)) return "S_rel_min must be positive and finite";
     for (std::size_t k = 0; k < rule.reach_min.size(); ++k) {
         if (!(std::isfinite(rule.reach_min[k]) && rule.reach_min[k] > 0.0f))
             return "reaches must be positive and finite";

@@ -250,8 +250,8 @@ Prop ManifestReader::prop(const json& object, const std::string& key) const {
 StreamLevelRule ManifestReader::stream_level_rule(const json& object, const std::string& key) const {
     only_keys(object, key, {"size_threshold_px", "rel_min", "reach_min"});
     StreamLevelRule rule;
-    rule.size_threshold_px = positive(member(object, key, "size_threshold_px"), join(key, "size_threshold_px"));
-    rule.rel_min = positive(member(object, key, "rel_min"), join(key, "rel_min"));
+    rule.lod.size_threshold_px = positive(member(object, key, "size_threshold_px"), join(key, "size_threshold_px"));
+    rule.lod.rel_min = positive(member(object, key, "rel_min"), join(key, "rel_min"));
     const json& reach = member(object, key, "reach_min");
     if (!reach.is_array() || reach.size() != rule.reach_min.size())
         error(join(key, "reach_min"), "expected an array of 3 reaches, got " + reach.dump());
@@ -431,8 +431,8 @@ json manifest_json(const WorldManifest& m) {
                 {"density", m.density},
                 {"generator", m.generator},
                 {"stream_levels",
-                 {{"size_threshold_px", m.stream_levels.size_threshold_px},
-                  {"rel_min", m.stream_levels.rel_min},
+                 {{"size_threshold_px", m.stream_levels.lod.size_threshold_px},
+                  {"rel_min", m.stream_levels.lod.rel_min},
                   {"reach_min", m.stream_levels.reach_min}}},
                 {"chunks", chunks},
                 {"props", props},

@@ -35,27 +35,26 @@ enum class RasterFetch {
 const char* to_string(RasterFetch fetch);
 
 struct SplatPassSettings {
-    float znear = 0.2f;            // docs/algorithms.md §1
-    float dilation = 0.3f;         // the EWA low-pass, in px²
-    bool mip_filter = false;       // the optional 2D mip filter
-    LodRule lod;                   // selection by pixel coverage (coarsest_level is set from the scene)
-    bool level_colouring = false;  // debug view: tint each Gaussian by its LOD level
+    // What a user chooses (plugin_msgs/lod_settings.h): the selection rule, the render scale and its
+    // upscaler, the mip filter, the level colouring and the splat budget. A LodSettings message on the
+    // engine's bus replaces it whole as it is published; tools without a bus set it here.
+    // With render_scale < 1 the splats are rasterised at that fraction of the output size with their
+    // analytic image derivatives and brought to the output by the upscaler (docs/algorithms.md §5).
+    // A splat budget, when the selection would draw more, makes the frame select as if every
+    // coverage were β times smaller (S_T and the coverage ranges β times larger: coarser levels), the
+    // smallest β in eighth-octave steps that fits, chosen on the GPU in the same frame; if even
+    // β ≈ 3700 does not fit, the smallest of those Gaussians are dropped. Invalid settings make
+    // execute() throw engine::Error.
+    plugin_msgs::LodSettings lod;
+    // The pass's own technical settings, for measurements and tests.
+    float znear = 0.2f;     // docs/algorithms.md §1
+    float dilation = 0.3f;  // the EWA low-pass, in px²
     // Skip whole project workgroups whose Gaussians are all too small to be selected (exact: the
     // image and counts are the same either way; off only to measure what it saves).
     bool cluster_skipping = true;
     // Drop whole clusters that the view frustum leaves out before per-Gaussian work (exact, like the
     // skipping; off only to measure what it saves and to test that the image does not change).
     bool frustum_culling = true;
-    // At most this many Gaussians drawn per frame (0: no budget). When the selection would draw more,
-    // the frame selects as if every coverage were β times smaller (S_T and the coverage ranges β times
-    // larger: coarser levels), the smallest β in eighth-octave steps that fits, chosen on the GPU in
-    // the same frame; if even β ≈ 3700 does not fit, the smallest of those Gaussians are dropped.
-    std::uint32_t splat_budget = 0;
-    // Gradient-aware upscaling (docs/algorithms.md §5): below 1 the splats are rasterised at this fraction
-    // of the output size, with their analytic image derivatives, and brought to the output by
-    // `upscaler` before compositing over the mesh pass. Outside (0, 1] execute() throws engine::Error.
-    float render_scale = 1.0f;
-    plugin_msgs::Upscaler upscaler = plugin_msgs::Upscaler::spline;
     // Resolution-consistent dilation: at render scale s the EWA low-pass is dilation·s² low-res px²,
     // the same blur as the native render (off only to measure the plain 0.3 px²).
     bool scaled_dilation = true;

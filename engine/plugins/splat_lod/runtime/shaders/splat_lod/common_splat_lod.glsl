@@ -10,10 +10,10 @@ float pixel_coverage(mat2 cov, float det, float opacity) {
 
 // docs/algorithms.md §3 (Yan et al. Eq. 6); bounds of −1 are unset.
 bool lod_selected(uint level, float coverage, float coverage_min, float coverage_max) {
-    uint mode = frame.lod_mode, finest = frame.finest_level, coarsest = frame.coarsest_level;
-    bool all_levels = mode == SPLAT_LOD_MODE_INSERT_LARGE || mode == SPLAT_LOD_MODE_FULL;
+    uint finest = frame.finest_level, coarsest = frame.coarsest_level;
+    bool all_levels = (frame.lod_flags & SPLAT_LOD_ALL_LEVELS) != 0u;
     if (!all_levels && level != finest) return false;
-    if (mode == SPLAT_LOD_MODE_BASELINE || mode == SPLAT_LOD_MODE_INSERT_LARGE) return true;
+    if ((frame.lod_flags & SPLAT_LOD_COVERAGE_RULE) == 0u) return true;
     bool not_too_large = level == finest || coverage_max < 0.0 || coverage / coverage_max <= frame.rel_max;
     bool not_too_small = level == coarsest || coverage_min < 0.0 || coverage >= frame.size_threshold ||
                          coverage / coverage_min >= frame.rel_min;
@@ -21,7 +21,8 @@ bool lod_selected(uint level, float coverage, float coverage_min, float coverage
 }
 
 bool smooth_transitions() {
-    return frame.lod_mode == SPLAT_LOD_MODE_FULL && frame.transition_band > 0.0;
+    const uint both = SPLAT_LOD_COVERAGE_RULE | SPLAT_LOD_TRANSITIONS;
+    return (frame.lod_flags & both) == both && frame.transition_band > 0.0;
 }
 
 // The rule's two tests as log2 distances from their switches (> 0: the test fails by that many
@@ -59,10 +60,9 @@ vec3 level_colour(uint level, vec3 colour) {
 // transition band (0 when transitions are hard: then the bounds are inclusive, as in lod_selected).
 ivec2 budget_bins(uint level, float coverage, float coverage_min, float coverage_max) {
     const ivec2 none = ivec2(1, 0);
-    uint mode = frame.lod_mode, finest = frame.finest_level;
-    bool all_levels = mode == SPLAT_LOD_MODE_INSERT_LARGE || mode == SPLAT_LOD_MODE_FULL;
-    if (!all_levels && level != finest) return none;
-    if (mode == SPLAT_LOD_MODE_BASELINE || mode == SPLAT_LOD_MODE_INSERT_LARGE) return ivec2(0, SPLAT_BUDGET_BINS - 1);
+    bool all_levels = (frame.lod_flags & SPLAT_LOD_ALL_LEVELS) != 0u;
+    if (!all_levels && level != frame.finest_level) return none;
+    if ((frame.lod_flags & SPLAT_LOD_COVERAGE_RULE) == 0u) return ivec2(0, SPLAT_BUDGET_BINS - 1);
     if (!(coverage > 0.0)) return lod_selected(level, coverage, coverage_min, coverage_max) ? ivec2(0) : none;
     vec2 o = lod_switch_octaves(level, coverage, coverage_min, coverage_max);
     bool smooth_fade = smooth_transitions();

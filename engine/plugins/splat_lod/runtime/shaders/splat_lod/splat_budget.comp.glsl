@@ -22,8 +22,7 @@ void main() {
     }
     uint cut = 0u;
     // Without the rule (baseline, insert_large) β changes nothing: only the size cut applies.
-    uint mode = frame.lod_mode;
-    bool rule = mode == SPLAT_LOD_MODE_FILTER_SMALL || mode == SPLAT_LOD_MODE_FULL;
+    bool rule = (frame.lod_flags & SPLAT_LOD_COVERAGE_RULE) != 0u;
     if (!rule && chosen != 0u) chosen = uint(SPLAT_BUDGET_BINS);
     if (chosen == uint(SPLAT_BUDGET_BINS)) {  // the coarsest cut is still too many: drop its smallest
         chosen = rule ? uint(SPLAT_BUDGET_BINS) - 1u : 0u;

@@ -55,8 +55,7 @@ bool cull_cluster(GpuCluster c) {
 }
 
 bool skip_cluster(uint cluster) {
-    uint mode = frame.lod_mode;
-    if (frame.cluster_skipping == 0u || (mode != SPLAT_LOD_MODE_FILTER_SMALL && mode != SPLAT_LOD_MODE_FULL)) return false;
+    if (frame.cluster_skipping == 0u || (frame.lod_flags & SPLAT_LOD_COVERAGE_RULE) == 0u) return false;
     GpuCluster c = clusters[cluster];
     if (!(c.bounds.y > 0.0) || c.bounds.w < 0.0 || uint(c.bounds.z) >= frame.coarsest_level) return false;
     GpuInstance inst = instances[floatBitsToUint(c.bounds.w)];

@@ -89,10 +89,11 @@ SPLAT_LOD_STRUCT(ScanLevel) {
 #define SPLAT_RANGES_WORKGROUP_SIZE 256
 #define SPLAT_MAX_SH_DEGREE 3
 #define SPLAT_MAX_LEVELS 4
-#define SPLAT_LOD_MODE_BASELINE 0      // finest level only, no filter
-#define SPLAT_LOD_MODE_FILTER_SMALL 1  // finest level only, the rule applied
-#define SPLAT_LOD_MODE_INSERT_LARGE 2  // every level, no filter
-#define SPLAT_LOD_MODE_FULL 3          // every level, the rule applied
+// FrameUniforms::lod_flags: what the LOD mode does (plugin_msgs::LodModeTraits); shaders read
+// these, never the mode.
+#define SPLAT_LOD_ALL_LEVELS 1u     // every bake level takes part (else only the finest)
+#define SPLAT_LOD_COVERAGE_RULE 2u  // the coverage tests apply (else every candidate is drawn)
+#define SPLAT_LOD_TRANSITIONS 4u    // transition_band > 0 fades Gaussians at the rule's switches
 
 // Shader storage bindings.
 #define SPLAT_BINDING_GAUSSIANS 0    // GpuGaussian[N], static per cloud
@@ -235,7 +236,7 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     float rel_min;               // S_rel_min
     float rel_max;               // S_rel_max
     float coverage_scale;        // output px per raster px (1/s): coverage is measured at the output
-    uint lod_mode;               // SPLAT_LOD_MODE_*
+    uint lod_flags;              // SPLAT_LOD_ALL_LEVELS | SPLAT_LOD_COVERAGE_RULE | SPLAT_LOD_TRANSITIONS
     uint finest_level;           // finest bake level drawn
     uint coarsest_level;         // highest bake level present
     uint level_colouring;        // 1: debug view, tint each Gaussian by its level

@@ -2,6 +2,7 @@
 // C++ view of the splat pipeline's GPU contract, with the layout checks that keep C++ and GLSL
 // in agreement (std430/std140 offsets of vec4/uvec4/mat4 members are 16-byte multiples).
 #include <cstddef>
+#include <cstdint>
 
 #include <splat_lod/splat_lod_shared.h>
 #include "splat_lod/msgs/lod_settings.h"
@@ -28,7 +29,7 @@ static_assert(offsetof(FrameUniforms, gaussian_count) == 128);
 static_assert(offsetof(FrameUniforms, tiles) == 144);
 static_assert(offsetof(FrameUniforms, tile_count) == 152);
 static_assert(offsetof(FrameUniforms, size_threshold) == 160);
-static_assert(offsetof(FrameUniforms, lod_mode) == 176);
+static_assert(offsetof(FrameUniforms, lod_flags) == 176);
 static_assert(offsetof(FrameUniforms, output_size) == 192);
 static_assert(offsetof(FrameUniforms, render_scale) == 200);
 static_assert(offsetof(FrameUniforms, splat_budget) == 208);
@@ -41,10 +42,21 @@ static_assert(offsetof(FrameCounters, budget) == 48);
 static_assert(sizeof(SplatBudgetState) == 16 + 4 * (SPLAT_BUDGET_BINS + SPLAT_COVERAGE_BINS));
 static_assert(offsetof(FrameCounters, per_level) == 16);
 
-static_assert(static_cast<int>(plugin_msgs::LodMode::baseline) == SPLAT_LOD_MODE_BASELINE);
-static_assert(static_cast<int>(plugin_msgs::LodMode::filter_small) == SPLAT_LOD_MODE_FILTER_SMALL);
-static_assert(static_cast<int>(plugin_msgs::LodMode::insert_large) == SPLAT_LOD_MODE_INSERT_LARGE);
-static_assert(static_cast<int>(plugin_msgs::LodMode::full) == SPLAT_LOD_MODE_FULL);
+// The LOD rule's one conversion into the frame uniforms: its thresholds, and its mode as the flags of
+// the mode's traits (the shaders read the flags, never the mode).
+constexpr std::uint32_t lod_flags(plugin_msgs::LodModeTraits mode) {
+    return (mode.all_levels ? SPLAT_LOD_ALL_LEVELS : 0u) | (mode.coverage_rule ? SPLAT_LOD_COVERAGE_RULE : 0u) |
+           (mode.transitions ? SPLAT_LOD_TRANSITIONS : 0u);
+}
+inline void write_lod_rule(FrameUniforms& u, const plugin_msgs::LodRule& rule) {
+    u.size_threshold = rule.size_threshold_px;
+    u.rel_min = rule.rel_min;
+    u.rel_max = rule.rel_max;
+    u.lod_flags = lod_flags(plugin_msgs::traits(rule.mode));
+    u.finest_level = 1;
+    u.transition_band = rule.transition_band;
+}
+
 static_assert(static_cast<int>(plugin_msgs::Upscaler::spline) == SPLAT_UPSCALER_SPLINE);
 static_assert(static_cast<int>(plugin_msgs::Upscaler::bicubic) == SPLAT_UPSCALER_BICUBIC);
 static_assert(static_cast<int>(plugin_msgs::Upscaler::bilinear) == SPLAT_UPSCALER_BILINEAR);

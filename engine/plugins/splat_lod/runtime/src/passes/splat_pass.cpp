@@ -42,16 +42,7 @@ void barrier() {
 SplatPass::SplatPass() = default;
 
 void SplatPass::apply(const plugin_msgs::LodSettings& lod) {
-    settings.lod.mode = lod.mode;
-    settings.lod.size_threshold_px = lod.size_threshold_px;
-    settings.lod.rel_min = lod.rel_min;
-    settings.lod.rel_max = lod.rel_max;
-    settings.lod.transition_band = lod.transition_band;
-    settings.mip_filter = lod.mip_filter;
-    settings.level_colouring = lod.level_colouring;
-    settings.render_scale = lod.render_scale;
-    settings.upscaler = lod.upscaler;
-    settings.splat_budget = lod.splat_budget;
+    settings.lod = lod;
 }
 SplatPass::~SplatPass() = default;
 
@@ -109,7 +100,7 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, const R
     u.jacobian_clamp = glm::vec2(1.3f * tan_x, 1.3f * tan_y);
     // Resolution-consistent dilation (docs/algorithms.md §5): 0.3 output px² is 0.3·s² raster px².
     u.dilation = settings.dilation * (settings.scaled_dilation ? s * s : 1.0f);
-    u.mip_filter = settings.mip_filter ? 1u : 0u;
+    u.mip_filter = settings.lod.mip_filter ? 1u : 0u;
     u.cluster_skipping = settings.cluster_skipping ? 1u : 0u;
     u.frustum_culling = settings.frustum_culling ? 1u : 0u;
     u.gaussian_count = scene_.gaussian_count();
@@ -119,20 +110,14 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, const R
     u.tiles = glm::uvec2(raster.tiles_x, raster.tiles_y);
     u.tile_count = raster.tiles_x * raster.tiles_y;
     u.tile_size = raster.tile_size;
-    const LodRule& lod = settings.lod;
-    u.size_threshold = lod.size_threshold_px;
-    u.rel_min = lod.rel_min;
-    u.rel_max = lod.rel_max;
+    gpu::write_lod_rule(u, settings.lod.rule);
     u.coverage_scale = 1.0f / s;
-    u.lod_mode = static_cast<std::uint32_t>(lod.mode);
-    u.finest_level = static_cast<std::uint32_t>(lod.finest_level);
     u.coarsest_level = scene_.coarsest_level();
-    u.level_colouring = settings.level_colouring ? 1u : 0u;
+    u.level_colouring = settings.lod.level_colouring ? 1u : 0u;
     u.output_size = glm::vec2(frame.target.width(), frame.target.height());
     u.render_scale = s;
     u.inverse_render_scale = 1.0f / s;
-    u.splat_budget = settings.splat_budget;
-    u.transition_band = static_cast<float>(lod.transition_band);
+    u.splat_budget = settings.lod.splat_budget;
     u.exact_tiles = settings.exact_tiles ? 1u : 0u;
     u.key_depth_bits = raster.key_depth_bits;
     uniforms_.upload(0, sizeof(u), &u);
@@ -141,7 +126,7 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, const R
 }
 
 SplatPass::RasterSize SplatPass::raster_size(const engine::FrameContext& frame) const {
-    const float s = settings.render_scale;
+    const float s = settings.lod.render_scale;
     if (!(s > 0.0f && s <= 1.0f)) engine::fail("splat_lod: render_scale must be in (0, 1], got " + std::to_string(s));
     RasterSize r;
     r.scale = s;
@@ -226,7 +211,7 @@ void SplatPass::record_selection(engine::FrameContext& frame, std::uint32_t n) {
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, cluster_list_.id());
     glDispatchComputeIndirect(0);
     barrier();
-    if (settings.splat_budget > 0) {
+    if (settings.lod.splat_budget > 0) {
         glUseProgram(program(frame, "splat_budget.comp.glsl").id());
         glDispatchCompute(1, 1, 1);
         barrier();
@@ -315,7 +300,7 @@ void SplatPass::record_raster(engine::FrameContext& frame, const RasterSize& ras
     }
     if (raster.upscaled) {  // 7. upscale to the output and composite over the mesh pass
         GpuTimerScope t(frame.timers, "splat.upscale");
-        const std::string method = "UPSCALE_METHOD=" + std::to_string(static_cast<int>(settings.upscaler));
+        const std::string method = "UPSCALE_METHOD=" + std::to_string(static_cast<int>(settings.lod.upscaler));
         glUseProgram(frame.shaders.program({"splat_lod/splat_upscale.comp.glsl"}, {method}).id());
         glDispatchCompute(groups(static_cast<std::uint32_t>(frame.target.width()), SPLAT_UPSCALE_WORKGROUP_SIZE),
                           groups(static_cast<std::uint32_t>(frame.target.height()), SPLAT_UPSCALE_WORKGROUP_SIZE), 1);
@@ -356,7 +341,7 @@ void SplatPass::execute(engine::FrameContext& frame) {
 // cluster list empty, before step 1 fills them.
 void SplatPass::clear_frame_buffers() {
     glClearNamedBufferData(counters_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
-    if (settings.splat_budget > 0)
+    if (settings.lod.splat_budget > 0)
         glClearNamedBufferData(budget_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     glClearNamedBufferData(tile_ranges_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
     // Gaussians of skipped clusters are never visited: their tile counts stay 0.
@@ -407,8 +392,8 @@ void SplatPass::record_statistics(engine::FrameContext& frame) {
     r.fence.insert();
     r.frame = frame.frame_index;
     r.considered = scene_.live_gaussians();
-    r.splat_budget = settings.splat_budget;
-    r.size_threshold_px = settings.lod.size_threshold_px;
+    r.splat_budget = settings.lod.splat_budget;
+    r.size_threshold_px = settings.lod.rule.size_threshold_px;
     r.resident_bytes = scene_.resident_bytes() + projected_.size() + tile_counts_.size() + keys_.size() +
                        values_.size() + tile_ranges_.size() + cluster_list_.size() + low_res_bytes();
     ++frames_;

@@ -33,7 +33,7 @@ public:
     void execute(engine::FrameContext& frame) override;
 
     SplatPassSettings settings;
-    // Takes the mode, thresholds and mip filter of a LodSettings message (published on the bus).
+    // Takes a LodSettings message whole (published on the bus): settings.lod is that message.
     void apply(const plugin_msgs::LodSettings& lod);
 
     // The newest statistics read back so far (also published on the bus).

@@ -10,6 +10,7 @@
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "splat_lod/core/chunk_reader.h"
+#include "splat_lod/msgs/lod_settings.h"
 #include "stream_state.h"
 
 namespace splat_lod::world {
@@ -97,12 +98,12 @@ ChunkStreamer::State::State(WorldManifest world, std::filesystem::path root, Str
     if (bus) {
         statistics_subscription = bus->subscribe<plugin_msgs::SplatStatistics>(
             [this](const plugin_msgs::SplatStatistics& latest) { statistics = latest; });
-        // The thresholds the splat pass draws with: the latest LodSettings now, and every later one from the
+        // The rule the splat pass draws with: the latest LodSettings now, and every later one from the
         // next update on.
-        if (const auto lod = bus->latest<plugin_msgs::LodSettings>()) settings.lod = *(bus_lod = thresholds_of(*lod));
+        if (const auto lod = bus->latest<plugin_msgs::LodSettings>()) settings.rule = *(bus_rule = lod->rule);
         lod_subscription = bus->subscribe<plugin_msgs::LodSettings>([this](const plugin_msgs::LodSettings& lod) {
             StreamerSettings next = pending_settings ? *pending_settings : settings;
-            next.lod = *(bus_lod = thresholds_of(lod));
+            next.rule = *(bus_rule = lod.rule);
             pending_settings = next;
         });
     }
@@ -130,10 +131,6 @@ void ChunkStreamer::State::layout_levels(ChunkSlot& slot) const {
             s.planned_bytes += gpu_bytes(s.parts.back().count, settings.gpu_sh_degree, settings.gpu_pages);
         }
     }
-}
-
-LodThresholds ChunkStreamer::State::thresholds_of(const plugin_msgs::LodSettings& lod) {
-    return {static_cast<float>(lod.size_threshold_px), static_cast<float>(lod.rel_min)};
 }
 
 void ChunkStreamer::State::apply_pending_settings() {
@@ -420,7 +417,7 @@ void ChunkStreamer::set_settings(const StreamerSettings& settings) {
         settings.gpu_pages.page_overhead_bytes != state_->settings.gpu_pages.page_overhead_bytes)
         engine::fail("splat_lod::world::ChunkStreamer::set_settings(): gpu_pages cannot change while streaming");
     state_->pending_settings = settings;
-    if (state_->bus_lod) state_->pending_settings->lod = *state_->bus_lod;  // the splat pass's, not a copy
+    if (state_->bus_rule) state_->pending_settings->rule = *state_->bus_rule;  // the splat pass's, not a copy
 }
 
 const StreamerSettings& ChunkStreamer::settings() const {

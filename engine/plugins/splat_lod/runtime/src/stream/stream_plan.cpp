@@ -56,7 +56,7 @@ void ChunkStreamer::State::plan(const StreamView& view) {
         for (int l = 1; l < kLevels; ++l) {
             const double load = slot.failure_permanent || !slot.in_cut
                                     ? 0.0
-                                    : level_load_distance(*slot.entry, l, view.focal_length_px, settings.lod) *
+                                    : level_load_distance(*slot.entry, l, view.focal_length_px, settings.rule) *
                                           settings.load_distance_scale;
             finer = std::max(finer, margin(load, slot.distance));
             slot.level(l).margin = finer;

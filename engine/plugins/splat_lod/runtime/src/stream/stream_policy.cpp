@@ -17,14 +17,15 @@ float nearest_distance(const ChunkEntry& chunk, const glm::vec3& point) {
     return glm::length(point - glm::clamp(point, lo, hi));
 }
 
-double level_load_distance(const ChunkEntry& chunk, int level, double focal_length_px, const LodThresholds& lod) {
+double level_load_distance(const ChunkEntry& chunk, int level, double focal_length_px,
+                           const plugin_msgs::LodRule& rule) {
     if (level < 1 || level >= kLevels)
         engine::fail("splat_lod::world::level_load_distance(): level must be 1..3, got " + std::to_string(level));
     const ChunkLevel& bounds = chunk.levels[static_cast<std::size_t>(level - 1)];
     // Always needed: some Gaussian has no coverage_min, so only "too large" could hide it.
     if (bounds.extent_per_min_coverage_max < 0.0f) return std::numeric_limits<double>::infinity();
-    const double by_size = 2.0 * bounds.extent_max * focal_length_px / lod.size_threshold_px;
-    const double by_ratio = 2.0 * bounds.extent_per_min_coverage_max * focal_length_px / lod.rel_min;
+    const double by_size = 2.0 * bounds.extent_max * focal_length_px / rule.size_threshold_px;
+    const double by_ratio = 2.0 * bounds.extent_per_min_coverage_max * focal_length_px / rule.rel_min;
     const double distance = std::max(by_size, by_ratio);
     return distance > 0.0 ? distance : 0.0;  // NaN and negative bounds: never needed by distance
 }

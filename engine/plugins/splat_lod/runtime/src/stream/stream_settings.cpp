@@ -25,10 +25,7 @@ void validate(const StreamerSettings& s) {
                        std::to_string(s.gpu_sh_degree) + ")");
     if (s.memory_budget_bytes == 0) settings_error("memory_budget_bytes must be positive");
     if (s.max_requests_in_flight < 1) settings_error("max_requests_in_flight must be at least 1");
-    if (!(s.lod.size_threshold_px > 0.0f) || !std::isfinite(s.lod.size_threshold_px))
-        settings_error("lod.size_threshold_px must be positive and finite");
-    if (!(s.lod.rel_min > 0.0f) || !std::isfinite(s.lod.rel_min))
-        settings_error("lod.rel_min must be positive and finite");
+    if (const std::string problem = s.rule.validate("rule"); !problem.empty()) settings_error(problem);
     if (!(s.load_distance_scale > 0.0f) || !std::isfinite(s.load_distance_scale))
         settings_error("load_distance_scale must be positive and finite");
     if (!(s.unload_distance_factor >= 1.0f) || !std::isfinite(s.unload_distance_factor))

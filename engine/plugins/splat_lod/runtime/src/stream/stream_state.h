@@ -119,7 +119,7 @@ struct ChunkStreamer::State {
     // The splat budget's feedback to the cut (chunk_streamer.h): the newest statistics not yet used.
     std::optional<plugin_msgs::SplatStatistics> statistics;
     engine::Subscription statistics_subscription, lod_subscription;
-    std::optional<LodThresholds> bus_lod;  // the latest LodSettings' thresholds on the bus, once there is one
+    std::optional<plugin_msgs::LodRule> bus_rule;  // the latest LodSettings' rule on the bus, once there is one
     float group_cell_scale = 1.0f;
     std::unique_ptr<StreamReader> reader;  // last: destroyed (and joined) first
 
@@ -140,7 +140,6 @@ struct ChunkStreamer::State {
     // chunk_streamer.cpp
     void layout_levels(ChunkSlot& slot) const;
     void apply_pending_settings();
-    static LodThresholds thresholds_of(const plugin_msgs::LodSettings& lod);
     void report_construction_failures();
     void release_unwanted();
     void collect_reads();

@@ -54,12 +54,13 @@ std::string LodPanel::submit(const plugin_msgs::LodSettings& edited) {
 
 void LodPanel::draw() {
     plugin_msgs::LodSettings edit = settings_;
-    enum_combo("mode", edit.mode, plugin_msgs::kLodModeNames);
-    ImGui::DragFloat("S_T (px)", &edit.size_threshold_px, 0.05f, 0.1f, 64.0f, "%.2f");
-    ImGui::DragFloat("rel min", &edit.rel_min, 0.01f, 0.01f, 8.0f, "%.2f");
-    ImGui::DragFloat("rel max", &edit.rel_max, 0.01f, 0.01f, 8.0f, "%.2f");
-    ImGui::DragFloat("transition band (octaves, 0: hard)", &edit.transition_band, 0.005f, 0.0f,
-                     plugin_msgs::LodSettings::kMaxTransitionBand, "%.4f");
+    plugin_msgs::LodRule& rule = edit.rule;
+    enum_combo("mode", rule.mode, plugin_msgs::kLodModeNames);
+    ImGui::DragFloat("S_T (px)", &rule.size_threshold_px, 0.05f, 0.1f, 64.0f, "%.2f");
+    ImGui::DragFloat("rel min", &rule.rel_min, 0.01f, 0.01f, 8.0f, "%.2f");
+    ImGui::DragFloat("rel max", &rule.rel_max, 0.01f, 0.01f, 8.0f, "%.2f");
+    ImGui::DragFloat("transition band (octaves, 0: hard)", &rule.transition_band, 0.005f, 0.0f,
+                     plugin_msgs::LodRule::kMaxTransitionBand, "%.4f");
     ImGui::Checkbox("mip filter", &edit.mip_filter);
     ImGui::Checkbox("level colouring", &edit.level_colouring);
     // The splat budget in thousands of Gaussians per frame (0: none).

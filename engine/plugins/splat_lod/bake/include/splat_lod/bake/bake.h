@@ -21,6 +21,7 @@
 
 #include "splat_lod/core/reference_renderer.h"
 #include "splat_lod/core/splat_cloud.h"
+#include "splat_lod/msgs/lod_rule.h"
 
 namespace splat_lod::bake {
 
@@ -45,10 +46,10 @@ enum class PoolingRule {
 
 struct BakeOptions {
     int coarsest_level = kMaxLevel;  // build levels 2..coarsest_level (1 = ranges only)
-    double size_threshold_px = 2.0;  // S_T of the selection rule the bake is made for
-    double rel_min = 0.5;            // S_rel_min, used by the refinement's selection
-    double rel_max = 1.5;            // S_rel_max
-    double znear = 0.2;              // cameras see Gaussians with z > znear
+    // The selection rule the bake is made for: its S_T sets which Gaussians are pooled, its S_rel_min
+    // and S_rel_max the refinement's selection (drawn in mode full with hard switching).
+    plugin_msgs::LodRule rule;
+    double znear = 0.2;  // cameras see Gaussians with z > znear
     // A camera sees a Gaussian whose centre lies inside its image widened by this fraction of the
     // width and height on every side (0: the image itself). Content just outside every bake view
     // still reaches the border pixels of nearby views; with a margin it gets ranges and coarse levels.

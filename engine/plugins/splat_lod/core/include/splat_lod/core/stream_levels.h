@@ -21,15 +21,15 @@
 #include <vector>
 
 #include "splat_lod/core/splat_cloud.h"
+#include "splat_lod/msgs/lod_rule.h"
 
 namespace splat_lod::world {
 
 struct StreamLevelRule {
-    // The thresholds the reaches are computed with (the renderer's defaults). Another S_T or
-    // S_rel_min at run time moves the load distances, not the order: the streamer bounds each stream
-    // level with the manifest's per-level extent maxima and its own thresholds.
-    float size_threshold_px = 2.0f;  // S_T
-    float rel_min = 0.5f;            // S_rel_min
+    // The selection rule the reaches are computed with (its S_T and S_rel_min; the renderer's
+    // defaults). Another rule at run time moves the load distances, not the order: the streamer bounds
+    // each stream level with the manifest's per-level extent maxima and its own rule.
+    plugin_msgs::LodRule lod;
     // Smallest reach of stream levels 4, 3 and 2 (metres per pixel, decreasing). At a focal length
     // of 312 px (640 × 360, 60° vertical field of view) 1.4 / 1.0 / 0.7 put the breaks at 437, 312
     // and 218 m. Chosen around the reaches of the world's non-coarsest Gaussians, measured on a 512 m

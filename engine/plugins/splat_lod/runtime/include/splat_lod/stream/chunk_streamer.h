@@ -116,10 +116,11 @@ struct StreamerSettings {
     int max_requests_in_flight = 8;                            // parts queued, being read or waiting for upload
     int gpu_sh_degree = 3;  // the SH degree the GPU scene stores (sets the bytes per Gaussian)
     PageLayout gpu_pages;   // how the GPU scene stores an upload (whole pages; stream_policy.h)
-    // S_T and S_rel_min, as the renderer uses them. With a bus the streamer follows the splat pass's
-    // plugin_msgs::LodSettings on it instead (the latest one when it is made, every later one from the next
-    // update on): these are used only until one is published, and set_settings() keeps the bus's.
-    LodThresholds lod;
+    // The selection rule the renderer draws with (its S_T and S_rel_min decide the load distances). With
+    // a bus the streamer follows the splat pass's plugin_msgs::LodSettings on it instead (the latest one
+    // when it is made, every later one from the next update on): this one is used only until one is
+    // published, and set_settings() keeps the bus's.
+    plugin_msgs::LodRule rule;
     // Multiplies the manifest's load distances. The bound 2·e·f / z holds on the view axis; off axis
     // the perspective Jacobian enlarges a Gaussian by up to about 1 / cos²θ (θ: angle from the axis,
     // ≈1.6 at the edge of a 75° field of view), so a game may load earlier with e.g. 1.5.

@@ -8,20 +8,9 @@
 #include <glm/vec3.hpp>
 
 #include "splat_lod/core/world_manifest.h"
-#include "splat_lod/msgs/lod_settings.h"
+#include "splat_lod/msgs/lod_rule.h"
 
 namespace splat_lod::world {
-
-// The two thresholds of the selection rule that decide whether a Gaussian is "not too small"
-// (docs/algorithms.md §3): S ≥ S_T or S / S_min ≥ S_rel_min. plugin_msgs::LodSettings carries the same
-// values for the renderer; a streamer with a bus takes them from that message (chunk_streamer.h,
-// StreamerSettings::lod), so the two cannot disagree.
-struct LodThresholds {
-    float size_threshold_px = 2.0f;  // S_T
-    float rel_min = 0.5f;            // S_rel_min
-    // Smooth transitions (plugin_msgs::LodSettings::transition_band) need no more than this: a
-    // Gaussian fades out before its "too small" switch, never past it (splat_lod/core/lod_selection.h).
-};
 
 // Bytes the GPU scene stores per Gaussian slot: one 64-byte GpuGaussian (splat_lod_shared.h) plus
 // its SH coefficients, 3·(d + 1)² floats with the DC term included (gpu_scene.cpp, pack_sh), i.e.
@@ -59,11 +48,14 @@ float nearest_distance(const ChunkEntry& chunk, const glm::vec3& point);
 
 // The largest distance at which some Gaussian of stream level `level` (1..3) of a chunk could be
 // selected, from the manifest's per-level bounds (world_manifest.h):
-//   f · max(2·extent_max / S_T, 2·extent_per_min_coverage_max / S_rel_min) · 2^(band/2),
+//   f · max(2·extent_max / S_T, 2·extent_per_min_coverage_max / S_rel_min),
 // +∞ when extent_per_min_coverage_max < 0 (a Gaussian of the level has no coverage_min, so the
 // "not too small" test never rejects it), 0 for an empty level. Level 4 is not decided by distance
 // (every chunk keeps its coarse prefix), so asking for it is a programming error.
-double level_load_distance(const ChunkEntry& chunk, int level, double focal_length_px, const LodThresholds& lod);
+// Only the rule's "not too small" thresholds S_T and S_rel_min enter: smooth transitions fade a
+// Gaussian out before that switch, never past it (splat_lod/core/lod_selection.h).
+double level_load_distance(const ChunkEntry& chunk, int level, double focal_length_px,
+                           const plugin_msgs::LodRule& rule);
 
 // The splat budget and the cut (chunk_streamer.h): the renderer meets a per-frame splat budget on the
 // GPU by raising its size threshold, which moves the per-Gaussian cut inside chunks but cannot make a

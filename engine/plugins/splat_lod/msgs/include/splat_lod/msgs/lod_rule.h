@@ -1,0 +1,119 @@
+#pragma once
+// The LOD selection rule (docs/algorithms.md §3): which Gaussians a view draws, by their pixel
+// coverage. This is the one definition of the rule's parameters and of their defaults; the bake,
+// the splat pass (through one conversion into its frame uniforms), the chunk streamer and the
+// evaluation all take this type. The rule itself is evaluated by splat_lod/core/lod_selection.h on
+// the CPU and its GLSL twin on the GPU; both ask `traits(mode)` what a mode does and never compare
+// modes, so a mode that combines existing behaviours is added here alone.
+#include <array>
+#include <cmath>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "plugin_msgs/detail/json_read.h"
+
+namespace plugin_msgs {
+
+// The ablation modes of the multi-scale method (its Table 1).
+enum class LodMode {
+    baseline,      // level 1 only, no coverage filter
+    filter_small,  // level 1 only, selection rule applied
+    insert_large,  // all levels, no coverage filter
+    full,          // all levels, selection rule applied, smooth transitions
+};
+inline constexpr std::array<std::string_view, 4> kLodModeNames{"baseline", "filter_small", "insert_large", "full"};
+
+// What a mode does. Every consumer of the rule reads these, so they are the only place modes differ.
+struct LodModeTraits {
+    bool all_levels = false;     // every bake level takes part (else only the finest, level 1)
+    bool coverage_rule = false;  // the coverage tests of the rule apply (else every candidate is drawn)
+    bool transitions = false;    // transition_band > 0 fades Gaussians at the rule's switches
+};
+
+constexpr LodModeTraits traits(LodMode mode) {
+    switch (mode) {
+        case LodMode::baseline: return {false, false, false};
+        case LodMode::filter_small: return {false, true, false};
+        case LodMode::insert_large: return {true, false, false};
+        case LodMode::full: return {true, true, true};
+    }
+    return {};
+}
+
+inline std::string_view to_string(LodMode mode) {
+    return detail::enum_name(kLodModeNames, mode);
+}
+inline void to_json(nlohmann::json& json, LodMode mode) {
+    json = std::string(to_string(mode));
+}
+inline void from_json(const nlohmann::json& json, LodMode& mode) {
+    mode = detail::enum_from_json<LodMode>(kLodModeNames, json);
+}
+
+struct LodRule {
+    LodMode mode = LodMode::full;
+    float size_threshold_px = 2.0f;  // S_T: below this coverage a Gaussian is "small"
+    float rel_min = 0.5f;            // S_rel_min: drawn while S / S_min ≥ rel_min
+    float rel_max = 1.5f;            // S_rel_max: drawn while S / S_max ≤ rel_max
+    // Smooth level transitions (docs/lod.md, "Transitions"): a Gaussian near a switching coverage of
+    // the rule is drawn with its opacity scaled by a weight that ramps linearly in log2 coverage over
+    // this many octaves before the switch, so it fades out while its coarser replacement fades in;
+    // none is drawn past its switch, so the band costs no extra fine Gaussians. 0: hard switching.
+    // Only in modes whose traits have transitions.
+    float transition_band = kDefaultTransitionBand;
+    static constexpr float kDefaultTransitionBand = 0.0625f;
+    static constexpr float kMaxTransitionBand = 4.0f;
+
+    // Empty when the rule is usable, otherwise "<kind>.<key>: <why>". NaN fails every check.
+    std::string validate(std::string_view kind = "lod_rule") const;
+
+    friend bool operator==(const LodRule&, const LodRule&) = default;
+};
+
+namespace detail {
+inline std::string rule_error(std::string_view kind, std::string_view key, const std::string& message) {
+    return std::string(kind) + "." + std::string(key) + ": " + message;
+}
+inline std::string number_text(float value) {
+    return nlohmann::json(value).dump();
+}
+}  // namespace detail
+
+inline std::string LodRule::validate(std::string_view kind) const {
+    using detail::number_text;
+    const auto error = [kind](std::string_view key, const std::string& message) {
+        return detail::rule_error(kind, key, message);
+    };
+    if (detail::enum_name(kLodModeNames, mode) == "<invalid>") return error("mode", "invalid enumerator");
+    if (!(size_threshold_px > 0.0f) || !std::isfinite(size_threshold_px))
+        return error("size_threshold_px", "must be a finite number > 0, got " + number_text(size_threshold_px));
+    if (!(rel_max > 0.0f) || !std::isfinite(rel_max))
+        return error("rel_max", "must be a finite number > 0, got " + number_text(rel_max));
+    if (!(rel_min > 0.0f && rel_min <= rel_max))
+        return error("rel_min", "must be in (0, rel_max = " + number_text(rel_max) + "], got " + number_text(rel_min));
+    if (!(transition_band >= 0.0f && transition_band <= kMaxTransitionBand))
+        return error("transition_band", "must be in [0, " + number_text(kMaxTransitionBand) +
+                                            "] octaves of coverage, got " + number_text(transition_band));
+    return {};
+}
+
+// The rule's keys, written into (and read from) the object of whatever carries it: a LodSettings
+// message, a world manifest. Reading leaves missing keys as they are and does not validate.
+inline void write_rule(nlohmann::json& object, const LodRule& rule) {
+    object["mode"] = rule.mode;
+    object["size_threshold_px"] = rule.size_threshold_px;
+    object["rel_min"] = rule.rel_min;
+    object["rel_max"] = rule.rel_max;
+    object["transition_band"] = rule.transition_band;
+}
+inline void read_rule(const nlohmann::json& object, std::string_view kind, LodRule& rule) {
+    detail::read(object, kind, "mode", rule.mode);
+    detail::read(object, kind, "size_threshold_px", rule.size_threshold_px);
+    detail::read(object, kind, "rel_min", rule.rel_min);
+    detail::read(object, kind, "rel_max", rule.rel_max);
+    detail::read(object, kind, "transition_band", rule.transition_band);
+}
+
+}  // namespace plugin_msgs
