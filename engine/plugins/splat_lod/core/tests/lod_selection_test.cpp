@@ -100,6 +100,26 @@ TEST(LodWeight, RampsInLogCoverageOnTheFineSideOfEachSwitch) {
     EXPECT_NEAR(lod_weight(rule, 2, 15.0 * std::sqrt(2.0), -1.0, 10.0), 0.75, 1e-12);
 }
 
+// full_hard is full with hard switching whatever the band: the weights of full with band 0.
+TEST(LodWeight, FullHardIgnoresTheBand) {
+    LodRule hard;
+    hard.mode = plugin_msgs::LodMode::full_hard;
+    hard.transition_band = 1.0;
+    LodRule band_zero;
+    band_zero.transition_band = 0.0;
+    LodRule smooth;
+    smooth.transition_band = 1.0;
+    int differ = 0;
+    for (int i = 0; i <= 400; ++i) {
+        const double s = std::pow(2.0, -4.0 + 12.0 * i / 400.0);
+        for (const int level : {1, 2, 3, 4}) {
+            EXPECT_EQ(lod_weight(hard, level, s, 2.0, 4.0), lod_weight(band_zero, level, s, 2.0, 4.0));
+            differ += lod_weight(hard, level, s, 2.0, 4.0) != lod_weight(smooth, level, s, 2.0, 4.0);
+        }
+    }
+    EXPECT_GT(differ, 0) << "the band matters in full, so the comparison is not vacuous";
+}
+
 // A Gaussian fading out where its replacement fades in: on a dolly both coverages scale by the same
 // factor, so when the fine one's "too small" switch and the coarse one's "too large" switch fall at the
 // same distance the weights are ramp(y) and ramp(−y) of one log distance y: they sum to 1 everywhere,

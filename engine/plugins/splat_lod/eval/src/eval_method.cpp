@@ -26,10 +26,7 @@ const std::vector<Method>& method_registry() {
         {"full", "every level, selected by pixel coverage (the multi-scale method), smooth transitions",
          [](SplatPassSettings& settings) { settings.lod.rule.mode = plugin_msgs::LodMode::full; }},
         {"full_hard", "every level, selected by pixel coverage, each Gaussian switched on or off at once",
-         [](SplatPassSettings& settings) {
-             settings.lod.rule.mode = plugin_msgs::LodMode::full;
-             settings.lod.rule.transition_band = 0.0;
-         }},
+         [](SplatPassSettings& settings) { settings.lod.rule.mode = plugin_msgs::LodMode::full_hard; }},
     };
     return methods;
 }

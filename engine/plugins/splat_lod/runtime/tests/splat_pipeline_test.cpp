@@ -398,7 +398,13 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     plugin_msgs::LodSettings hard;
     hard.rule.transition_band = 0.0f;
     harness.engine().bus().publish(hard);
-    EXPECT_LT(engine::compare_images(harness.render({shared_cloud}, camera), gpu).psnr_db, 40.0);
+    const auto hard_image = harness.render({shared_cloud}, camera);
+    EXPECT_LT(engine::compare_images(hard_image, gpu).psnr_db, 40.0);
+    // The mode full_hard is that image whatever the band.
+    plugin_msgs::LodSettings full_hard;
+    full_hard.rule.mode = plugin_msgs::LodMode::full_hard;
+    harness.engine().bus().publish(full_hard);
+    EXPECT_EQ(harness.render({shared_cloud}, camera).rgba, hard_image.rgba);
 }
 
 // SplatComponent::dissolve (the streamer's fades): at opacity f a component draws about the fraction f of

@@ -16,14 +16,18 @@
 
 namespace plugin_msgs {
 
-// The ablation modes of the multi-scale method (its Table 1).
+// The ablation modes of the multi-scale method (its Table 1), and full_hard: full with hard on/off
+// switching at the rule's thresholds whatever the band (to compare with the transitions, or where a
+// frame must not blend two levels).
 enum class LodMode {
     baseline,      // level 1 only, no coverage filter
     filter_small,  // level 1 only, selection rule applied
     insert_large,  // all levels, no coverage filter
     full,          // all levels, selection rule applied, smooth transitions
+    full_hard,     // all levels, selection rule applied, hard switching
 };
-inline constexpr std::array<std::string_view, 4> kLodModeNames{"baseline", "filter_small", "insert_large", "full"};
+inline constexpr std::array<std::string_view, 5> kLodModeNames{"baseline", "filter_small", "insert_large", "full",
+                                                               "full_hard"};
 
 // What a mode does. Every consumer of the rule reads these, so they are the only place modes differ.
 struct LodModeTraits {
@@ -34,10 +38,16 @@ struct LodModeTraits {
 
 constexpr LodModeTraits traits(LodMode mode) {
     switch (mode) {
-        case LodMode::baseline: return {false, false, false};
-        case LodMode::filter_small: return {false, true, false};
-        case LodMode::insert_large: return {true, false, false};
-        case LodMode::full: return {true, true, true};
+        case LodMode::baseline:
+            return {false, false, false};
+        case LodMode::filter_small:
+            return {false, true, false};
+        case LodMode::insert_large:
+            return {true, false, false};
+        case LodMode::full:
+            return {true, true, true};
+        case LodMode::full_hard:
+            return {true, true, false};
     }
     return {};
 }
