@@ -122,25 +122,21 @@ TEST_F(SceneLoaderTest, MissingSceneFileIsAClearError) {
     }
 }
 
-// Every showcase scene loads; those whose assets are in the repository load from a fresh clone too (the
-// shared data folder absent), the others only beside it.
-TEST_F(SceneLoaderTest, EveryShowcaseSceneLoads) {
+// Every showcase scene loads from the repository alone: none names a file of the shared data folder, so
+// a fresh clone renders them all.
+TEST_F(SceneLoaderTest, EveryShowcaseSceneLoadsFromTheRepositoryAlone) {
     splat_lod::register_splat_component(registry, "splat_lod");  // showcase scenes use the plugin's type
-    const bool shared = std::filesystem::exists(engine::test::shared_data_dir());
-    int loaded = 0, from_repository = 0;
+    int loaded = 0;
     for (const auto& entry : std::filesystem::directory_iterator(engine::test::repo_dir() / "content/scenes")) {
         if (entry.path().extension() != ".json") continue;
         SCOPED_TRACE(entry.path().string());
-        const bool needs_shared = engine::read_text_file(entry.path()).find("shared/data/") != std::string::npos;
-        if (needs_shared && !shared) continue;
+        EXPECT_EQ(engine::read_text_file(entry.path()).find("shared/data/"), std::string::npos);
         const auto scene = engine::load_scene_file(entry.path(), registry, assets);
         EXPECT_FALSE(scene->components<engine::MeshComponent>().empty());
         EXPECT_TRUE(scene->world_bounds().has_value());
         ++loaded;
-        from_repository += needs_shared ? 0 : 1;
     }
-    EXPECT_GE(from_repository, 3) << "biker_with_boxes, box_textured and fox_and_boxes need nothing outside";
-    EXPECT_GE(loaded, shared ? 4 : 3);
+    EXPECT_GE(loaded, 4) << "biker_with_boxes, box_textured, flight_helmet and fox_and_boxes";
 }
 
 // A plugin's companions of a component type are attached beside it, from the same JSON, in owner
