@@ -13,8 +13,8 @@
 #include "engine/core/log.h"
 #include "engine/scene/node.h"
 #include "splat_lod/core/gaussian_extent.h"
+#include "splat_lod/gpu_storage.h"
 #include "splat_lod/splat_component.h"
-#include "splat_lod/stream/stream_policy.h"
 
 namespace splat_lod::gpu {
 namespace {
@@ -197,9 +197,9 @@ float spectral_norm(const glm::mat3& m) {
 namespace {
 
 constexpr std::uint32_t kCluster = SPLAT_PROJECT_WORKGROUP_SIZE;
-// The streamer counts bytes the way this scene stores them (stream_policy.h).
-static_assert(world::PageLayout{}.page_gaussians == kCluster);
-static_assert(world::PageLayout{}.page_overhead_bytes == sizeof(GpuCluster));
+// What this scene tells budgeters its pages cost (splat_lod/gpu_storage.h) is how it stores them.
+static_assert(PageLayout{}.page_gaussians == kCluster);
+static_assert(PageLayout{}.page_overhead_bytes == sizeof(GpuCluster));
 
 // A cluster with no members: step 1a drops it in every mode (sphere radius < 0).
 GpuCluster empty_cluster() {

@@ -115,7 +115,7 @@ struct StreamerSettings {
     std::uint64_t memory_budget_bytes = 512ull << 20;          // GPU bytes resident at the end of any update
     int max_requests_in_flight = 8;                            // parts queued, being read or waiting for upload
     int gpu_sh_degree = 3;  // the SH degree the GPU scene stores (sets the bytes per Gaussian)
-    PageLayout gpu_pages;   // how the GPU scene stores an upload (whole pages; stream_policy.h)
+    PageLayout gpu_pages;   // how the GPU scene stores an upload (whole pages; splat_lod/gpu_storage.h)
     // The selection rule the renderer draws with (its S_T and S_rel_min decide the load distances). With
     // a bus the streamer follows the splat pass's plugin_msgs::LodSettings on it instead (the latest one
     // when it is made, every later one from the next update on): this one is used only until one is

@@ -1,46 +1,24 @@
 #pragma once
 // The stateless rules of chunk streaming (chunk_streamer.h), stated once so that the streamer,
-// its tests and a UI compute the same numbers: what a level costs in GPU memory, how far away a
-// chunk is, and from how far a finer level could be selected (world_manifest.h, docs/algorithms.md §3).
+// its tests and a UI compute the same numbers: how far away a chunk is, and from how far a finer level could be
+// selected (world_manifest.h, docs/algorithms.md §3).
 #include <cstdint>
 #include <string>
 
 #include <glm/vec3.hpp>
 
 #include "splat_lod/core/world_manifest.h"
+#include "splat_lod/gpu_storage.h"
 #include "splat_lod/msgs/lod_rule.h"
 
 namespace splat_lod::world {
 
-// Bytes the GPU scene stores per Gaussian slot: one 64-byte GpuGaussian (splat_lod_shared.h) plus
-// its SH coefficients, 3·(d + 1)² floats with the DC term included (gpu_scene.cpp, pack_sh), i.e.
-// 64 + 12·(d + 1)² bytes: 76 at degree 0, 256 at degree 3.
-constexpr std::uint64_t gpu_bytes_per_gaussian(int sh_degree) {
-    const auto coefficients = static_cast<std::uint64_t>((sh_degree + 1) * (sh_degree + 1));
-    return 64 + 3 * 4 * coefficients;
-}
-
-// How the GPU scene stores one upload (gpu/gpu_scene.h): whole pages of `page_gaussians` slots plus
-// `page_overhead_bytes` per page (its cluster record). The defaults of StreamerSettings match the
-// incremental GPU scene: 256 slots (SPLAT_PROJECT_WORKGROUP_SIZE) and a 48-byte GpuCluster
-// (gpu_scene.cpp checks both).
-struct PageLayout {
-    std::uint32_t page_gaussians = 256;
-    std::uint32_t page_overhead_bytes = 48;
-};
-
-// GPU bytes of one upload of `count` Gaussians stored with SH degree `sh_degree` (0..3): whole
-// pages, so ceil(count / page)·(page·per Gaussian + overhead); none for none.
-constexpr std::uint64_t gpu_bytes(std::uint64_t count, int sh_degree, PageLayout page = {1, 0}) {
-    const std::uint64_t pages = (count + page.page_gaussians - 1) / page.page_gaussians;
-    return pages * (std::uint64_t(page.page_gaussians) * gpu_bytes_per_gaussian(sh_degree) + page.page_overhead_bytes);
-}
-
-// The most Gaussians one upload may hold within `budget` bytes: whole pages (0 when not even one
-// page fits).
-constexpr std::uint64_t max_gaussians_within(std::uint64_t budget, int sh_degree, PageLayout page) {
-    return budget / gpu_bytes(page.page_gaussians, sh_degree, page) * page.page_gaussians;
-}
+// What an upload costs on the GPU is the GPU scene's to say (splat_lod/gpu_storage.h); the streamer
+// counts with it.
+using splat_lod::gpu_bytes;
+using splat_lod::gpu_bytes_per_gaussian;
+using splat_lod::max_gaussians_within;
+using splat_lod::PageLayout;
 
 // Euclidean distance from `point` to the box of the chunk's Gaussian means (0 inside it). Every
 // Gaussian of the chunk is at least this far from the camera, which is what makes it a bound.

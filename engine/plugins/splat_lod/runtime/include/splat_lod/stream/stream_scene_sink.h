@@ -2,7 +2,7 @@
 // The ResidencySink that puts streamed chunk levels into a scene: one node with a SplatComponent
 // per uploaded part, under a root node the game owns. The splat pass's incremental GPU scene
 // (gpu/gpu_scene.h) then uploads exactly that part's pages and frees them when the node goes, so
-// the streamer's byte counts (stream_policy.h, PageLayout) are the GPU's.
+// the streamer's byte counts (splat_lod/gpu_storage.h, PageLayout) are the GPU's.
 #include <filesystem>
 #include <map>
 #include <string>
