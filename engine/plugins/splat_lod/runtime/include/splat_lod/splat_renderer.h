@@ -59,11 +59,8 @@ struct SplatPassSettings {
     // the same blur as the native render (off only to measure the plain 0.3 px²).
     bool scaled_dilation = true;
     // Raster tile side in pixels (4, 8 or 16). The cost balances per-pixel list length (the splats
-    // touching the tile) against tile-splat pairs to sort. Measured on llvmpipe, biker 1280×720 with
-    // the exact footprint and texel fetches: 16 → 8 cut the raster 366 → 160–190 ms but grew the
-    // sort 155 → 259–277 ms and the pairs 364k → 697k (frame 614 → 531–578 ms, within the noise of
-    // two runs); 16 keeps half the pairs and 256-pixel workgroups. At render scale 1/3, where splats
-    // are a third as wide, 16 → 8 cut the frame 726 → 409 ms (before the footprint).
+    // touching the tile) against tile-splat pairs to sort; why 16 natively and 8 below render scale 1
+    // is measured in docs/benchmarks.md ("Tile size").
     std::uint32_t tile_size = SPLAT_TILE_SIZE;
     std::uint32_t low_res_tile_size = 8;  // raster tile side below render scale 1 (8 or 16)
     // Bin each splat into the tiles its α ≥ 1/255 ellipse touches rather than every tile of its bounding

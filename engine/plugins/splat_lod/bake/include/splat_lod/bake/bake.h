@@ -63,8 +63,8 @@ struct BakeOptions {
     PoolingRule pooling = PoolingRule::mean;
     // Bake twice, with (adaptive cells, enlargement ≤ 8) and (grid cells, enlargement ≤ 32), and
     // keep the adaptive result unless the grid one's levels score a mean PSNR at least 0.5 dB higher
-    // on the refinement cameras: neither wins everywhere (measured: adaptive on the donut by 11 dB summed over levels
-    // 2–4, grid on the guitar by 6 dB). Needs the refinement (its cameras and targets); `cells` and `max_enlargement`
+    // on the refinement cameras: neither wins everywhere (docs/lod.md, "Two cell recipes, chosen per
+    // scene", has the scores per scene). Needs the refinement (its cameras and targets); `cells` and `max_enlargement`
     // are ignored while it is on.
     bool choose_recipe = true;
     double max_enlargement = 8.0;  // clamp of S_T / S_avg

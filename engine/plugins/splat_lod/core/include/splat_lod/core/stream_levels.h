@@ -30,11 +30,9 @@ struct StreamLevelRule {
     // defaults). Another rule at run time moves the load distances, not the order: the streamer bounds
     // each stream level with the manifest's per-level extent maxima and its own rule.
     plugin_msgs::LodRule lod;
-    // Smallest reach of stream levels 4, 3 and 2 (metres per pixel, decreasing). At a focal length
-    // of 312 px (640 × 360, 60° vertical field of view) 1.4 / 1.0 / 0.7 put the breaks at 437, 312
-    // and 218 m. Chosen around the reaches of the world's non-coarsest Gaussians, measured on a 512 m
-    // test world (10th / 50th / 75th percentile 0.64 / 1.07 / 3.6 m/px); the default world splits
-    // 3.63M / 2.85M / 2.72M / 1.68M over stream levels 4 / 3 / 2 / 1.
+    // Smallest reach of stream levels 4, 3 and 2 (metres per pixel, decreasing): a Gaussian is in
+    // stream level 4 from reach_min[0] on, and so on. How the defaults were chosen, and how they split
+    // the default world, is in docs/world_lod.md ("Stream levels").
     std::array<float, 3> reach_min{1.4f, 1.0f, 0.7f};
 };
 

@@ -130,9 +130,8 @@ struct StreamerSettings {
     int retry_failed_after_frames = 0;     // a failed chunk is tried again after this many frames; 0: never
     bool background_thread = true;         // false: reads run inside update() (tests, tools); same behaviour
     // A chunk group replaces its chunks where its pooling cell projects to at most this many pixels
-    // (output pixels); 0: groups are never used. Chosen on the default world (docs/world_lod.md): 2 px
-    // keeps the overview at 1.2 Gaussians per pixel and 31–32 dB against the reference; 1 px draws
-    // 3–4 per pixel there, 3 px loses 5 dB.
+    // (output pixels); 0: groups are never used. Chosen on the default world (docs/world_lod.md, "The
+    // numbers that chose it").
     float group_cell_px = 2.0f;
     // Updates over which a node or a newly arrived level fades in or out (see "fades"); 0: at once.
     // 4: on the default world's walkthrough 8 let fades overlap in the flyout (2.74 Gaussians per

@@ -34,11 +34,8 @@
 // bluish flat water Gaussians on the river, forests and lone trees of cm-sized leaves, grass patches
 // of thin blades, rocks, and houses along the path with picket-fenced gardens (Gaussians), fence runs
 // and waymark posts (glTF props). No tree, rock or grass stands on the path, in the river or inside a
-// prop. The default world (1024 m, 256 chunks of 64 m, density 1, seed 1) holds 10.78 million generated
-// Gaussians, 10.89 million after the bake (800 MiB): measured 10.0 min wall on 2 cores here, of
-// which the chunk groups (then with 0.5 m cells) 42 s (of the chunk work, refinement 51 %, its targets
-// 19 %, final check 11 %, coverage 6 %); the default groups hold 1.88 million Gaussians (138 MiB) and
-// take 16 s to build alone from the chunk files.
+// prop. The default world is 1024 m, 256 chunks of 64 m, density 1, seed 1; its size and what it
+// costs to make are in docs/world_lod.md ("The chunk bake").
 //
 // Determinism: the files depend only on the options (seed, sizes, density, bake settings), not on
 // the thread count or the order chunks finish in: every object draws from its own random stream,
@@ -73,16 +70,11 @@ struct WorldProgress {
 
 // The bake recipe of every chunk: one recipe (adaptive cells, enlargement ≤ 8; choose_recipe off
 // halves the bake time), a short refinement (60 iterations per coarse level on 8 of the chunk's 24
-// cameras), single-threaded. Measured on a 128 m world at density 1: levels 2/3/4 gain +1.1/+6.0/
-// +12.8 dB over level 1 alone at 1/4, 1/16, 1/64 on the bake views, against +0.5/+3.7/+5.6 dB with
-// 20 iterations and +1.3/+6.3/+16 dB with 150, for 1.3× and 1.75× the time of 20.
-// Coverage ranges take S_min at the 75th percentile instead of the 10th (docs/algorithms.md §4 step 6):
-// most chunk views see a leaf from far away or edge-on, so the 10th percentile is tiny and the
-// "not too small" test (S / S_min ≥ S_rel_min) then keeps every leaf selectable from any distance.
-// Measured on a 512 m world at density 0.25 (640 × 360 reference renders, `full` against `baseline`,
-// selected Gaussians and PSNR): overview 1.13× fewer at 39.0 dB with the 10th percentile, 2.81× at
-// 34.2 dB with the 50th, 5.07× at 32.4 dB with the 75th, 6.29× at 31.6 dB with the 90th; at ground
-// level 48.1 / 49.9 / 44.5 / 37.9 dB.
+// cameras), single-threaded. Coverage ranges take S_min at the 75th percentile instead of the 10th
+// (docs/algorithms.md §4 step 6): most chunk views see a leaf from far away or edge-on, so the 10th
+// percentile is tiny and the "not too small" test (S / S_min ≥ S_rel_min) then keeps every leaf
+// selectable from any distance. The measurements behind both choices are in docs/world_lod.md ("The
+// chunk bake").
 bake::BakeOptions default_world_bake_options();
 
 // The most chunks a world has along a side (validate() refuses more; an import sizes its chunks to fit).
