@@ -8,13 +8,13 @@
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "engine/core/message_bus.h"
+#include "engine/gl/buffer_texture.h"
 #include "engine/gl/gpu_timers.h"
+#include "engine/gl/prefix_scan.h"
+#include "engine/gl/radix_sort.h"
 #include "engine/gl/shader_library.h"
 #include "engine/render/render_target.h"
 #include "engine/scene/scene.h"
-#include "gpu/buffer_texture.h"
-#include "gpu/prefix_scan.h"
-#include "gpu/radix_sort.h"
 #include "splat_lod/core/upscale.h"
 #include "splat_lod/splat_component.h"
 
@@ -72,7 +72,7 @@ void SplatPass::ensure_frame_buffers(std::uint32_t gaussians, std::uint32_t tile
     tile_ranges_.ensure_size(std::size_t(tile_count) * sizeof(glm::uvec2), "splat tile ranges");
     const std::uint32_t wanted = std::max({key_capacity_, minimum_key_capacity, gaussians * initial_keys_per_gaussian,
                                            pending_growth_ + pending_growth_ / 4});
-    const std::uint32_t capacity = std::min(wanted, gpu::RadixSort::max_sort_count());
+    const std::uint32_t capacity = std::min(wanted, engine::gl::RadixSort::max_sort_count());
     if (capacity != key_capacity_) {
         keys_.ensure_size(std::size_t(capacity) * sizeof(glm::uvec2), "splat tile keys");
         values_.ensure_size(std::size_t(capacity) * sizeof(std::uint32_t), "splat tile values");
@@ -249,34 +249,35 @@ RasterFetch SplatPass::resolve_fetch(std::uint32_t gaussians) {
 // With texel fetches (fetch_in_use_ texel), buffer-texture views of what each pass reads, re-pointed
 // every frame. Step 1b: the Gaussians, SH and instances (unsigned words: bit-exact).
 void SplatPass::bind_project_texels() {
-    gpu::bind_buffer_texture(gaussian_texels_, "splat gaussian texels", GL_RGBA32UI, scene_.gaussians(),
-                             SPLAT_TEXTURE_GAUSSIANS);
-    gpu::bind_buffer_texture(sh_texels_, "splat sh texels", GL_RGB32UI, scene_.sh(), SPLAT_TEXTURE_SH);
-    gpu::bind_buffer_texture(instance_texels_, "splat instance texels", GL_RGBA32UI, scene_.instances(),
-                             SPLAT_TEXTURE_INSTANCES);
+    engine::gl::bind_buffer_texture(gaussian_texels_, "splat gaussian texels", GL_RGBA32UI, scene_.gaussians(),
+                                    SPLAT_TEXTURE_GAUSSIANS);
+    engine::gl::bind_buffer_texture(sh_texels_, "splat sh texels", GL_RGB32UI, scene_.sh(), SPLAT_TEXTURE_SH);
+    engine::gl::bind_buffer_texture(instance_texels_, "splat instance texels", GL_RGBA32UI, scene_.instances(),
+                                    SPLAT_TEXTURE_INSTANCES);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // uploaded as buffers, read as texels
 }
 
 // Step 3: the projected splats (as words) and the scanned key offsets.
 void SplatPass::bind_bin_texels() {
-    gpu::bind_buffer_texture(projected_words_, "splat projected words", GL_RGBA32UI, projected_,
-                             SPLAT_TEXTURE_PROJECTED_WORDS);
-    gpu::bind_buffer_texture(key_offset_texels_, "splat key offset texels", GL_R32UI, tile_counts_,
-                             SPLAT_TEXTURE_KEY_OFFSETS);
+    engine::gl::bind_buffer_texture(projected_words_, "splat projected words", GL_RGBA32UI, projected_,
+                                    SPLAT_TEXTURE_PROJECTED_WORDS);
+    engine::gl::bind_buffer_texture(key_offset_texels_, "splat key offset texels", GL_R32UI, tile_counts_,
+                                    SPLAT_TEXTURE_KEY_OFFSETS);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
 }
 
 // Step 5: the sorted keys.
 void SplatPass::bind_ranges_texels() {
-    gpu::bind_buffer_texture(key_texels_, "splat sorted key texels", GL_RG32UI, keys_, SPLAT_TEXTURE_SORTED_KEYS);
+    engine::gl::bind_buffer_texture(key_texels_, "splat sorted key texels", GL_RG32UI, keys_,
+                                    SPLAT_TEXTURE_SORTED_KEYS);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // sorted through storage buffers, read as texels
 }
 
 // Step 6: the projected splats and the sorted values.
 void SplatPass::bind_raster_texels() {
-    gpu::bind_buffer_texture(projected_texels_, "splat projected texels", GL_RGBA32F, projected_,
-                             SPLAT_TEXTURE_PROJECTED);
-    gpu::bind_buffer_texture(value_texels_, "splat value texels", GL_R32UI, values_, SPLAT_TEXTURE_VALUES);
+    engine::gl::bind_buffer_texture(projected_texels_, "splat projected texels", GL_RGBA32F, projected_,
+                                    SPLAT_TEXTURE_PROJECTED);
+    engine::gl::bind_buffer_texture(value_texels_, "splat value texels", GL_R32UI, values_, SPLAT_TEXTURE_VALUES);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
 }
 
@@ -318,8 +319,8 @@ void SplatPass::execute(engine::FrameContext& frame) {
     const std::uint32_t n = scene_.gaussian_count();
     if (n == 0) return;
     if (!scan_) {
-        scan_ = std::make_unique<gpu::PrefixScan>(frame.shaders);
-        sort_ = std::make_unique<gpu::RadixSort>(frame.shaders);
+        scan_ = std::make_unique<engine::gl::PrefixScan>(frame.shaders);
+        sort_ = std::make_unique<engine::gl::RadixSort>(frame.shaders);
     }
     const RasterSize raster = raster_size(frame);
     if (raster.upscaled)

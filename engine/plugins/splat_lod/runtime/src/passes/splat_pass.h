@@ -17,12 +17,12 @@
 #include "splat_lod/core/upscale.h"
 #include "splat_lod/splat_renderer.h"
 
-namespace splat_lod {
-
-namespace gpu {
+namespace engine::gl {
 class PrefixScan;
 class RadixSort;
-}  // namespace gpu
+}  // namespace engine::gl
+
+namespace splat_lod {
 
 class SplatPass : public engine::RenderPass {
 public:
@@ -91,8 +91,8 @@ private:
     void collect_statistics(engine::MessageBus& bus, bool wait);
 
     gpu::GpuScene scene_;
-    std::unique_ptr<gpu::PrefixScan> scan_;
-    std::unique_ptr<gpu::RadixSort> sort_;
+    std::unique_ptr<engine::gl::PrefixScan> scan_;
+    std::unique_ptr<engine::gl::RadixSort> sort_;
     std::uint32_t key_capacity_ = 0;
     std::uint32_t pending_growth_ = 0;  // keys a past frame needed beyond the capacity
     engine::gl::Buffer uniforms_{engine::gl::NoCreate}, projected_{engine::gl::NoCreate},

@@ -1,7 +1,7 @@
 // Radix sort, arguments: from the element count on the GPU (never read back by the CPU), the
 // tile count that sizes every indirect dispatch of the sort and the length of the histogram the
 // scan walks, so the work follows the real count rather than the capacity.
-#include "splat_lod_shared.h"
+#include "gpu_sort_shared.h"
 
 layout(local_size_x = 1) in;
 

@@ -1,6 +1,6 @@
 // Shared by the prefix scan stages: the level buffers and a workgroup-wide exclusive scan that
 // needs no subgroup operations (llvmpipe lacks some), only shared memory and four barriers.
-#include "splat_lod_shared.h"
+#include "gpu_sort_shared.h"
 
 layout(local_size_x = SCAN_WORKGROUP_SIZE) in;
 

@@ -1,7 +1,7 @@
 // Shared by the radix sort stages: the key/value buffers, the GPU-written parameters and the
 // digit of a key for the current pass. Keys are uvec2: x = low word (view depth as float bits),
 // y = high word (tile index); the order is by (y, x).
-#include "splat_lod_shared.h"
+#include "gpu_sort_shared.h"
 
 layout(local_size_x = SORT_WORKGROUP_SIZE) in;
 

@@ -10,27 +10,27 @@
 #include "engine/gl/objects.h"
 #include "engine/gl/shader_library.h"
 
-namespace splat_lod::gpu {
+namespace engine::gl {
 
 struct ScanJob {
-    engine::gl::Buffer& values;              // scanned in place: values[i] = sum of values[0, i)
-    const engine::gl::Buffer& count_buffer;  // holds the element count as a uint ...
-    std::size_t count_offset = 0;            // ... at this byte offset (a multiple of 4)
-    std::uint32_t max_count = 0;             // capacity; a larger count on the GPU is clamped
-    engine::gl::Buffer& total_buffer;        // receives the sum of all counted elements ...
-    std::size_t total_offset = 0;            // ... at this byte offset (a multiple of 4)
+    Buffer& values;                // scanned in place: values[i] = sum of values[0, i)
+    const Buffer& count_buffer;    // holds the element count as a uint ...
+    std::size_t count_offset = 0;  // ... at this byte offset (a multiple of 4)
+    std::uint32_t max_count = 0;   // capacity; a larger count on the GPU is clamped
+    Buffer& total_buffer;          // receives the sum of all counted elements ...
+    std::size_t total_offset = 0;  // ... at this byte offset (a multiple of 4)
 };
 
 class PrefixScan {
 public:
     // Programs come from `shaders`, which must outlive this object.
-    explicit PrefixScan(engine::gl::ShaderLibrary& shaders);
+    explicit PrefixScan(ShaderLibrary& shaders);
 
     // Records the scan; elements at and beyond the count stay untouched. Ends with a barrier
     // that makes the results visible to shaders, indirect commands and buffer reads. Spans named
     // "prefix_scan*" go to `timers` when given. Throws engine::Error for buffers too small,
     // misaligned offsets or a max_count above max_scan_count().
-    void record(const ScanJob& job, engine::gl::GpuTimers* timers = nullptr);
+    void record(const ScanJob& job, GpuTimers* timers = nullptr);
 
     // The largest max_count: indirect dispatches are limited to 65535 workgroups per dimension.
     static std::uint32_t max_scan_count();
@@ -45,12 +45,11 @@ private:
     void record_upsweep(const ScanJob& job, const std::vector<Level>& levels);
     void record_top(const ScanJob& job, const std::vector<Level>& levels);
     void record_downsweep(const ScanJob& job, const std::vector<Level>& levels);
-    void bind_level(const engine::gl::Program& program, const ScanJob& job, std::size_t level,
-                    const std::vector<Level>& levels);
+    void bind_level(const Program& program, const ScanJob& job, std::size_t level, const std::vector<Level>& levels);
 
-    engine::gl::ShaderLibrary& shaders_;
-    engine::gl::Buffer levels_{engine::gl::NoCreate};      // ScanLevel[SCAN_MAX_LEVELS], GPU-written
-    engine::gl::Buffer block_sums_{engine::gl::NoCreate};  // every level above the first, packed
+    ShaderLibrary& shaders_;
+    Buffer levels_{NoCreate};      // ScanLevel[SCAN_MAX_LEVELS], GPU-written
+    Buffer block_sums_{NoCreate};  // every level above the first, packed
 };
 
-}  // namespace splat_lod::gpu
+}  // namespace engine::gl

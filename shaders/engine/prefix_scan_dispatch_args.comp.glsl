@@ -1,7 +1,7 @@
 // Prefix scan, arguments: from the element count on the GPU (never read back by the CPU), the
 // element count and workgroup count of every level, so each indirect dispatch scales with the
 // real count rather than the capacity.
-#include "splat_lod_shared.h"
+#include "gpu_sort_shared.h"
 
 layout(local_size_x = 1) in;
 

@@ -11,29 +11,24 @@
 #include "engine/core/error.h"
 #include "engine/gl/gpu_timers.h"
 #include "engine/gl/objects.h"
+#include "engine/gl/prefix_scan.h"
+#include "engine/gl/radix_sort.h"
 #include "engine/gl/shader_library.h"
-#include "gpu/prefix_scan.h"
-#include "gpu/radix_sort.h"
+#include "engine/gpu_sort_shared.h"
 #include "gpu_fixture.h"
-#include "splat_lod/splat_lod_plugin.h"
-#include "splat_lod/splat_lod_shared.h"
 
 namespace {
 
 using engine::gl::Buffer;
-using splat_lod::gpu::PrefixScan;
-using splat_lod::gpu::RadixSort;
+using engine::gl::PrefixScan;
+using engine::gl::RadixSort;
 
 // One library for the whole binary: compiling the programs once keeps the file fast on llvmpipe.
 // Fixtures reach it before SetUp(), so it asks for the GL context first: statics are destroyed in
 // reverse order, and the programs must go while the context still exists.
 engine::gl::ShaderLibrary& shader_library() {
     engine::test::gl_context();
-    static engine::gl::ShaderLibrary library = [] {
-        engine::gl::ShaderLibrary l;
-        l.add_root(splat_lod::shader_dir());
-        return l;
-    }();
+    static engine::gl::ShaderLibrary library;  // the engine's own shaders: the sort and scan are engine programs
     return library;
 }
 
@@ -126,7 +121,7 @@ std::vector<Element> cpu_sort(std::vector<Element> elements, std::uint32_t count
     return ::testing::AssertionSuccess();
 }
 
-class SplatSortTest : public engine::test::GpuTest {
+class GpuSortTest : public engine::test::GpuTest {
 protected:
     RadixSort sort{shader_library()};
 
@@ -145,24 +140,24 @@ protected:
     }
 };
 
-TEST_F(SplatSortTest, SortMatchesStableSortAcrossTileBoundaries) {
+TEST_F(GpuSortTest, SortMatchesStableSortAcrossTileBoundaries) {
     constexpr std::uint32_t tile = SORT_TILE_SIZE;
     for (const std::uint32_t count : {0u, 1u, 2u, 255u, 256u, 257u, tile - 1, tile, tile + 1, 65537u})
         expect_sorted(count, 16, 5, count);
 }
 
-TEST_F(SplatSortTest, SortIsStableForManyEqualKeys) {
+TEST_F(GpuSortTest, SortIsStableForManyEqualKeys) {
     expect_sorted(100000, 2, 3, 1);  // 12 distinct keys: long runs of equal keys across tiles
     expect_sorted(5000, 0, 1, 2);    // every key equal: the output is the input
 }
 
-TEST_F(SplatSortTest, SortHandlesEveryHighBitWidth) {
+TEST_F(GpuSortTest, SortHandlesEveryHighBitWidth) {
     // 0, 8, 16, 24 and 32 high bits give 4..8 passes: both even (result in place) and odd
     // (copied back) pass counts.
     for (const std::uint32_t hi_bits : {0u, 1u, 8u, 9u, 12u, 16u, 24u, 32u}) expect_sorted(20000, hi_bits, 0, hi_bits);
 }
 
-TEST_F(SplatSortTest, SortHandlesAllDepthBitsSet) {
+TEST_F(GpuSortTest, SortHandlesAllDepthBitsSet) {
     auto elements = random_elements(10000, 16, 0, 3);
     for (std::size_t i = 0; i < elements.size(); i += 3) elements[i].key.x = 0xffffffffu;
     for (std::size_t i = 1; i < elements.size(); i += 7) elements[i].key = {0xffffffffu, 0xffffu};
@@ -170,11 +165,11 @@ TEST_F(SplatSortTest, SortHandlesAllDepthBitsSet) {
     expect_sorted(elements, {10000, 10000, 16});
 }
 
-TEST_F(SplatSortTest, SortOfAMillionRandomKeysMatches) {
+TEST_F(GpuSortTest, SortOfAMillionRandomKeysMatches) {
     expect_sorted(1000003, 16, 0, 4);
 }
 
-TEST_F(SplatSortTest, SortUsesTheGpuCountAndLeavesTheRestUntouched) {
+TEST_F(GpuSortTest, SortUsesTheGpuCountAndLeavesTheRestUntouched) {
     const auto elements = random_elements(100000, 12, 50, 5);
     expect_sorted(elements, {77777, 100000, 12});
     expect_sorted(elements, {0, 100000, 12});
@@ -182,13 +177,13 @@ TEST_F(SplatSortTest, SortUsesTheGpuCountAndLeavesTheRestUntouched) {
     expect_sorted(elements, {5000000, 100000, 12});
 }
 
-TEST_F(SplatSortTest, SortReusesItsBuffersAcrossSizes) {
+TEST_F(GpuSortTest, SortReusesItsBuffersAcrossSizes) {
     expect_sorted(1000, 8, 10, 6);
     expect_sorted(70000, 16, 0, 7);
     expect_sorted(300, 3, 4, 8);
 }
 
-TEST_F(SplatSortTest, SortRecordsNamedGpuTimerSpans) {
+TEST_F(GpuSortTest, SortRecordsNamedGpuTimerSpans) {
     engine::gl::GpuTimers timers;
     auto elements = random_elements(4096, 4, 0, 9);
     std::vector<glm::uvec2> keys(elements.size());
@@ -211,7 +206,7 @@ TEST_F(SplatSortTest, SortRecordsNamedGpuTimerSpans) {
     EXPECT_TRUE(has("radix_sort.copy"));  // 36 bits: five passes
 }
 
-TEST_F(SplatSortTest, SortRejectsInconsistentJobs) {
+TEST_F(GpuSortTest, SortRejectsInconsistentJobs) {
     Buffer keys = make_buffer(std::vector<glm::uvec2>(100), "test keys");
     Buffer values = make_buffer(std::vector<std::uint32_t>(100), "test values");
     const Buffer count = make_buffer(std::vector<std::uint32_t>{100u, 0u}, "test count");
@@ -251,7 +246,7 @@ ScanResult gpu_scan(PrefixScan& scan, const std::vector<std::uint32_t>& values, 
     return {read_buffer<std::uint32_t>(value_buffer, values.size()), read_buffer<std::uint32_t>(total_buffer, 4)};
 }
 
-class SplatScanTest : public engine::test::GpuTest {
+class GpuScanTest : public engine::test::GpuTest {
 protected:
     PrefixScan scan{shader_library()};
 
@@ -276,29 +271,29 @@ protected:
     }
 };
 
-TEST_F(SplatScanTest, ScanMatchesCpuAcrossBlockBoundaries) {
+TEST_F(GpuScanTest, ScanMatchesCpuAcrossBlockBoundaries) {
     constexpr std::uint32_t block = SCAN_BLOCK_SIZE;
     for (const std::uint32_t size : {0u, 1u, 2u, 1023u, 1024u, 1025u, block - 1, block, block + 1, 300000u})
         expect_scanned(size, size);
 }
 
-TEST_F(SplatScanTest, ScanOfSixteenMillionNeedsThreeLevelsAndMatches) {
+TEST_F(GpuScanTest, ScanOfSixteenMillionNeedsThreeLevelsAndMatches) {
     // More than SCAN_BLOCK_SIZE^2 elements: block sums of block sums (16M + 1 with 4096-blocks).
     constexpr std::uint32_t size = SCAN_BLOCK_SIZE * SCAN_BLOCK_SIZE + 1;
     expect_scanned(size, size, 3);
 }
 
-TEST_F(SplatScanTest, ScanUsesTheGpuCountAndLeavesTheRestUntouched) {
+TEST_F(GpuScanTest, ScanUsesTheGpuCountAndLeavesTheRestUntouched) {
     expect_scanned(5000, 4097);
     expect_scanned(5000, 0);
     expect_scanned(3000, 1u << 30);  // clamped to the capacity
 }
 
-TEST_F(SplatScanTest, ScanWrapsLikeUint) {
+TEST_F(GpuScanTest, ScanWrapsLikeUint) {
     expect_scanned(4096, 4096, 0xffffffffu);
 }
 
-TEST_F(SplatScanTest, ScanRejectsInconsistentJobs) {
+TEST_F(GpuScanTest, ScanRejectsInconsistentJobs) {
     Buffer values = make_buffer(std::vector<std::uint32_t>(64), "test scan values");
     const Buffer count = make_buffer(std::vector<std::uint32_t>{64u}, "test scan count");
     Buffer total = make_buffer(std::vector<std::uint32_t>(1), "test scan total");

@@ -1,12 +1,12 @@
-#include "gpu/prefix_scan.h"
+#include "engine/gl/prefix_scan.h"
 
 #include <optional>
 #include <string>
 
 #include "engine/core/error.h"
-#include "splat_lod/splat_lod_shared.h"
+#include "engine/gpu_sort_shared.h"
 
-namespace splat_lod::gpu {
+namespace engine::gl {
 namespace {
 
 static_assert(sizeof(ScanLevel) == 16, "ScanLevel is 16 bytes in std430");
@@ -18,13 +18,13 @@ constexpr std::uint32_t max_groups = 65535;  // GL_MAX_COMPUTE_WORK_GROUP_COUNT 
 constexpr GLbitfield results_visible =
     GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
 
-const char* const error_prefix = "splat_lod::gpu::PrefixScan::record(): ";
+const char* const error_prefix = "engine::gl::PrefixScan::record(): ";
 
-void set_uint(const engine::gl::Program& program, const char* name, std::uint32_t value) {
+void set_uint(const Program& program, const char* name, std::uint32_t value) {
     glProgramUniform1ui(program.id(), glGetUniformLocation(program.id(), name), value);
 }
 
-void check_word(const engine::gl::Buffer& buffer, std::size_t offset, const char* what) {
+void check_word(const Buffer& buffer, std::size_t offset, const char* what) {
     if (!buffer || offset % 4 != 0 || offset + 4 > buffer.size())
         engine::fail(std::string(error_prefix) + what + " offset " + std::to_string(offset) +
                      " is not a 4-byte-aligned word inside its buffer of " + std::to_string(buffer.size()) + " bytes");
@@ -43,7 +43,7 @@ void check_job(const ScanJob& job) {
 
 }  // namespace
 
-PrefixScan::PrefixScan(engine::gl::ShaderLibrary& shaders) : shaders_(shaders) {}
+PrefixScan::PrefixScan(ShaderLibrary& shaders) : shaders_(shaders) {}
 
 std::uint32_t PrefixScan::max_scan_count() {
     return max_groups * block_size;
@@ -66,9 +66,9 @@ std::vector<PrefixScan::Level> PrefixScan::plan_levels(std::uint32_t max_count) 
     return levels;
 }
 
-void PrefixScan::record(const ScanJob& job, engine::gl::GpuTimers* timers) {
+void PrefixScan::record(const ScanJob& job, GpuTimers* timers) {
     check_job(job);
-    std::optional<engine::gl::GpuTimerScope> span;
+    std::optional<GpuTimerScope> span;
     if (timers != nullptr) span.emplace(*timers, "prefix_scan");
     const std::vector<Level> levels = plan_levels(job.max_count);
     // The count and the values were written by earlier passes.
@@ -81,7 +81,7 @@ void PrefixScan::record(const ScanJob& job, engine::gl::GpuTimers* timers) {
 }
 
 void PrefixScan::record_arguments(const ScanJob& job) {
-    const auto& program = shaders_.program({"splat_lod/prefix_scan_dispatch_args.comp.glsl"});
+    const auto& program = shaders_.program({"engine/prefix_scan_dispatch_args.comp.glsl"});
     glUseProgram(program.id());
     set_uint(program, "u_count_index", static_cast<std::uint32_t>(job.count_offset / 4));
     set_uint(program, "u_max_count", job.max_count);
@@ -93,7 +93,7 @@ void PrefixScan::record_arguments(const ScanJob& job) {
 
 // Binds level `level`'s data (the caller's buffer or a block-sum range), the block sums it
 // reduces into or takes offsets from, and the GPU-written level table.
-void PrefixScan::bind_level(const engine::gl::Program& program, const ScanJob& job, std::size_t level,
+void PrefixScan::bind_level(const Program& program, const ScanJob& job, std::size_t level,
                             const std::vector<Level>& levels) {
     set_uint(program, "u_level", static_cast<std::uint32_t>(level));
     set_uint(program, "u_data_offset", level == 0 ? 0 : levels[level - 1].sums_offset);
@@ -106,7 +106,7 @@ void PrefixScan::bind_level(const engine::gl::Program& program, const ScanJob& j
 }
 
 void PrefixScan::record_upsweep(const ScanJob& job, const std::vector<Level>& levels) {
-    const auto& program = shaders_.program({"splat_lod/prefix_scan_reduce.comp.glsl"});
+    const auto& program = shaders_.program({"engine/prefix_scan_reduce.comp.glsl"});
     glUseProgram(program.id());
     for (std::size_t level = 0; level + 1 < levels.size(); ++level) {
         bind_level(program, job, level, levels);
@@ -117,7 +117,7 @@ void PrefixScan::record_upsweep(const ScanJob& job, const std::vector<Level>& le
 
 // The top level fits one workgroup by construction, whatever the real count.
 void PrefixScan::record_top(const ScanJob& job, const std::vector<Level>& levels) {
-    const auto& program = shaders_.program({"splat_lod/prefix_scan_block.comp.glsl"});
+    const auto& program = shaders_.program({"engine/prefix_scan_block.comp.glsl"});
     glUseProgram(program.id());
     bind_level(program, job, levels.size() - 1, levels);
     glProgramUniform1i(program.id(), glGetUniformLocation(program.id(), "u_add_block_offsets"), GL_FALSE);
@@ -128,7 +128,7 @@ void PrefixScan::record_top(const ScanJob& job, const std::vector<Level>& levels
 }
 
 void PrefixScan::record_downsweep(const ScanJob& job, const std::vector<Level>& levels) {
-    const auto& program = shaders_.program({"splat_lod/prefix_scan_block.comp.glsl"});
+    const auto& program = shaders_.program({"engine/prefix_scan_block.comp.glsl"});
     glUseProgram(program.id());
     glProgramUniform1i(program.id(), glGetUniformLocation(program.id(), "u_add_block_offsets"), GL_TRUE);
     glProgramUniform1i(program.id(), glGetUniformLocation(program.id(), "u_write_total"), GL_FALSE);
@@ -139,4 +139,4 @@ void PrefixScan::record_downsweep(const ScanJob& job, const std::vector<Level>& 
     }
 }
 
-}  // namespace splat_lod::gpu
+}  // namespace engine::gl

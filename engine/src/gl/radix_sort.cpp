@@ -1,4 +1,4 @@
-#include "gpu/radix_sort.h"
+#include "engine/gl/radix_sort.h"
 
 #include <algorithm>
 #include <cstddef>
@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "engine/core/error.h"
-#include "gpu/buffer_texture.h"
-#include "splat_lod/splat_lod_shared.h"
+#include "engine/gl/buffer_texture.h"
+#include "engine/gpu_sort_shared.h"
 
-namespace splat_lod::gpu {
+namespace engine::gl {
 namespace {
 
 static_assert(sizeof(SortParams) == 32, "SortParams is 32 bytes in std430");
@@ -25,9 +25,9 @@ constexpr std::uint32_t max_groups = 65535;  // GL_MAX_COMPUTE_WORK_GROUP_COUNT 
 constexpr GLbitfield results_visible =
     GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
 
-const char* const error_prefix = "splat_lod::gpu::RadixSort::record(): ";
+const char* const error_prefix = "engine::gl::RadixSort::record(): ";
 
-void set_uint(const engine::gl::Program& program, const char* name, std::uint32_t value) {
+void set_uint(const Program& program, const char* name, std::uint32_t value) {
     glProgramUniform1ui(program.id(), glGetUniformLocation(program.id(), name), value);
 }
 
@@ -56,17 +56,17 @@ void check_job(const SortJob& job) {
 // A GPU timer span when timers are given, nothing otherwise.
 class OptionalSpan {
 public:
-    OptionalSpan(engine::gl::GpuTimers* timers, const std::string& name) {
+    OptionalSpan(GpuTimers* timers, const std::string& name) {
         if (timers != nullptr) scope_.emplace(*timers, name);
     }
 
 private:
-    std::optional<engine::gl::GpuTimerScope> scope_;
+    std::optional<GpuTimerScope> scope_;
 };
 
 }  // namespace
 
-RadixSort::RadixSort(engine::gl::ShaderLibrary& shaders) : shaders_(shaders), scan_(shaders) {}
+RadixSort::RadixSort(ShaderLibrary& shaders) : shaders_(shaders), scan_(shaders) {}
 
 std::uint32_t RadixSort::max_sort_count() {
     return std::min<std::uint32_t>(max_groups * SORT_TILE_SIZE,
@@ -77,7 +77,7 @@ std::uint32_t RadixSort::pass_count(std::uint32_t hi_bits) {
     return (32 + hi_bits + SORT_RADIX_BITS - 1) / SORT_RADIX_BITS;
 }
 
-void RadixSort::record(const SortJob& job, engine::gl::GpuTimers* timers) {
+void RadixSort::record(const SortJob& job, GpuTimers* timers) {
     check_job(job);
     const OptionalSpan total_span(timers, "radix_sort");
     texel_reads_ = job.texel_reads;
@@ -108,7 +108,7 @@ void RadixSort::prepare_buffers(std::uint32_t max_count) {
 }
 
 void RadixSort::record_arguments(const SortJob& job) {
-    const auto& program = shaders_.program({"splat_lod/radix_sort_dispatch_args.comp.glsl"});
+    const auto& program = shaders_.program({"engine/radix_sort_dispatch_args.comp.glsl"});
     glUseProgram(program.id());
     set_uint(program, "u_count_index", static_cast<std::uint32_t>(job.count_offset / 4));
     set_uint(program, "u_max_count", job.max_count);
@@ -120,7 +120,7 @@ void RadixSort::record_arguments(const SortJob& job) {
 
 // One stable counting pass on one digit: histogram per tile, scan of all (digit, tile) counts,
 // scatter. Even passes read the caller's buffers and write the swap buffers, odd passes the reverse.
-void RadixSort::record_pass(const SortJob& job, std::uint32_t index, engine::gl::GpuTimers* timers) {
+void RadixSort::record_pass(const SortJob& job, std::uint32_t index, GpuTimers* timers) {
     const std::uint32_t total_bits = 32 + job.hi_bits;
     const std::uint32_t first_bit = index * SORT_RADIX_BITS;
     const Pass pass{first_bit / 32, first_bit % 32, std::min<std::uint32_t>(SORT_RADIX_BITS, total_bits - first_bit)};
@@ -176,10 +176,10 @@ void RadixSort::record_copy(const Pair& in, const Pair& out) {
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-const engine::gl::Program& RadixSort::program(const char* file) const {
+const Program& RadixSort::program(const char* file) const {
     std::vector<std::string> defines;
     if (texel_reads_) defines.push_back("SORT_TEXEL_READS");
-    return shaders_.program({std::string("splat_lod/") + file}, defines);
+    return shaders_.program({std::string("engine/") + file}, defines);
 }
 
 void RadixSort::bind_pairs(const Pair& in, const Pair& out) {
@@ -202,4 +202,4 @@ void RadixSort::dispatch_tiles() {
     glDispatchComputeIndirect(static_cast<GLintptr>(offsetof(SortParams, dispatch)));
 }
 
-}  // namespace splat_lod::gpu
+}  // namespace engine::gl

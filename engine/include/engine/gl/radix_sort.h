@@ -8,19 +8,19 @@
 
 #include "engine/gl/gpu_timers.h"
 #include "engine/gl/objects.h"
+#include "engine/gl/prefix_scan.h"
 #include "engine/gl/shader_library.h"
-#include "gpu/prefix_scan.h"
 
-namespace splat_lod::gpu {
+namespace engine::gl {
 
 struct SortJob {
     // uvec2 per element: x = low word (bits of a positive float depth, which order like the
     // value), y = high word (tile index, below 2^hi_bits). Sorted ascending by (y, x) in place.
-    engine::gl::Buffer& keys;
-    engine::gl::Buffer& values;              // uint per element, moved along with its key
-    const engine::gl::Buffer& count_buffer;  // holds the element count as a uint ...
-    std::size_t count_offset = 0;            // ... at this byte offset (a multiple of 4)
-    std::uint32_t max_count = 0;             // capacity; a larger count on the GPU is clamped
+    Buffer& keys;
+    Buffer& values;                // uint per element, moved along with its key
+    const Buffer& count_buffer;    // holds the element count as a uint ...
+    std::size_t count_offset = 0;  // ... at this byte offset (a multiple of 4)
+    std::uint32_t max_count = 0;   // capacity; a larger count on the GPU is clamped
     // Significant bits of the high word, 0..32: ceil(log2(tile_count)). Higher bits are ignored.
     std::uint32_t hi_bits = 0;
     // Read the input keys and values through buffer textures instead of storage loads (faster on CPU
@@ -31,14 +31,14 @@ struct SortJob {
 class RadixSort {
 public:
     // Programs come from `shaders`, which must outlive this object.
-    explicit RadixSort(engine::gl::ShaderLibrary& shaders);
+    explicit RadixSort(ShaderLibrary& shaders);
 
     // Records the sort. Stable: equal keys keep their input order. The result is in job.keys and
     // job.values; elements at and beyond the count stay untouched. Ends with a barrier that makes
     // the results visible to shaders, indirect commands and buffer reads. Spans "radix_sort*" go
     // to `timers` when given. Throws engine::Error for buffers too small, misaligned offsets,
     // hi_bits above 32 or max_count above max_sort_count().
-    void record(const SortJob& job, engine::gl::GpuTimers* timers = nullptr);
+    void record(const SortJob& job, GpuTimers* timers = nullptr);
 
     // The largest max_count: indirect dispatches are limited to 65535 workgroups per dimension.
     static std::uint32_t max_sort_count();
@@ -52,28 +52,28 @@ private:
         std::uint32_t bits = 0;   // digit width
     };
     struct Pair {
-        const engine::gl::Buffer& keys;
-        const engine::gl::Buffer& values;
+        const Buffer& keys;
+        const Buffer& values;
     };
     void prepare_buffers(std::uint32_t max_count);
     void record_arguments(const SortJob& job);
-    void record_pass(const SortJob& job, std::uint32_t index, engine::gl::GpuTimers* timers);
+    void record_pass(const SortJob& job, std::uint32_t index, GpuTimers* timers);
     void record_histogram(const Pass& pass, const Pair& in);
     void record_scatter(const Pass& pass, const Pair& in, const Pair& out);
     void record_copy(const Pair& in, const Pair& out);
     void bind_pairs(const Pair& in, const Pair& out);
-    const engine::gl::Program& program(const char* file) const;
+    const Program& program(const char* file) const;
     void dispatch_tiles();
 
-    engine::gl::ShaderLibrary& shaders_;
+    ShaderLibrary& shaders_;
     PrefixScan scan_;
     std::uint32_t max_count_ = 0;
     bool texel_reads_ = false;  // the current job's SortJob::texel_reads
-    engine::gl::Texture key_texels_{engine::gl::NoCreate}, value_texels_{engine::gl::NoCreate};
-    engine::gl::Buffer params_{engine::gl::NoCreate};       // SortParams, GPU-written
-    engine::gl::Buffer histogram_{engine::gl::NoCreate};    // per-tile digit counts, then offsets
-    engine::gl::Buffer keys_swap_{engine::gl::NoCreate};    // ping-pong partner of job.keys
-    engine::gl::Buffer values_swap_{engine::gl::NoCreate};  // ping-pong partner of job.values
+    Texture key_texels_{NoCreate}, value_texels_{NoCreate};
+    Buffer params_{NoCreate};       // SortParams, GPU-written
+    Buffer histogram_{NoCreate};    // per-tile digit counts, then offsets
+    Buffer keys_swap_{NoCreate};    // ping-pong partner of job.keys
+    Buffer values_swap_{NoCreate};  // ping-pong partner of job.values
 };
 
-}  // namespace splat_lod::gpu
+}  // namespace engine::gl
