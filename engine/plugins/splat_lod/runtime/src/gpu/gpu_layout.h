@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include <splat_lod/splat_lod_shared.h>
+#include "splat_lod/core/lod_selection.h"
 #include "splat_lod/msgs/lod_settings.h"
 
 namespace splat_lod::gpu {
@@ -53,7 +54,7 @@ inline void write_lod_rule(FrameUniforms& u, const plugin_msgs::LodRule& rule) {
     u.rel_min = rule.rel_min;
     u.rel_max = rule.rel_max;
     u.lod_flags = lod_flags(plugin_msgs::traits(rule.mode));
-    u.finest_level = 1;
+    u.finest_level = static_cast<std::uint32_t>(kFinestLevel);
     u.transition_band = rule.transition_band;
 }
 
