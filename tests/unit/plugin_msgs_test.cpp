@@ -6,59 +6,20 @@
 
 #include <gtest/gtest.h>
 
+#include "message_test_helpers.h"
 #include "plugin_msgs/plugin_msgs.h"
-#include "splat_lod/msgs/lod_settings.h"
-#include "splat_lod/msgs/splat_statistics.h"
-#include "splat_lod/msgs/stream_events.h"
 
 using nlohmann::json;
 using namespace plugin_msgs;
 
-namespace {
-
-// to_json → text → parse → from_json must give back the original.
-template <class M>
-void expect_round_trip(const M& original) {
-    const std::string text = json(original).dump();
-    const M back = json::parse(text).get<M>();
-    EXPECT_EQ(back, original) << text;
-}
-
-// The message of the std::invalid_argument that parsing `text` as M throws; empty when it parses.
-template <class M>
-std::string parse_error(const std::string& text) {
-    try {
-        json::parse(text).get<M>();
-    } catch (const std::invalid_argument& e) {
-        return e.what();
-    }
-    return "";
-}
-
-struct Rejection {
-    std::string text;
-    std::string named;  // what the message must contain: the kind and the key
-};
-
-template <class M>
-void expect_rejected(const std::vector<Rejection>& cases) {
-    for (const auto& c : cases) {
-        SCOPED_TRACE(c.text);
-        const std::string error = parse_error<M>(c.text);
-        EXPECT_NE(error.find(c.named), std::string::npos) << "message: '" << error << "'";
-    }
-}
-
-}  // namespace
+using engine::test::expect_rejected;
+using engine::test::expect_round_trip;
+using engine::test::parse_error;
 
 TEST(PluginMsgs, KindsAreDistinct) {
-    const std::vector<std::string_view> kinds{CameraState::kind, FrameStatistics::kind, LodSettings::kind,
-                                              StreamEvent::kind, ResidencyReport::kind, BackgroundWork::kind};
+    const std::vector<std::string_view> kinds{CameraState::kind, FrameStatistics::kind, BackgroundWork::kind};
     for (std::size_t i = 0; i < kinds.size(); ++i)
         for (std::size_t j = i + 1; j < kinds.size(); ++j) EXPECT_NE(kinds[i], kinds[j]);
-    EXPECT_EQ(LodSettings::kind, "lod_settings");
-    EXPECT_EQ(StreamEvent::kind, "stream_event");
-    EXPECT_EQ(ResidencyReport::kind, "residency");
 }
 
 TEST(PluginMsgs, CameraStateRoundTrips) {
@@ -90,184 +51,4 @@ TEST(PluginMsgs, BackgroundWorkRoundTripsAndRejectsWhatIsNotAList) {
     expect_rejected<BackgroundWork>({{R"({"lines": "baking"})", "background_work.lines"},
                                      {R"({"frame_index": -1})", "background_work.frame_index"},
                                      {R"({"job": 1})", "background_work"}});
-}
-
-TEST(PluginMsgs, LodSettingsDefaultsFollowTheDesign) {
-    const LodSettings settings;
-    EXPECT_EQ(settings.rule.mode, LodMode::full);
-    EXPECT_EQ(settings.rule.size_threshold_px, 2.0f);
-    EXPECT_EQ(settings.rule.rel_min, 0.5f);
-    EXPECT_EQ(settings.rule.rel_max, 1.5f);
-    EXPECT_EQ(settings.render_scale, 1.0f);
-    EXPECT_EQ(settings.upscaler, Upscaler::spline);
-    EXPECT_FALSE(settings.mip_filter);
-    EXPECT_FALSE(settings.level_colouring);
-    EXPECT_EQ(settings.splat_budget, 0u);  // no budget unless asked for
-    EXPECT_EQ(settings.validate(), "");
-    EXPECT_EQ(json::parse("{}").get<LodSettings>(), settings);  // missing keys keep defaults
-}
-
-TEST(PluginMsgs, LodSettingsRoundTripEveryModeAndUpscaler) {
-    for (std::size_t m = 0; m < plugin_msgs::kLodModeNames.size(); ++m) {
-        const auto mode = static_cast<LodMode>(m);
-        for (const auto upscaler : {Upscaler::spline, Upscaler::bicubic, Upscaler::bilinear, Upscaler::lanczos3}) {
-            LodSettings settings;
-            settings.rule.mode = mode;
-            settings.upscaler = upscaler;
-            settings.rule.size_threshold_px = 3.7f;
-            settings.rule.rel_min = 0.25f;
-            settings.rule.rel_max = 2.0f;
-            settings.render_scale = 1.0f / 3.0f;
-            settings.mip_filter = true;
-            settings.level_colouring = true;
-            settings.splat_budget = 200000;
-            settings.rule.transition_band = 0.75f;
-            expect_round_trip(settings);
-        }
-    }
-}
-
-// The rule's modes differ only by their traits: the four of the multi-scale method's ablation, each
-// a different row, and the JSON keys of a rule sit flat in the object that carries it.
-TEST(PluginMsgs, LodRuleModesAreTheirTraits) {
-    using plugin_msgs::traits;
-    EXPECT_FALSE(traits(LodMode::baseline).all_levels);
-    EXPECT_FALSE(traits(LodMode::baseline).coverage_rule);
-    EXPECT_TRUE(traits(LodMode::filter_small).coverage_rule);
-    EXPECT_FALSE(traits(LodMode::filter_small).all_levels);
-    EXPECT_TRUE(traits(LodMode::insert_large).all_levels);
-    EXPECT_FALSE(traits(LodMode::insert_large).coverage_rule);
-    EXPECT_TRUE(traits(LodMode::full).all_levels && traits(LodMode::full).coverage_rule &&
-                traits(LodMode::full).transitions);
-    for (std::size_t a = 0; a < plugin_msgs::kLodModeNames.size(); ++a)
-        for (std::size_t b = a + 1; b < plugin_msgs::kLodModeNames.size(); ++b) {
-            const auto ta = traits(static_cast<LodMode>(a)), tb = traits(static_cast<LodMode>(b));
-            EXPECT_FALSE(ta.all_levels == tb.all_levels && ta.coverage_rule == tb.coverage_rule &&
-                         ta.transitions == tb.transitions)
-                << plugin_msgs::kLodModeNames[a] << " and " << plugin_msgs::kLodModeNames[b] << " do the same";
-        }
-    plugin_msgs::LodRule rule;
-    rule.rel_min = 0.75f;
-    json object = json::object();
-    plugin_msgs::write_rule(object, rule);
-    EXPECT_EQ(object.at("rel_min").get<float>(), 0.75f);
-    plugin_msgs::LodRule read;
-    plugin_msgs::read_rule(object, "test", read);
-    EXPECT_EQ(read, rule);
-    EXPECT_EQ(rule.validate(), "");
-    rule.rel_min = 2.0f;
-    EXPECT_EQ(rule.validate("streamer.rule").rfind("streamer.rule.rel_min: ", 0), 0u) << rule.validate();
-}
-
-TEST(PluginMsgs, LodSettingsEnumsTravelAsNames) {
-    LodSettings settings;
-    settings.rule.mode = LodMode::insert_large;
-    settings.upscaler = Upscaler::lanczos3;
-    const json j = settings;
-    EXPECT_EQ(j.at("mode"), "insert_large");
-    EXPECT_EQ(j.at("upscaler"), "lanczos3");
-    EXPECT_EQ(to_string(LodMode::filter_small), "filter_small");
-}
-
-TEST(PluginMsgs, LodSettingsRejectABudgetThatIsNotACount) {
-    expect_rejected<LodSettings>({
-        {R"({"splat_budget": -5})", "lod_settings.splat_budget: expected a non-negative integer, got -5"},
-        {R"({"splat_budget": 1.5})", "lod_settings.splat_budget: expected a non-negative integer"},
-        {R"({"splat_budget": 5000000000})", "lod_settings.splat_budget: 5000000000 is out of range"},
-        {R"({"splat_budget": "200k"})", "lod_settings.splat_budget"},
-    });
-}
-
-TEST(PluginMsgs, LodSettingsRejectBadEnumNamesNamingTheKey) {
-    expect_rejected<LodSettings>({
-        {R"({"mode": "ultra"})", "lod_settings.mode: unknown value 'ultra'"},
-        {R"({"mode": 2})", "lod_settings.mode"},
-        {R"({"upscaler": "nearest"})", "lod_settings.upscaler: unknown value 'nearest'"},
-    });
-    // The message lists what would have been accepted.
-    EXPECT_NE(parse_error<LodSettings>(R"({"upscaler": "Spline"})").find("spline, bicubic, bilinear, lanczos3"),
-              std::string::npos);
-}
-
-TEST(PluginMsgs, LodSettingsRejectOutOfRangeValuesNamingTheKey) {
-    expect_rejected<LodSettings>({
-        {R"({"render_scale": 0})", "lod_settings.render_scale: must be in (0, 1]"},
-        {R"({"render_scale": 1.5})", "lod_settings.render_scale"},
-        {R"({"render_scale": -0.5})", "lod_settings.render_scale"},
-        {R"({"render_scale": 1e300})", "lod_settings.render_scale"},
-        {R"({"size_threshold_px": 0})", "lod_settings.size_threshold_px"},
-        {R"({"size_threshold_px": -2})", "lod_settings.size_threshold_px"},
-        {R"({"rel_min": 0})", "lod_settings.rel_min"},
-        {R"({"rel_min": 2.0})", "lod_settings.rel_min: must be in (0, rel_max = 1.5]"},
-        {R"({"rel_min": 0.5, "rel_max": 0.4})", "lod_settings.rel_min"},
-        {R"({"rel_max": -1})", "lod_settings.rel_max"},
-        {R"({"transition_band": -0.5})", "lod_settings.transition_band: must be in [0, 4.0] octaves of coverage"},
-        {R"({"transition_band": 9})", "lod_settings.transition_band"},
-    });
-}
-
-TEST(PluginMsgs, LodSettingsRejectWrongTypesAndUnknownKeys) {
-    expect_rejected<LodSettings>({
-        {R"({"render_scale": "half"})", "lod_settings.render_scale: expected a number"},
-        {R"({"mip_filter": 1})", "lod_settings.mip_filter: expected true or false"},
-        {R"({"render_scal": 0.5})", "lod_settings.render_scal: unknown key"},
-        {R"([1, 2])", "lod_settings: expected a JSON object"},
-    });
-}
-
-TEST(PluginMsgs, LodSettingsValidateCatchesValuesSetInCode) {
-    LodSettings settings;
-    settings.render_scale = std::numeric_limits<float>::quiet_NaN();
-    EXPECT_NE(settings.validate().find("lod_settings.render_scale"), std::string::npos);
-    settings = LodSettings{};
-    settings.rule.size_threshold_px = std::numeric_limits<float>::infinity();
-    EXPECT_NE(settings.validate().find("lod_settings.size_threshold_px"), std::string::npos);
-    settings = LodSettings{};
-    settings.rule.rel_min = settings.rule.rel_max;  // the upper end of (0, rel_max] is allowed
-    EXPECT_EQ(settings.validate(), "");
-}
-
-TEST(PluginMsgs, StreamEventRoundTripsEveryEventType) {
-    for (const auto type : {StreamEventType::requested, StreamEventType::loaded, StreamEventType::uploaded,
-                            StreamEventType::evicted, StreamEventType::failed}) {
-        StreamEvent event;
-        event.chunk_id = "chunk_+003_-002";
-        event.event = type;
-        event.level = 3;
-        event.bytes = 5'000'000'000ull;  // beyond 32 bits
-        event.message = type == StreamEventType::failed ? "truncated file: \"x.ply\" at byte 17" : "";
-        expect_round_trip(event);
-    }
-    EXPECT_EQ(json(StreamEvent{}).at("event"), "requested");
-}
-
-TEST(PluginMsgs, StreamEventRejectsBadValuesNamingTheKey) {
-    expect_rejected<StreamEvent>({
-        {R"({"event": "vanished"})", "stream_event.event: unknown value 'vanished'"},
-        {R"({"level": 5})", "stream_event.level"},
-        {R"({"level": -1})", "stream_event.level"},
-        {R"({"level": 1.5})", "stream_event.level: expected an integer"},
-        {R"({"bytes": -1})", "stream_event.bytes: expected a non-negative integer"},
-        {R"({"chunk_id": 7})", "stream_event.chunk_id"},
-        {R"({"chunk": "a"})", "stream_event.chunk: unknown key"},
-    });
-}
-
-TEST(PluginMsgs, ResidencyReportRoundTrips) {
-    ResidencyReport report;
-    report.frame_index = 900;
-    report.resident_bytes = 3'000'000'000ull;
-    report.budget_bytes = 2'500'000'000ull;
-    report.chunks = {4, 2, 57, 1};
-    expect_round_trip(report);
-    expect_round_trip(ResidencyReport{});
-}
-
-TEST(PluginMsgs, ResidencyReportRejectsBadValuesNamingTheKey) {
-    expect_rejected<ResidencyReport>({
-        {R"({"budget_bytes": -5})", "residency.budget_bytes"},
-        {R"({"chunks": {"resident": -3}})", "residency.chunks.resident"},
-        {R"({"chunks": {"evicting": 1}})", "residency.chunks.evicting: unknown key"},
-        {R"({"chunks": 3})", "residency.chunks: expected a JSON object"},
-    });
 }
