@@ -6,9 +6,6 @@
 
 #include "engine/core/message_bus.h"
 #include "plugin_msgs/plugin_msgs.h"
-#include "splat_lod/msgs/lod_settings.h"
-#include "splat_lod/msgs/splat_statistics.h"
-#include "splat_lod/msgs/stream_events.h"
 
 using engine::MessageBus;
 using engine::Subscription;
@@ -125,18 +122,19 @@ TEST(MessageBus, KeepsKindsApart) {
     MessageBus bus;
     int frames = 0;
     int cameras = 0;
-    int settings = 0;
+    int work = 0;
     const auto a = bus.subscribe<FrameStatistics>([&](const FrameStatistics&) { ++frames; });
     const auto b = bus.subscribe<CameraState>([&](const CameraState&) { ++cameras; });
-    const auto c = bus.subscribe<plugin_msgs::LodSettings>([&](const plugin_msgs::LodSettings&) { ++settings; });
+    const auto c = bus.subscribe<plugin_msgs::BackgroundWork>([&](const plugin_msgs::BackgroundWork&) { ++work; });
     bus.publish(frame(1));
     bus.publish(CameraState{});
     bus.publish(CameraState{});
     EXPECT_EQ(frames, 1);
     EXPECT_EQ(cameras, 2);
-    EXPECT_EQ(settings, 0);
+    EXPECT_EQ(work, 0);
     EXPECT_EQ(bus.subscriber_count(CameraState::kind), 1u);
-    EXPECT_EQ(bus.subscriber_count(plugin_msgs::StreamEvent::kind), 0u);
+    EXPECT_EQ(bus.subscriber_count(plugin_msgs::BackgroundWork::kind), 1u);
+    EXPECT_EQ(bus.subscriber_count("no_such_kind"), 0u);
 }
 
 TEST(MessageBus, HandlerRemovedByAnotherDuringDeliveryIsNotCalled) {

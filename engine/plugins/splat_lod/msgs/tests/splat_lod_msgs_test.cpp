@@ -23,8 +23,8 @@ using engine::test::parse_error;
 
 // The plugin's messages travel on the engine's bus beside the engine's own: every kind is distinct.
 TEST(SplatLodMsgs, KindsAreDistinctFromEachOtherAndTheEngines) {
-    const std::vector<std::string_view> kinds{CameraState::kind,  FrameStatistics::kind, BackgroundWork::kind,
-                                              LodSettings::kind,  StreamEvent::kind,     ResidencyReport::kind};
+    const std::vector<std::string_view> kinds{CameraState::kind, FrameStatistics::kind, BackgroundWork::kind,
+                                              LodSettings::kind, StreamEvent::kind,     ResidencyReport::kind};
     for (std::size_t i = 0; i < kinds.size(); ++i)
         for (std::size_t j = i + 1; j < kinds.size(); ++j) EXPECT_NE(kinds[i], kinds[j]);
     EXPECT_EQ(LodSettings::kind, "lod_settings");
