@@ -76,8 +76,6 @@ ENGINE_GPU_STRUCT(ScanLevel) {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(SortParams) == 32);
-static_assert(sizeof(ScanLevel) == 16);
 }  // namespace engine::gl
 #endif
 

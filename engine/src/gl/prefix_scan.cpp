@@ -3,6 +3,7 @@
 #include <optional>
 #include <string>
 
+#include "compute_job.h"
 #include "engine/core/error.h"
 #include "engine/gpu_sort_shared.h"
 
@@ -20,19 +21,11 @@ constexpr GLbitfield results_visible =
 
 const char* const error_prefix = "engine::gl::PrefixScan::record(): ";
 
-void set_uint(const Program& program, const char* name, std::uint32_t value) {
-    glProgramUniform1ui(program.id(), glGetUniformLocation(program.id(), name), value);
-}
-
-void check_word(const Buffer& buffer, std::size_t offset, const char* what) {
-    if (!buffer || offset % 4 != 0 || offset + 4 > buffer.size())
-        engine::fail(std::string(error_prefix) + what + " offset " + std::to_string(offset) +
-                     " is not a 4-byte-aligned word inside its buffer of " + std::to_string(buffer.size()) + " bytes");
-}
+using detail::set_uint;
 
 void check_job(const ScanJob& job) {
-    check_word(job.count_buffer, job.count_offset, "count");
-    check_word(job.total_buffer, job.total_offset, "total");
+    detail::check_word(job.count_buffer, job.count_offset, error_prefix, "count");
+    detail::check_word(job.total_buffer, job.total_offset, error_prefix, "total");
     if (job.max_count > PrefixScan::max_scan_count())
         engine::fail(std::string(error_prefix) + "max_count " + std::to_string(job.max_count) + " exceeds the limit " +
                      std::to_string(PrefixScan::max_scan_count()));
@@ -81,14 +74,9 @@ void PrefixScan::record(const ScanJob& job, GpuTimers* timers) {
 }
 
 void PrefixScan::record_arguments(const ScanJob& job) {
-    const auto& program = shaders_.program({"engine/prefix_scan_dispatch_args.comp.glsl"});
-    glUseProgram(program.id());
-    set_uint(program, "u_count_index", static_cast<std::uint32_t>(job.count_offset / 4));
-    set_uint(program, "u_max_count", job.max_count);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SCAN_BINDING_COUNT, job.count_buffer.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SCAN_BINDING_LEVELS, levels_.id());
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    detail::record_dispatch_arguments(shaders_.program({"engine/prefix_scan_dispatch_args.comp.glsl"}),
+                                      job.count_buffer, job.count_offset, job.max_count, SCAN_BINDING_COUNT, levels_,
+                                      SCAN_BINDING_LEVELS);
 }
 
 // Binds level `level`'s data (the caller's buffer or a block-sum range), the block sums it

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "compute_job.h"
 #include "engine/core/error.h"
 #include "engine/gl/buffer_texture.h"
 #include "engine/gpu_sort_shared.h"
@@ -27,9 +28,7 @@ constexpr GLbitfield results_visible =
 
 const char* const error_prefix = "engine::gl::RadixSort::record(): ";
 
-void set_uint(const Program& program, const char* name, std::uint32_t value) {
-    glProgramUniform1ui(program.id(), glGetUniformLocation(program.id(), name), value);
-}
+using detail::set_uint;
 
 std::uint32_t tiles_for(std::uint32_t count) {
     return (count + SORT_TILE_SIZE - 1) / SORT_TILE_SIZE;
@@ -37,10 +36,7 @@ std::uint32_t tiles_for(std::uint32_t count) {
 
 void check_job(const SortJob& job) {
     const auto fail = [](const std::string& message) { engine::fail(error_prefix + message); };
-    if (!job.count_buffer || job.count_offset % 4 != 0 || job.count_offset + 4 > job.count_buffer.size())
-        fail("count offset " + std::to_string(job.count_offset) +
-             " is not a 4-byte-aligned word inside its buffer of " + std::to_string(job.count_buffer.size()) +
-             " bytes");
+    detail::check_word(job.count_buffer, job.count_offset, error_prefix, "count");
     if (job.hi_bits > 32) fail("hi_bits " + std::to_string(job.hi_bits) + " exceeds the 32 bits of the high word");
     if (job.max_count > RadixSort::max_sort_count())
         fail("max_count " + std::to_string(job.max_count) + " exceeds the limit " +
@@ -108,14 +104,9 @@ void RadixSort::prepare_buffers(std::uint32_t max_count) {
 }
 
 void RadixSort::record_arguments(const SortJob& job) {
-    const auto& program = shaders_.program({"engine/radix_sort_dispatch_args.comp.glsl"});
-    glUseProgram(program.id());
-    set_uint(program, "u_count_index", static_cast<std::uint32_t>(job.count_offset / 4));
-    set_uint(program, "u_max_count", job.max_count);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_COUNT, job.count_buffer.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SORT_BINDING_PARAMS, params_.id());
-    glDispatchCompute(1, 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    detail::record_dispatch_arguments(shaders_.program({"engine/radix_sort_dispatch_args.comp.glsl"}), job.count_buffer,
+                                      job.count_offset, job.max_count, SORT_BINDING_COUNT, params_,
+                                      SORT_BINDING_PARAMS);
 }
 
 // One stable counting pass on one digit: histogram per tile, scan of all (digit, tile) counts,

@@ -313,6 +313,9 @@ TEST_F(SplatUpscaleTest, HardCasesStayFiniteAndInRange) {
     pass().settings().lod.render_scale = 0.0f;
     EXPECT_THROW(harness.render({needles}, front_camera(8, 8)), engine::Error);
     pass().settings().lod.render_scale = 0.5f;
+    pass().settings().lod.rule.size_threshold_px = std::numeric_limits<float>::quiet_NaN();  // any field of the rule
+    EXPECT_THROW(harness.render({needles}, front_camera(8, 8)), engine::Error);
+    pass().settings().lod.rule = plugin_msgs::LodRule{};
     pass().settings().low_res_tile_size = 5;
     EXPECT_THROW(harness.render({needles}, front_camera(8, 8)), engine::Error);
     pass().settings().low_res_tile_size = 8;

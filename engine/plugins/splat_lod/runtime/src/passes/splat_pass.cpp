@@ -126,8 +126,9 @@ void SplatPass::upload_frame_uniforms(const engine::FrameContext& frame, const R
 }
 
 SplatPass::RasterSize SplatPass::raster_size(const engine::FrameContext& frame) const {
+    // Settings set directly (not through the bus, which validates) are checked here: an error, not garbage.
+    if (const std::string error = settings.lod.validate(); !error.empty()) engine::fail("splat_lod: " + error);
     const float s = settings.lod.render_scale;
-    if (!(s > 0.0f && s <= 1.0f)) engine::fail("splat_lod: render_scale must be in (0, 1], got " + std::to_string(s));
     RasterSize r;
     r.scale = s;
     r.upscaled = s < 1.0f;
