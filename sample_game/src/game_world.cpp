@@ -115,17 +115,6 @@ engine::CameraView GameWorld::camera(const glm::vec3& eye, const glm::vec3& forw
                                        height, near_plane_for(above), far_plane_for(manifest_.size_m));
 }
 
-engine::CameraView GameWorld::camera(const PathPose& pose, int width, int height, FrameRecord* record) const {
-    if (record) {
-        record->segment = pose.segment;
-        record->t = pose.t;
-        record->eye = pose.eye;
-        record->height_above_ground_m = pose.eye.y - ground_.height(pose.eye.x, pose.eye.z);
-        record->distance_to_centre_m = glm::distance(pose.eye, ground_.centre());
-    }
-    return camera(pose.eye, pose.forward, width, height);
-}
-
 double GameWorld::update_streaming(const engine::CameraView& camera, std::uint64_t frame, const glm::vec3& velocity) {
     const auto start = Clock::now();
     streamer_->update({camera.position, camera.focal_length(), frame, velocity});

@@ -9,7 +9,7 @@
 #include "engine/core/error.h"
 #include "sample_game/camera_path.h"
 #include "sample_game/world_path.h"
-#include "splat_lod/worldgen/world_terrain.h"
+#include "splat_lod/synth/world_terrain.h"
 
 using sample_game::CameraPath;
 using sample_game::PathKey;

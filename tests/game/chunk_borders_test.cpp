@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "engine/core/error.h"
-#include "sample_game/chunk_borders.h"
+#include "sample_game/harness/chunk_borders.h"
 
 using namespace sample_game;
 

@@ -1,4 +1,4 @@
-// The soak's fault injector (sample_game/chunk_faults.h) never touches the user's files: the copy
+// The soak's fault injector (sample_game/harness/chunk_faults.h) never touches the user's files: the copy
 // links them, damage replaces the copy's directory entries, restore brings the exact bytes back.
 #include <sys/stat.h>
 
@@ -10,7 +10,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
-#include "sample_game/chunk_faults.h"
+#include "sample_game/harness/chunk_faults.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

@@ -8,10 +8,10 @@
 #include <gtest/gtest.h>
 
 #include "engine/core/error.h"
-#include "sample_game/frame_strip.h"
 #include "sample_game/game_settings.h"
-#include "sample_game/profile_summary.h"
-#include "sample_game/reference_cache.h"
+#include "sample_game/harness/frame_strip.h"
+#include "sample_game/harness/profile_summary.h"
+#include "sample_game/harness/reference_cache.h"
 #include "splat_lod/eval/sheet_drawing.h"
 #include "test_support.h"
 

@@ -8,9 +8,9 @@
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
 #include "engine/core/message_bus.h"
-#include "sample_game/frame_record.h"
 #include "sample_game/game_settings.h"
-#include "sample_game/profile_summary.h"
+#include "sample_game/harness/frame_record.h"
+#include "sample_game/harness/profile_summary.h"
 #include "sample_game/streaming_panel.h"
 #include "test_support.h"
 

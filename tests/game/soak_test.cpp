@@ -1,5 +1,5 @@
-// The soak run (sample_game/soak_run.h) on the tests' tiny world through the real engine: a short
-// version of `sample_game --soak`. Laps with chunk files removed, truncated, replaced and corrupted
+// The soak run (sample_game/harness/soak_run.h) on the tests' tiny world through the real engine: a short
+// version of `sample_game_harness --soak`. Laps with chunk files removed, truncated, replaced and corrupted
 // underneath the streamer must end like the first: same GL objects, flat memory, every chunk back, the same
 // frame. A leak made on purpose must fail the run, so the checks can fail.
 #include <algorithm>
@@ -11,8 +11,8 @@
 #include "engine/core/file_io.h"
 #include "engine/gl/objects.h"
 #include "gpu_fixture.h"
-#include "sample_game/frame_record.h"
-#include "sample_game/soak_run.h"
+#include "sample_game/harness/frame_record.h"
+#include "sample_game/harness/soak_run.h"
 #include "splat_lod/stream/stream_policy.h"
 #include "splat_lod/worldgen/world_generator.h"
 #include "test_support.h"

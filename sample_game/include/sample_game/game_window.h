@@ -1,5 +1,5 @@
 #pragma once
-// The windowed game (`sample_game` without --profile): a GLFW window on the streamed world with
+// The windowed game (`sample_game`): a GLFW window on the streamed world with
 // the engine's ImGui overlay (frame time, scene tree, the splat plugin's "Splat LOD" panel) and
 // the game's "Streaming" and "Walkthrough" panels. The camera follows the walkthrough path,
 // looping, until the user flies it: W/A/S/D move, E/Q up/down, Shift faster, right mouse button +

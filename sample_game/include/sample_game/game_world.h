@@ -15,14 +15,14 @@
 #include "engine/engine.h"
 #include "engine/render/camera.h"
 #include "sample_game/camera_path.h"
-#include "sample_game/frame_record.h"
+#include "sample_game/chunk_census.h"
 #include "sample_game/game_settings.h"
 #include "sample_game/world_ground.h"
+#include "splat_lod/core/world_lock.h"
 #include "splat_lod/core/world_manifest.h"
 #include "splat_lod/splat_renderer.h"
 #include "splat_lod/stream/chunk_streamer.h"
 #include "splat_lod/stream/stream_scene_sink.h"
-#include "splat_lod/worldgen/world_lock.h"
 
 namespace sample_game {
 
@@ -57,8 +57,9 @@ public:
     // The game's camera at `eye` looking along `forward` (Y up), with near and far planes for its
     // height above the ground (game_settings.h).
     engine::CameraView camera(const glm::vec3& eye, const glm::vec3& forward, int width, int height) const;
-    // The pose's camera, also setting the record's position, height and centre distance fields.
-    engine::CameraView camera(const PathPose& pose, int width, int height, FrameRecord* record = nullptr) const;
+    engine::CameraView camera(const PathPose& pose, int width, int height) const {
+        return camera(pose.eye, pose.forward, width, height);
+    }
 
     // One streamer update for this camera; returns its wall time in milliseconds. `velocity`: how far
     // the camera moved since the last update (world units), zero after a jump; the streamer's cut

@@ -13,7 +13,7 @@
 #include "splat_lod/msgs/stream_events.h"
 
 #include "engine/core/message_bus.h"
-#include "sample_game/frame_record.h"
+#include "sample_game/chunk_census.h"
 
 namespace sample_game {
 

@@ -1,6 +1,6 @@
 #pragma once
 // What a walkthrough needs of a world's ground: its height, where the walk runs, how large the world
-// is and at what scale. A generated world answers from its terrain (splat_lod/worldgen/world_terrain.h,
+// is and at what scale. A generated world answers from its terrain (splat_lod/synth/world_terrain.h,
 // rebuilt from the manifest's seed); a world imported from a capture (splat_lod/worldgen/world_import.h)
 // from the ground grid its manifest holds (the 10th percentile of the heights per chunk), walking
 // straight along x through the densest chunk, at its scale σ = chunk size / 64 (a capture's unit is
@@ -10,7 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "splat_lod/core/world_manifest.h"
-#include "splat_lod/worldgen/world_terrain.h"
+#include "splat_lod/synth/world_terrain.h"
 
 namespace sample_game {
 

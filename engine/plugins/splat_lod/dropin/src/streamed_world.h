@@ -8,9 +8,9 @@
 #include <optional>
 #include <string>
 
+#include "splat_lod/core/world_lock.h"
 #include "splat_lod/dropin/drop_in_lod.h"
 #include "splat_lod/stream/stream_scene_sink.h"
-#include "splat_lod/worldgen/world_lock.h"
 
 namespace engine {
 class AssetCache;

@@ -9,7 +9,7 @@
 
 #include "chunk_content.h"
 #include "splat_lod/core/camera_set.h"
-#include "splat_lod/worldgen/world_terrain.h"
+#include "splat_lod/synth/world_terrain.h"
 
 namespace splat_lod::world {
 

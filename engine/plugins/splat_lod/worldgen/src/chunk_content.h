@@ -11,7 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "splat_lod/core/splat_cloud.h"
-#include "splat_lod/worldgen/world_terrain.h"
+#include "splat_lod/synth/world_terrain.h"
 #include "world_layout.h"
 
 namespace splat_lod::synth {

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "chunk_content.h"
-#include "world_streams.h"
+#include "splat_lod/synth/world_streams.h"
 
 namespace splat_lod::world {
 namespace {

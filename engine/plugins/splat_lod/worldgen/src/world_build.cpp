@@ -16,7 +16,7 @@
 #include "splat_lod/core/parallel_for.h"
 #include "splat_lod/core/splat_io.h"
 #include "splat_lod/synth/fine_detail_scene.h"
-#include "world_streams.h"
+#include "splat_lod/synth/world_streams.h"
 
 namespace splat_lod::world {
 namespace {

@@ -12,7 +12,7 @@
 #include "chunk_content.h"
 #include "engine/core/error.h"
 #include "splat_lod/core/parallel_for.h"
-#include "splat_lod/worldgen/world_lock.h"
+#include "splat_lod/core/world_lock.h"
 #include "splat_lod/worldgen/world_meshes.h"
 #include "world_build.h"
 #include "world_folder.h"

@@ -8,7 +8,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/process_memory.h"
-#include "splat_lod/worldgen/world_lock.h"
+#include "splat_lod/core/world_lock.h"
 #include "world_folder.h"
 #include "world_import_steps.h"
 

@@ -12,8 +12,8 @@
 #include "engine/core/error.h"
 #include "engine/core/process_memory.h"
 #include "shard_staging.h"
+#include "splat_lod/core/world_lock.h"
 #include "splat_lod/worldgen/world_import.h"
-#include "splat_lod/worldgen/world_lock.h"
 #include "world_folder.h"
 #include "world_import_steps.h"
 

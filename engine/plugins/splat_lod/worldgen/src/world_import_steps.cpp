@@ -18,7 +18,7 @@
 #include "splat_lod/core/parallel_for.h"
 #include "splat_lod/core/splat_io.h"
 #include "splat_lod/core/training_cameras.h"
-#include "splat_lod/worldgen/world_lock.h"
+#include "splat_lod/core/world_lock.h"
 #include "world_folder.h"
 
 namespace splat_lod::world {

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "world_streams.h"
+#include "splat_lod/synth/world_streams.h"
 
 namespace splat_lod::world {
 namespace {

@@ -10,7 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "splat_lod/core/world_manifest.h"
-#include "splat_lod/worldgen/world_terrain.h"
+#include "splat_lod/synth/world_terrain.h"
 
 namespace splat_lod::world {
 

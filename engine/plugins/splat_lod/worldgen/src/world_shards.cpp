@@ -14,7 +14,7 @@
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
 #include "shard_staging.h"
-#include "splat_lod/worldgen/world_lock.h"
+#include "splat_lod/core/world_lock.h"
 #include "splat_lod/worldgen/world_meshes.h"
 #include "world_build.h"
 #include "world_folder.h"

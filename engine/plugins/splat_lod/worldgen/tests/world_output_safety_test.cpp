@@ -23,9 +23,9 @@
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
 #include "splat_io_test_helpers.h"
+#include "splat_lod/core/world_lock.h"
 #include "splat_lod/core/world_manifest.h"
 #include "splat_lod/worldgen/world_generator.h"
-#include "splat_lod/worldgen/world_lock.h"
 #include "test_support.h"
 #include "tiny_world.h"
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "splat_lod/worldgen/world_terrain.h"
+#include "splat_lod/synth/world_terrain.h"
 
 namespace splat_lod::world {
 

@@ -1,5 +1,5 @@
 #pragma once
-// The cached reference of the profile (`sample_game --reference`, reference_run.h): for a few path
+// The cached reference of the profile (`sample_game_harness --reference`, reference_run.h): for a few path
 // frames spread over every segment, the frame rendered supersampled in `baseline` mode with every
 // chunk resident and area-averaged down to the profile's size. It lives beside the world:
 //   <world>/reference/<key>/frame_<NNNN>.png   one per chosen path frame, 8-bit lossless

@@ -1,4 +1,4 @@
-#include "sample_game/profile_plots.h"
+#include "sample_game/harness/profile_plots.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,8 +1,9 @@
 #pragma once
-// Internal to the world generator: the random stream of every object. Each placement cell of each
+// The sample world's random streams: one for every object. Each placement cell of each
 // kind of object (a tree cell, a grass cell, a chunk's ground) draws from its own synth::Rng stream,
 // named by the kind and the cell's integer coordinates, so an object's randomness never depends on
-// which chunk asks for it, in which order chunks are generated, or on how many threads run.
+// which chunk asks for it, in which order chunks are generated, or on how many threads run. The
+// terrain (world_terrain.h) and the world generator (splat_lod_worldgen) draw from them.
 #include <cstdint>
 
 namespace splat_lod::world {

@@ -1,5 +1,5 @@
 #pragma once
-// The soak run (`sample_game --soak`): walks the camera path again and again with LOD and
+// The soak run (`sample_game_harness --soak`): walks the camera path again and again with LOD and
 // streaming, as a player leaving the game running would, and checks that nothing grows and that
 // streaming survives chunk files that go wrong underneath it.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The headless profile (`sample_game --profile`): walks the camera path once with LOD and
+// The headless profile (`sample_game_harness --profile`): walks the camera path once with LOD and
 // streaming, frame by frame, then (unless told not to) loads every chunk fully, switches to
 // `baseline` mode and draws the overview's frames (and every K-th frame elsewhere) again, and
 // writes what it measured:
@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "sample_game/game_settings.h"
-#include "sample_game/profile_summary.h"
+#include "sample_game/harness/profile_summary.h"
 
 namespace sample_game {
 

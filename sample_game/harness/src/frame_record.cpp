@@ -1,4 +1,4 @@
-#include "sample_game/frame_record.h"
+#include "sample_game/harness/frame_record.h"
 
 #include <charconv>
 #include <cstdio>

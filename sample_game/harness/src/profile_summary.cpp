@@ -1,4 +1,4 @@
-#include "sample_game/profile_summary.h"
+#include "sample_game/harness/profile_summary.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -137,7 +137,7 @@ std::vector<ReferenceFrameResult> reference_frames(const std::vector<FrameRecord
 
 void reference_checks(ProfileSummary& s) {
     const auto& frames = s.reference_frames;
-    const char* none = "no reference for this run (sample_game --reference makes it)";
+    const char* none = "no reference for this run (sample_game_harness --reference makes it)";
     // 4: never much worse than the baseline.
     int pairs = 0, worse = 0;
     double worst = 1e9;

@@ -1,4 +1,4 @@
-#include "sample_game/chunk_borders.h"
+#include "sample_game/harness/chunk_borders.h"
 
 #include <algorithm>
 #include <climits>

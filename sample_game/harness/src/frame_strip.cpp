@@ -1,11 +1,11 @@
-#include "sample_game/frame_strip.h"
+#include "sample_game/harness/frame_strip.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "engine/core/error.h"
 #include "formatted.h"
-#include "sample_game/frame_sheet.h"
+#include "sample_game/harness/frame_sheet.h"
 
 namespace sample_game {
 namespace {

@@ -1,5 +1,5 @@
-// The world folder's lock (world/world_lock.h): flock() on the folder itself.
-#include "splat_lod/worldgen/world_lock.h"
+// The world folder's lock (world_lock.h): flock() on the folder itself.
+#include "splat_lod/core/world_lock.h"
 
 #include <cerrno>
 #include <cstring>

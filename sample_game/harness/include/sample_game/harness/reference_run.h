@@ -1,5 +1,5 @@
 #pragma once
-// `sample_game --reference`: makes the profile's reference (reference_cache.h) for a world: loads
+// `sample_game_harness --reference`: makes the profile's reference (reference_cache.h) for a world: loads
 // every chunk fully, switches to `baseline` mode (bake level 1 only) and draws each chosen path frame
 // at `supersample`× the profile's size per side, with the props and terrain mesh as in the profile,
 // in tiles of at most `max_render_side` a side (tile_view() of engine/render/camera.h: the same
@@ -16,7 +16,7 @@
 #include "engine/engine.h"
 #include "engine/render/camera.h"
 #include "sample_game/game_settings.h"
-#include "sample_game/reference_cache.h"
+#include "sample_game/harness/reference_cache.h"
 #include "splat_lod/eval/image_metrics.h"
 
 namespace sample_game {

@@ -1,4 +1,4 @@
-#include "sample_game/reference_cache.h"
+#include "sample_game/harness/reference_cache.h"
 
 #include <signal.h>
 #include <unistd.h>
@@ -26,7 +26,7 @@ constexpr const char* kOldPrefix = ".old-";
 
 [[noreturn]] void broken(const fs::path& file, const std::string& problem) {
     engine::fail("sample_game: reference " + file.string() + ": " + problem +
-                 "; make the reference again with `sample_game --reference --force` (same options)");
+                 "; make the reference again with `sample_game_harness --reference --force` (same options)");
 }
 
 // Temporaries (".tmp-<key>-<pid>", ".old-<key>-<pid>") of writers that no longer run.

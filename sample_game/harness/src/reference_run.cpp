@@ -1,4 +1,4 @@
-#include "sample_game/reference_run.h"
+#include "sample_game/harness/reference_run.h"
 
 #include <algorithm>
 #include <map>
@@ -8,7 +8,7 @@
 #include "formatted.h"
 #include "progress.h"
 #include "sample_game/game_world.h"
-#include "sample_game/profile_run.h"
+#include "sample_game/harness/profile_run.h"
 #include "sample_game/world_path.h"
 #include "splat_lod/splat_lod_plugin.h"
 

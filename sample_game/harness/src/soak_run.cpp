@@ -1,4 +1,4 @@
-#include "sample_game/soak_run.h"
+#include "sample_game/harness/soak_run.h"
 
 #include <algorithm>
 #include <chrono>
@@ -18,8 +18,8 @@
 #include "engine/gl/gl_census.h"
 #include "engine/render/render_target.h"
 #include "formatted.h"
-#include "sample_game/chunk_faults.h"
 #include "sample_game/game_world.h"
+#include "sample_game/harness/chunk_faults.h"
 #include "sample_game/world_path.h"
 #include "splat_lod/eval/image_metrics.h"
 #include "splat_lod/splat_lod_plugin.h"

@@ -10,16 +10,9 @@
 #include <vector>
 
 #include "sample_game/camera_path.h"
+#include "sample_game/chunk_census.h"
 
 namespace sample_game {
-
-// How many chunks are in each state, a chunk's state being that of the least advanced level it
-// needs (ChunkStatus: finest_needed_level .. 4), so the five counts add up to the chunk count.
-struct ChunkCensus {
-    std::uint32_t absent = 0, requested = 0, loaded = 0, partial = 0, resident = 0;
-    std::array<std::uint32_t, 5> finest_resident{};  // [0]: not even level 4 resident; [l]: levels 4..l
-    std::uint32_t failed = 0;
-};
 
 struct FrameRecord {
     std::string run = "lod";  // "lod" (streamed, LOD mode of the settings) or "baseline"

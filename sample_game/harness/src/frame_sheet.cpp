@@ -1,4 +1,4 @@
-#include "sample_game/frame_sheet.h"
+#include "sample_game/harness/frame_sheet.h"
 
 #include <algorithm>
 

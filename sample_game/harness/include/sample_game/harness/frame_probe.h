@@ -6,6 +6,7 @@
 // Waits for the GPU after every frame: a profile wants each frame's own numbers, not a pipeline.
 #include "engine/render/render_target.h"
 #include "sample_game/game_world.h"
+#include "sample_game/harness/frame_record.h"
 
 namespace sample_game {
 
@@ -15,9 +16,13 @@ namespace sample_game {
 inline constexpr int kMaxRedraws = 8;
 
 // Draws `camera` into `target` (same size) and fills the record's timing, statistics, memory and
-// streaming fields (not its pose fields: GameWorld::camera() does those).
+// streaming fields (not its pose fields: record_pose() does those).
 void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::CameraView& camera,
                       engine::RenderTarget& target, FrameRecord& record);
+
+// The record's pose fields: segment, path parameter, eye, height above the ground and distance from
+// the world's centre.
+void record_pose(const GameWorld& world, const PathPose& pose, FrameRecord& record);
 
 // The streamer's side of the record: resident and uploaded bytes, chunk census, failures.
 void record_streaming(GameWorld& world, FrameRecord& record);

@@ -1,4 +1,4 @@
-#include "sample_game/chunk_faults.h"
+#include "sample_game/harness/chunk_faults.h"
 
 #include <algorithm>
 #include <fstream>

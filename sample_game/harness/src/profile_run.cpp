@@ -1,4 +1,4 @@
-#include "sample_game/profile_run.h"
+#include "sample_game/harness/profile_run.h"
 
 #include <algorithm>
 #include <chrono>
@@ -14,13 +14,13 @@
 #include "engine/render/render_target.h"
 #include "formatted.h"
 #include "progress.h"
-#include "sample_game/chunk_borders.h"
-#include "sample_game/frame_probe.h"
-#include "sample_game/frame_sheet.h"
-#include "sample_game/frame_strip.h"
 #include "sample_game/game_world.h"
-#include "sample_game/profile_plots.h"
-#include "sample_game/reference_cache.h"
+#include "sample_game/harness/chunk_borders.h"
+#include "sample_game/harness/frame_probe.h"
+#include "sample_game/harness/frame_sheet.h"
+#include "sample_game/harness/frame_strip.h"
+#include "sample_game/harness/profile_plots.h"
+#include "sample_game/harness/reference_cache.h"
 #include "sample_game/world_path.h"
 #include "splat_lod/eval/image_metrics.h"
 #include "splat_lod/eval/temporal_sweep.h"
@@ -183,7 +183,8 @@ struct Run {
         for (std::size_t i = 0; i < poses.size(); ++i) {
             FrameRecord r;
             r.frame = static_cast<int>(i);
-            const engine::CameraView camera = world.camera(poses[i], options.width, options.height, &r);
+            record_pose(world, poses[i], r);
+            const engine::CameraView camera = world.camera(poses[i], options.width, options.height);
             r.stream_update_ms = world.update_streaming(camera, first_update + i, pose_velocity(poses, i));
             draw_and_measure(world, engine, camera, target, r);
             const engine::Image image = target.read_color();
@@ -220,7 +221,8 @@ struct Run {
             FrameRecord r;
             r.run = "baseline";
             r.frame = static_cast<int>(chosen[k]);
-            const engine::CameraView camera = world.camera(poses[chosen[k]], options.width, options.height, &r);
+            record_pose(world, poses[chosen[k]], r);
+            const engine::CameraView camera = world.camera(poses[chosen[k]], options.width, options.height);
             draw_and_measure(world, engine, camera, target, r);
             const engine::Image image = target.read_color();
             keep_picture(image, r);
@@ -349,7 +351,7 @@ std::string reference_note(const ProfileOptions& options, const std::optional<Ca
     return reference ? formatted("found, %s (%zu frames, %dx supersampled)", reference->folder.string().c_str(),
                                  reference->frames.size(), key.supersample)
                      : formatted(
-                           "none cached for this run (%s); `sample_game --reference` with the same --world, "
+                           "none cached for this run (%s); `sample_game_harness --reference` with the same --world, "
                            "--width, --height, --frames and --fov-y makes it",
                            reference_folder(options.world, key).string().c_str());
 }

@@ -1,4 +1,4 @@
-#include "sample_game/frame_probe.h"
+#include "sample_game/harness/frame_probe.h"
 
 #include <chrono>
 
@@ -77,6 +77,15 @@ void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::Ca
     }
     record.gpu_page_bytes = std::uint64_t(pass.memory().pages_in_use) * pass.memory().page_bytes;
     record_streaming(world, record);
+}
+
+void record_pose(const GameWorld& world, const PathPose& pose, FrameRecord& record) {
+    const WorldGround& ground = world.ground();
+    record.segment = pose.segment;
+    record.t = pose.t;
+    record.eye = pose.eye;
+    record.height_above_ground_m = pose.eye.y - ground.height(pose.eye.x, pose.eye.z);
+    record.distance_to_centre_m = glm::distance(pose.eye, ground.centre());
 }
 
 void record_streaming(GameWorld& world, FrameRecord& record) {

@@ -1,14 +1,14 @@
-// The world's ground (world/world_terrain.h): hills from three octaves of the synth value noise, a
+// The generated world's ground (world_terrain.h): hills from three octaves of the synth value noise, a
 // river valley blended into them, and the path and forest masks. Only +, −, ×, ÷, sqrt, floor and
 // the synth sine are used, so the heights are the same bytes everywhere.
 #include "splat_lod/synth/synth_common.h"
 
-#include "splat_lod/worldgen/world_terrain.h"
+#include "splat_lod/synth/world_terrain.h"
 
 #include <cmath>
 
 #include "engine/core/error.h"
-#include "world_streams.h"
+#include "splat_lod/synth/world_streams.h"
 
 namespace splat_lod::world {
 namespace {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "sample_game/frame_record.h"
+#include "sample_game/harness/frame_record.h"
 
 namespace sample_game {
 
