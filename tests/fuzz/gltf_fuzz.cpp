@@ -12,8 +12,8 @@
 
 namespace {
 
-using splat_fuzz::finite;
-using splat_fuzz::require;
+using engine_fuzz::finite;
+using engine_fuzz::require;
 
 void check_primitive(const engine::MeshAsset& asset, const engine::MeshPrimitive& p) {
     require(finite(p.transform), "primitive transforms are finite");
@@ -43,15 +43,15 @@ void check_asset(const engine::MeshAsset& asset) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    splat_fuzz::quiet_engine_log();
-    splat_fuzz::write_sandbox_assets();
+    engine_fuzz::quiet_engine_log();
+    engine_fuzz::write_sandbox_assets();
     const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
-    const auto path = splat_fuzz::sandbox_dir() / (binary ? "model.glb" : "model.gltf");
+    const auto path = engine_fuzz::sandbox_dir() / (binary ? "model.glb" : "model.gltf");
     engine::MeshAsset asset;
     try {
-        asset = engine::load_gltf(splat_fuzz::bytes_of(data, size), path);
+        asset = engine::load_gltf(engine_fuzz::bytes_of(data, size), path);
     } catch (const engine::Error& e) {
-        splat_fuzz::check_error_names(e, path.string());
+        engine_fuzz::check_error_names(e, path.string());
         return 0;
     }
     check_asset(asset);

@@ -8,7 +8,6 @@
 #include "engine/scene/builtin_components.h"
 #include "engine/scene/component_registry.h"
 #include "engine/scene/scene_loader.h"
-#include "splat_lod/splat_component.h"
 #include "test_support.h"
 
 namespace {
@@ -120,23 +119,6 @@ TEST_F(SceneLoaderTest, MissingSceneFileIsAClearError) {
     } catch (const engine::Error& e) {
         EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.json: cannot open"), std::string::npos) << e.what();
     }
-}
-
-// Every showcase scene loads from the repository alone: none names a file of the shared data folder, so
-// a fresh clone renders them all.
-TEST_F(SceneLoaderTest, EveryShowcaseSceneLoadsFromTheRepositoryAlone) {
-    splat_lod::register_splat_component(registry, "splat_lod");  // showcase scenes use the plugin's type
-    int loaded = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(engine::test::repo_dir() / "content/scenes")) {
-        if (entry.path().extension() != ".json") continue;
-        SCOPED_TRACE(entry.path().string());
-        EXPECT_EQ(engine::read_text_file(entry.path()).find("shared/data/"), std::string::npos);
-        const auto scene = engine::load_scene_file(entry.path(), registry, assets);
-        EXPECT_FALSE(scene->components<engine::MeshComponent>().empty());
-        EXPECT_TRUE(scene->world_bounds().has_value());
-        ++loaded;
-    }
-    EXPECT_GE(loaded, 4) << "biker_with_boxes, box_textured, flight_helmet and fox_and_boxes";
 }
 
 // A plugin's companions of a component type are attached beside it, from the same JSON, in owner

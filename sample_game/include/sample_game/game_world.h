@@ -3,7 +3,7 @@
 // by the mesh pass, composited with the splats by depth; the splats of a prop's glTF, an import's far
 // layer, as a splat component beside them), a sun and a sky light, and the chunks
 // streamed by a ChunkStreamer through a SceneResidencySink under the node "chunks", where the splat
-// pass's incremental GPU scene picks them up (the wiring of tests/gpu/splat_streaming_test.cpp).
+// pass's incremental GPU scene picks them up (the wiring of the plugin's tests/gpu/splat_streaming_test.cpp).
 // Needs a current GL context for rendering (not to be built); the engine must have the splat_lod
 // plugin started.
 #include <cstdint>

@@ -5,7 +5,7 @@
 // a second run into a locked folder fails, and so does a run into a folder a program streams.
 // Atomic writes keep permissions, use unique temporaries
 // and remove them on failure; temporaries of dead writers are found. The kill tests with real
-// processes: tests/tools/output_safety_kill_test.cpp.
+// processes: engine/plugins/splat_lod/tests/tools/output_safety_kill_test.cpp.
 #include <gtest/gtest.h>
 
 #include <fstream>

@@ -1,6 +1,6 @@
 // antimatter15 .splat (32-byte records) through read_antimatter_splat.
 // Contract (splat_lod/core/splat_io.h): a sanitised cloud or engine::Error naming the file.
-#include "fuzz_support.h"
+#include "splat_fuzz_support.h"
 #include "splat_lod/core/splat_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "engine/core/error.h"
-#include "fuzz_support.h"
+#include "splat_fuzz_support.h"
 #include "splat_lod/core/world_manifest.h"
 
 namespace {

@@ -3,7 +3,7 @@
 // Input: the bytes of a PLY file. Contract (splat_lod/core/splat_io.h): read_ply either returns a
 // sanitised cloud or throws engine::Error naming the file; it never crashes, hangs or allocates
 // beyond what the input's size justifies.
-#include "fuzz_support.h"
+#include "splat_fuzz_support.h"
 #include "splat_lod/core/splat_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -3,7 +3,7 @@
 // engine::Error naming the file; the claimed size is checked against the file size before libwebp
 // allocates. The first input byte picks min_pixels (0..255), the rest is the file.
 #include "engine/core/error.h"
-#include "fuzz_support.h"
+#include "splat_fuzz_support.h"
 #include "splat_lod/core/webp_texture.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

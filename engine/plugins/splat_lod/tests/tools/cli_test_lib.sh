@@ -1,4 +1,4 @@
-# Sourced by the tools' CLI tests (tests/tools/*_cli_test.sh), after they set `dir` (their output
+# Sourced by the tools' CLI tests (*_cli_test.sh here), after they set `dir` (their output
 # folder): a failure count, and a command that must fail with exit code 1 and a message.
 failures=0
 

@@ -1,7 +1,7 @@
 // Niantic SPZ through read_spz: gzip v2/v3, bare v2/v3 payloads and zstd v4 (table of contents,
 // one frame per stream). Contract (splat_lod/core/splat_io.h): a sanitised cloud or engine::Error naming
 // the file; decompression never produces more than the header allows (io/decompress.h).
-#include "fuzz_support.h"
+#include "splat_fuzz_support.h"
 #include "splat_lod/core/splat_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

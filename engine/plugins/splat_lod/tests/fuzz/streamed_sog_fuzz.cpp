@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "engine/core/error.h"
-#include "fuzz_support.h"
+#include "splat_fuzz_support.h"
 #include "splat_lod/core/streamed_sog.h"
 
 namespace {

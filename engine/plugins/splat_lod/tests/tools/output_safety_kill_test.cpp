@@ -2,7 +2,7 @@
 // and are SIGKILLed at several points (at once, during the work, and as close to the write or the
 // commit as polling gets). The output they had before must come through byte for byte (or, killed
 // after the commit, the new output must be complete), it must still load, and the next complete
-// run must leave only its own files. The tools' paths come from tests/tools/CMakeLists.txt.
+// run must leave only its own files. The tools' paths come from CMakeLists.txt here.
 #include <gtest/gtest.h>
 
 #include <chrono>

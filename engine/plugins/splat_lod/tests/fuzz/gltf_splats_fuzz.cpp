@@ -2,7 +2,7 @@
 // glTF, else JSON; no external files). Contract (splat_lod/core/splat_io.h): a sanitised cloud or
 // engine::Error naming the file; accessors are bounds-checked against their buffers, node matrices
 // that shear or collapse are refused.
-#include "fuzz_support.h"
+#include "splat_fuzz_support.h"
 #include "splat_lod/core/splat_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,11 +1,11 @@
-// Seeds for the fuzz harnesses (tests/fuzz/README.md), small enough to mutate fast:
+// Seeds for the fuzz harnesses (README.md here and tests/fuzz/README.md), small enough to mutate fast:
 //   fuzz_seed_maker --out DIR [--shared-data DIR]
 // writes DIR/<harness>/<seed>: always the project-made binary seeds (the project's own writers,
 // the unit tests' SPZ encoders, a compressed-PLY packer and PLY re-encodings here) and seeds cut
 // down from the real files (a real header with the element counts cut and the data truncated to
 // match, the first Gaussians of a real scene re-encoded, small real glTF/SOG files as they are):
 // those kept in tests/data always, and with --shared-data also those only there. The committed
-// seeds in tests/fuzz/seeds/ are the project-made ones plus hand-written text files.
+// seeds in seeds/ (here and in tests/fuzz) are the project-made ones plus hand-written text files.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -19,7 +19,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
-#include "fuzz_support.h"
+#include "splat_fuzz_support.h"
 #include "splat_io_test_helpers.h"
 #include "splat_lod/core/ply_file.h"
 #include "splat_lod/core/splat_io.h"
@@ -131,7 +131,7 @@ Bytes write_tables(const std::vector<PlyTable>& tables, const std::string& forma
         return it == max_rows.end() ? t.count : std::min(t.count, it->second);
     };
     std::ostringstream header;
-    header << "ply\nformat " << format << " 1.0\ncomment fuzz seed (tests/fuzz/seed_maker.cpp)\n";
+    header << "ply\nformat " << format << " 1.0\ncomment fuzz seed (seed_maker.cpp)\n";
     for (const auto& t : tables) {
         header << "element " << t.name << " " << rows_of(t) << "\n";
         for (const auto& c : t.columns) header << "property " << io::ply_type_name(c.type) << " " << c.name << "\n";

@@ -15,7 +15,7 @@
 #include "engine/scene/component_registry.h"
 #include "engine/scene/json_fields.h"
 #include "engine/scene/scene_loader.h"
-#include "fuzz_support.h"
+#include "splat_fuzz_support.h"
 #include "splat_lod/dropin/drop_in_lod.h"
 #include "splat_lod/splat_component.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "fuzz_support.h"
+#include "splat_fuzz_support.h"
 #include "splat_lod/core/camera_set.h"
 
 namespace splat_fuzz {

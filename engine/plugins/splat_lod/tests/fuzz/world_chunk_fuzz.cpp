@@ -15,7 +15,7 @@
 #include <array>
 
 #include "engine/core/error.h"
-#include "fuzz_support.h"
+#include "splat_fuzz_support.h"
 #include "splat_lod/core/chunk_reader.h"
 #include "splat_lod/core/ply_vertex_layout.h"
 #include "splat_lod/core/world_manifest.h"
