@@ -21,7 +21,6 @@
 #include "engine/assets/mesh_asset.h"
 #include "engine/core/error.h"
 #include "engine/engine.h"
-#include "engine/gl/gl.h"
 #include "engine/platform/window.h"
 #include "engine/plugin/static_plugins.h"
 #include "engine/render/camera.h"
@@ -85,40 +84,6 @@ bool changes_view(const engine::FlyCameraInput& in) {
            (in.look && (in.mouse_delta.x != 0.0f || in.mouse_delta.y != 0.0f));
 }
 
-// The target's texel row 0 is the top image row while the window's row 0 is the bottom one,
-// so the blit flips Y once here.
-void present(const engine::RenderTarget& target, glm::ivec2 size) {
-    const GLuint source = target.framebuffer().id();
-    glNamedFramebufferReadBuffer(source, GL_COLOR_ATTACHMENT0);
-    glDisable(GL_SCISSOR_TEST);      // the blit obeys the scissor box a pass may have left set
-    glDisable(GL_FRAMEBUFFER_SRGB);  // the target already holds display-space values
-    glBlitNamedFramebuffer(source, 0, 0, 0, target.width(), target.height(), 0, size.y, size.x, 0, GL_COLOR_BUFFER_BIT,
-                           GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, size.x, size.y);
-}
-
-// Reads the back buffer (before the swap, when its contents are defined), top row first.
-engine::Image read_window(glm::ivec2 size) {
-    engine::Image image{
-        size.x, size.y,
-        std::vector<std::uint8_t>(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y) * 4)};
-    std::vector<std::uint8_t> rows(image.rgba.size());
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    glReadBuffer(GL_BACK);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadnPixels(0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(rows.size()), rows.data());
-    const std::size_t stride = static_cast<std::size_t>(size.x) * 4;
-    for (int y = 0; y < size.y; ++y) {
-        const std::size_t from = static_cast<std::size_t>(size.y - 1 - y) * stride;
-        std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(from), stride,
-                    image.rgba.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * stride));
-    }
-    // The window's alpha is whatever ImGui's blending left; a screenshot is opaque.
-    for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
-    return image;
-}
-
 class Viewer {
 public:
     explicit Viewer(const Options& options);
@@ -175,7 +140,7 @@ bool Viewer::draw_frame(bool last) {
     const engine::CameraView view =
         engine::make_camera(camera_->camera_to_world(), lens.fov_y, size.x, size.y, lens.znear, lens.zfar);
     engine_.renderer().render(*scene_, view, *target_);
-    present(*target_, size);
+    engine::present_to_window(*target_, size);
     if (show_ui_) {
         overlay_->new_frame();
         overlay_->render();
@@ -186,7 +151,8 @@ bool Viewer::draw_frame(bool last) {
 }
 
 void Viewer::write_screenshots() {
-    if (!options_.screenshot.empty()) engine::write_png(options_.screenshot, read_window(window_->framebuffer_size()));
+    if (!options_.screenshot.empty())
+        engine::write_png(options_.screenshot, engine::read_window(window_->framebuffer_size()));
     if (!options_.offscreen.empty()) engine::write_png(options_.offscreen, target_->read_color());
 }
 

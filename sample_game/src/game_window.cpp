@@ -11,7 +11,6 @@
 
 #include "engine/core/error.h"
 #include "engine/engine.h"
-#include "engine/gl/gl.h"
 #include "engine/platform/window.h"
 #include "engine/render/image.h"
 #include "engine/render/render_target.h"
@@ -27,35 +26,6 @@ namespace sample_game {
 namespace {
 
 constexpr float kPathPosesPerSecond = 60.0f;  // the path's playback rate at speed 1
-
-// The target's texel row 0 is the top image row while the window's row 0 is the bottom one, so
-// the blit flips Y once here (as engine_view does).
-void present(const engine::RenderTarget& target, glm::ivec2 size) {
-    const GLuint source = target.framebuffer().id();
-    glNamedFramebufferReadBuffer(source, GL_COLOR_ATTACHMENT0);
-    glDisable(GL_SCISSOR_TEST);      // the blit obeys the scissor box a pass may have left set
-    glDisable(GL_FRAMEBUFFER_SRGB);  // the target already holds display-space values
-    glBlitNamedFramebuffer(source, 0, 0, 0, target.width(), target.height(), 0, size.y, size.x, 0, GL_COLOR_BUFFER_BIT,
-                           GL_NEAREST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glViewport(0, 0, size.x, size.y);
-}
-
-// The back buffer (before the swap, when its contents are defined), top row first, opaque.
-engine::Image read_window(glm::ivec2 size) {
-    const std::size_t stride = static_cast<std::size_t>(size.x) * 4;
-    engine::Image image{size.x, size.y, std::vector<std::uint8_t>(stride * static_cast<std::size_t>(size.y))};
-    std::vector<std::uint8_t> rows(image.rgba.size());
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    glReadBuffer(GL_BACK);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadnPixels(0, 0, size.x, size.y, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(rows.size()), rows.data());
-    for (int y = 0; y < size.y; ++y)
-        std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(size.y - 1 - y) * stride),
-                    stride, image.rgba.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * stride));
-    for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
-    return image;
-}
 
 // Moves and sizes the current ImGui window the first time it is drawn (the overlay has already
 // placed it with its own cascade, so ImGuiCond_FirstUseEver would no longer apply); after that the
@@ -226,13 +196,13 @@ bool Game::draw_frame(bool last, double frame_ms) {
                         streamer.settings().memory_budget_bytes, streamer.stats().uploaded_bytes_last_update,
                         streamer.settings().upload_budget_bytes_per_frame, frame_ms, residency.drawn_chunks,
                         residency.drawn_groups, residency.groups.resident, streamer.group_count()});
-    present(*target_, size);
+    engine::present_to_window(*target_, size);
     if (show_ui_) {
         overlay_->new_frame();
         overlay_->render();
     }
     if (last) {
-        if (!options_.screenshot.empty()) engine::write_png(options_.screenshot, read_window(size));
+        if (!options_.screenshot.empty()) engine::write_png(options_.screenshot, engine::read_window(size));
         if (!options_.offscreen.empty()) engine::write_png(options_.offscreen, target_->read_color());
     }
     window_->swap_buffers();

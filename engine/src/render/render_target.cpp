@@ -1,5 +1,6 @@
 #include "engine/render/render_target.h"
 
+#include <algorithm>
 #include <limits>
 
 #include "engine/core/error.h"
@@ -63,6 +64,36 @@ std::vector<float> RenderTarget::read_view_depth() const {
     glGetTextureImage(view_depth_.id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(float)),
                       out.data());
     return out;
+}
+
+void present_to_window(const RenderTarget& target, glm::ivec2 window_size) {
+    const GLuint source = target.framebuffer().id();
+    glNamedFramebufferReadBuffer(source, GL_COLOR_ATTACHMENT0);
+    glDisable(GL_SCISSOR_TEST);      // the blit obeys the scissor box a pass may have left set
+    glDisable(GL_FRAMEBUFFER_SRGB);  // the target already holds display-space values
+    glBlitNamedFramebuffer(source, 0, 0, 0, target.width(), target.height(), 0, window_size.y, window_size.x, 0,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, window_size.x, window_size.y);
+}
+
+Image read_window(glm::ivec2 window_size) {
+    const std::size_t stride = static_cast<std::size_t>(window_size.x) * 4;
+    Image image{window_size.x, window_size.y,
+                std::vector<std::uint8_t>(stride * static_cast<std::size_t>(window_size.y))};
+    std::vector<std::uint8_t> rows(image.rgba.size());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadnPixels(0, 0, window_size.x, window_size.y, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(rows.size()),
+                  rows.data());
+    for (int y = 0; y < window_size.y; ++y) {
+        const std::size_t from = static_cast<std::size_t>(window_size.y - 1 - y) * stride;
+        std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(from), stride,
+                    image.rgba.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * stride));
+    }
+    for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
+    return image;
 }
 
 }  // namespace engine

@@ -4,7 +4,7 @@
 
 #include <plugin_msgs/frame_statistics.h>
 
-#include "engine/gl/gl.h"
+#include "engine/gl/compute_step.h"
 #include "splat_lod/splat_renderer.h"
 
 namespace sample_game {
@@ -14,7 +14,7 @@ double draw(engine::Engine& engine, const engine::Scene& scene, const engine::Ca
             engine::RenderTarget& target) {
     const auto start = std::chrono::steady_clock::now();
     engine.renderer().render(scene, camera, target);
-    glFinish();
+    engine::gl::finish();
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -43,4 +43,12 @@ private:
     gl::Framebuffer framebuffer_{gl::NoCreate};
 };
 
+// Presenting to a window: copies the target's colour into the default framebuffer (the window's back
+// buffer, `window_size` pixels), flipping Y once (the target's row 0 is the top, the window's the
+// bottom), and leaves the default framebuffer bound with that viewport for an overlay.
+void present_to_window(const RenderTarget& target, glm::ivec2 window_size);
+// The window's back buffer (before the swap, when its contents are defined), top row first, opaque:
+// the window's alpha is whatever an overlay's blending left, and a screenshot is opaque.
+Image read_window(glm::ivec2 window_size);
+
 }  // namespace engine

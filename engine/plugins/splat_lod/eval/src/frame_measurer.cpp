@@ -4,7 +4,7 @@
 #include <chrono>
 
 #include "engine/core/error.h"
-#include "engine/gl/gl.h"
+#include "engine/gl/compute_step.h"
 #include "engine/render/render_target.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_lod/splat_renderer.h"
@@ -30,12 +30,12 @@ void FrameMeasurer::configure(const Method& method) {
     method.configure(pass_.settings());
 }
 
-// Wall time of one frame: the CPU recording plus the GPU work, closed by glFinish so that the
+// Wall time of one frame: the CPU recording plus the GPU work, closed by engine::gl::finish() so that the
 // time includes the frame's execution (llvmpipe runs it on the CPU threads).
 double FrameMeasurer::draw(const engine::CameraView& camera, engine::RenderTarget& target) {
     const auto start = std::chrono::steady_clock::now();
     engine_.renderer().render(scene_, camera, target);
-    glFinish();
+    engine::gl::finish();
     const auto stop = std::chrono::steady_clock::now();
     engine_.renderer().timers().wait_all();
     pass_.wait_for_statistics(engine_.bus());

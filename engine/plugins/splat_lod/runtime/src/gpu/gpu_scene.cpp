@@ -11,6 +11,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/log.h"
+#include "engine/gl/compute_step.h"
 #include "engine/scene/node.h"
 #include "splat_lod/core/gaussian_extent.h"
 #include "splat_lod/gpu_storage.h"
@@ -257,8 +258,7 @@ void GpuScene::grow(std::uint32_t capacity) {
     auto regrow = [&](engine::gl::Buffer& buffer, std::size_t bytes, const char* label) {
         engine::gl::Buffer bigger(label);
         bigger.storage(bytes);
-        if (buffer && buffer.size() > 0)
-            glCopyNamedBufferSubData(buffer.id(), bigger.id(), 0, 0, static_cast<GLsizeiptr>(buffer.size()));
+        if (buffer && buffer.size() > 0) engine::gl::copy_buffer(buffer, bigger, buffer.size());
         buffer = std::move(bigger);
     };
     regrow(gaussians_, std::size_t(capacity) * sizeof(GpuGaussian), "splat gaussians");

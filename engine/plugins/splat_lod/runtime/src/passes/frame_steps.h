@@ -1,0 +1,66 @@
+#pragma once
+// The steps of the splat frame, as data (engine/gl/compute_step.h), numbered as in SplatPass::execute:
+//   1 selection   a: cull clusters outside the frustum, skip those too small for the view;
+//                 b: cull + project + SH colour, tiles touched; under a splat budget c: choose β,
+//                 d: keep what is selected at it                                  (selection_steps.cpp)
+//   2–5 sort      scan of the tile counts, bin into (depth, tile) keys, radix sort, tile ranges
+//                                                                                  (sort_steps.cpp)
+//   6–7 raster    per-tile front-to-back raster composited over the mesh pass; below render scale 1 at
+//                 low resolution with derivatives, then the upscale to the output  (raster_steps.cpp)
+// Every step binds the frame's whole set of resources (the sort and the scan bind their own between).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/gl/prefix_scan.h"
+#include "engine/gl/radix_sort.h"
+#include "engine/gl/shader_library.h"
+#include "engine/render/render_pass.h"
+#include "gpu/gpu_scene.h"
+#include "passes/frame_buffers.h"
+#include "passes/frame_uniforms.h"
+#include "passes/texel_views.h"
+#include "splat_lod/splat_renderer.h"
+
+namespace splat_lod {
+
+// What the steps of one frame read and write.
+struct FrameSteps {
+    engine::FrameContext& frame;
+    const SplatPassSettings& settings;
+    const RasterSize& raster;
+    const gpu::GpuScene& scene;
+    FrameBuffers& buffers;
+    const LowResImages& low;
+    TexelViews& texels;
+    RasterFetch fetch;
+    engine::gl::PrefixScan& scan;
+    engine::gl::RadixSort& sort;
+
+    // Binds the uniforms, the scene's and the frame's buffers, the target's colour and view depth and
+    // the low-resolution images when there are any.
+    void bind_all() const;
+    // A program of the plugin's shaders, with `defines`.
+    const engine::gl::Program& program(const char* file, const std::vector<std::string>& defines = {}) const;
+    // The variant that reads its inputs through texel views when `fetch` is texel (binding them with
+    // `bind_views`, SPLAT_INPUT_TEXELS defined), else from storage buffers.
+    template <typename BindViews>
+    const engine::gl::Program& input_program(const char* file, BindViews&& bind_views) const {
+        if (fetch != RasterFetch::texel) return program(file);
+        bind_views();
+        return program(file, {"SPLAT_INPUT_TEXELS"});
+    }
+};
+
+// Storage writes visible to the next step's reads, its indirect dispatch and its uniforms.
+inline constexpr GLbitfield kStepBarrier =
+    GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT;
+// Image writes visible to everything that reads the target or the images afterwards.
+inline constexpr GLbitfield kImageBarrier = GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                                           GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
+
+void record_selection(const FrameSteps& steps, std::uint32_t gaussians);
+void record_sort(const FrameSteps& steps, std::uint32_t gaussians);
+void record_raster(const FrameSteps& steps);
+
+}  // namespace splat_lod

@@ -1,0 +1,43 @@
+// Steps 6 and 7 of the splat frame (frame_steps.h): the tile raster and, below render scale 1, the upscale.
+#include <string>
+#include <vector>
+
+#include "engine/gl/compute_step.h"
+#include "engine/gl/gpu_timers.h"
+#include "engine/render/render_target.h"
+#include "passes/frame_steps.h"
+
+namespace splat_lod {
+
+void record_raster(const FrameSteps& steps) {
+    using engine::gl::GpuTimerScope;
+    using engine::gl::groups_for;
+    const RasterSize& raster = steps.raster;
+    {  // 6. per-tile front-to-back raster, stopping at the mesh depth; composite C + T·mesh, or below
+       //    render scale 1, C and A with their derivatives at low resolution
+        GpuTimerScope t(steps.frame.timers, "splat.raster");
+        steps.bind_all();
+        std::vector<std::string> defines{"RASTER_TILE_SIZE=" + std::to_string(raster.tile_size)};
+        if (raster.upscaled) defines.push_back("SPLAT_GRADIENTS");
+        if (steps.fetch == RasterFetch::shared)
+            defines.push_back("RASTER_FETCH_SHARED");
+        else
+            steps.texels.bind_raster(steps.buffers);
+        engine::gl::run({.program = &steps.program("splat_tile_raster.comp.glsl", defines),
+                         .groups = {raster.tiles_x, raster.tiles_y, 1},
+                         .barrier = kImageBarrier});
+    }
+    if (!raster.upscaled) return;
+    {  // 7. upscale to the output and composite over the mesh pass
+        GpuTimerScope t(steps.frame.timers, "splat.upscale");
+        const auto method = static_cast<int>(steps.settings.lod.upscaler);
+        const auto width = static_cast<std::uint32_t>(steps.frame.target.width());
+        const auto height = static_cast<std::uint32_t>(steps.frame.target.height());
+        engine::gl::run({.program = &steps.program("splat_upscale.comp.glsl", {"UPSCALE_METHOD=" + std::to_string(method)}),
+                         .groups = {groups_for(width, SPLAT_UPSCALE_WORKGROUP_SIZE),
+                                    groups_for(height, SPLAT_UPSCALE_WORKGROUP_SIZE), 1},
+                         .barrier = kImageBarrier});
+    }
+}
+
+}  // namespace splat_lod

@@ -1,0 +1,42 @@
+// Steps 2–5 of the splat frame (frame_steps.h): the splats' key ranges, their (depth, tile) keys, the
+// sort and each tile's range of keys.
+#include <bit>
+
+#include "engine/gl/compute_step.h"
+#include "engine/gl/gpu_timers.h"
+#include "passes/frame_steps.h"
+
+namespace splat_lod {
+
+void record_sort(const FrameSteps& steps, std::uint32_t gaussians) {
+    using engine::gl::GpuTimerScope;
+    FrameBuffers& b = steps.buffers;
+    {  // 2. exclusive scan of tile counts: each splat's key range; the total lands at [n]
+        GpuTimerScope t(steps.frame.timers, "splat.scan");
+        steps.scan.record({b.tile_counts, b.count, 0, gaussians, b.tile_counts, std::size_t(gaussians) * sizeof(std::uint32_t)});
+    }
+    {  // 3. bin: one (depth, tile) key per tile touched, within the key capacity
+        GpuTimerScope t(steps.frame.timers, "splat.bin");
+        steps.bind_all();
+        engine::gl::run({.program = &steps.program("splat_dispatch_args.comp.glsl")});
+        const auto& bin = steps.input_program("splat_bin.comp.glsl", [&] { steps.texels.bind_bin(b); });
+        engine::gl::run({.program = &bin,
+                         .groups = {engine::gl::groups_for(gaussians, SPLAT_BIN_WORKGROUP_SIZE), 1, 1},
+                         .barrier = kStepBarrier});
+    }
+    {  // 4. stable radix sort by (tile, depth); the key count stays on the GPU
+        GpuTimerScope t(steps.frame.timers, "splat.sort");
+        const RasterSize& r = steps.raster;
+        const auto hi_bits = r.key_depth_bits > 0 ? 0u : static_cast<std::uint32_t>(std::bit_width(r.tile_count()));
+        steps.sort.record({b.keys, b.values, b.args, 3 * sizeof(std::uint32_t), b.key_capacity, hi_bits,
+                           steps.fetch == RasterFetch::texel});
+    }
+    {  // 5. tile ranges in the sorted keys
+        GpuTimerScope t(steps.frame.timers, "splat.ranges");
+        steps.bind_all();
+        const auto& ranges = steps.input_program("splat_tile_ranges.comp.glsl", [&] { steps.texels.bind_ranges(b); });
+        engine::gl::run({.program = &ranges, .indirect = &b.args, .barrier = kStepBarrier});
+    }
+}
+
+}  // namespace splat_lod
