@@ -66,7 +66,8 @@ GameWorld::GameWorld(engine::Engine& engine, const std::filesystem::path& folder
       lock_(folder, sw::WorldFolderLock::Mode::stream),
       manifest_(read_manifest_under(lock_, folder)),
       ground_(WorldGround::of(manifest_)),
-      scene_(std::make_unique<engine::Scene>()) {
+      scene_(std::make_unique<engine::Scene>()),
+      budget_(engine.bus()) {
     validate(settings_);
     pass_.emplace(engine.renderer());
     scene_->background = {0.62f, 0.74f, 0.86f};  // a pale sky (display space)
@@ -117,7 +118,7 @@ engine::CameraView GameWorld::camera(const glm::vec3& eye, const glm::vec3& forw
 
 double GameWorld::update_streaming(const engine::CameraView& camera, std::uint64_t frame, const glm::vec3& velocity) {
     const auto start = Clock::now();
-    streamer_->update({camera.position, camera.focal_length(), frame, velocity});
+    streamer_->update({camera.position, camera.focal_length(), frame, velocity, budget_.update()});
     return milliseconds_since(start);
 }
 

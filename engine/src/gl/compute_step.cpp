@@ -59,8 +59,8 @@ DriverLimits driver_limits() {
     DriverLimits limits;
     const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     limits.renderer = renderer != nullptr ? renderer : "";
-    limits.cpu_rasteriser = limits.renderer.find("llvmpipe") != std::string::npos ||
-                            limits.renderer.find("softpipe") != std::string::npos;
+    limits.cpu_rasteriser =
+        limits.renderer.find("llvmpipe") != std::string::npos || limits.renderer.find("softpipe") != std::string::npos;
     GLint texels = 0;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &texels);
     limits.max_texture_buffer_texels = texels;

@@ -22,6 +22,7 @@
 #include "splat_lod/core/world_manifest.h"
 #include "splat_lod/splat_renderer.h"
 #include "splat_lod/stream/chunk_streamer.h"
+#include "splat_lod/stream/splat_budget.h"
 #include "splat_lod/stream/stream_scene_sink.h"
 
 namespace sample_game {
@@ -103,6 +104,8 @@ private:
     splat_lod::world::FileChunkSource source_;
     std::unique_ptr<splat_lod::world::SceneResidencySink> sink_;
     std::unique_ptr<splat_lod::world::ChunkStreamer> streamer_;
+    // The splat budget (settings().lod.splat_budget) as the streamer's cut obeys it (splat_budget.h).
+    splat_lod::world::SplatBudgetController budget_;
     std::optional<splat_lod::SplatRenderer> pass_;  // the plugin's splat pass, set once the engine runs
 };
 

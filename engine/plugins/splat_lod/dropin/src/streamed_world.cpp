@@ -87,8 +87,11 @@ bool StreamedWorld::cut_drawn() const {
 void StreamedWorld::update(SplatComponent& component, const LodFrame& frame) {
     if (frame.focal_length_px <= 0.0f) return;  // no camera: nothing to stream for
     // With the bus the streamer takes the splat pass's thresholds from its LodSettings (chunk_streamer.h).
-    if (!streamer_)
+    if (!streamer_) {
         streamer_ = std::make_unique<sw::ChunkStreamer>(manifest_, folder_, settings_, source_, *sink_, frame.bus);
+        // The splat budget that LodSettings sets reaches the cut through its controller (splat_budget.h).
+        if (frame.bus) budget_ = std::make_unique<sw::SplatBudgetController>(*frame.bus);
+    }
     // The camera in the world's frame; the velocity from the last frame's (none after a gap or a jump
     // of more than a chunk).
     const glm::vec3 eye = glm::vec3(glm::inverse(root_->world_matrix()) * glm::vec4(frame.camera_position, 1.0f));
@@ -97,7 +100,7 @@ void StreamedWorld::update(SplatComponent& component, const LodFrame& frame) {
         velocity = eye - *last_eye_;
     last_eye_ = eye;
     last_frame_ = frame.frame_index;
-    streamer_->update({eye, frame.focal_length_px, frame.frame_index, velocity});
+    streamer_->update({eye, frame.focal_length_px, frame.frame_index, velocity, budget_ ? budget_->update() : 1.0f});
     if (!sink_->holding() || !cut_drawn()) return;
     sink_->release_hold();
     component.cloud = nullptr;  // the trained scene's GPU memory goes with it

@@ -10,6 +10,7 @@
 
 #include "splat_lod/core/world_lock.h"
 #include "splat_lod/dropin/drop_in_lod.h"
+#include "splat_lod/stream/splat_budget.h"
 #include "splat_lod/stream/stream_scene_sink.h"
 
 namespace engine {
@@ -65,7 +66,8 @@ private:
     std::unique_ptr<HoldingSink> sink_;
     world::FileChunkSource source_;
     std::unique_ptr<world::ChunkStreamer> streamer_;
-    std::optional<glm::vec3> last_eye_;  // the last update's camera in the world's frame
+    std::unique_ptr<world::SplatBudgetController> budget_;  // with a bus
+    std::optional<glm::vec3> last_eye_;                     // the last update's camera in the world's frame
     std::uint64_t last_frame_ = 0;
 };
 

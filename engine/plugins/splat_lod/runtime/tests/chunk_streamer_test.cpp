@@ -308,6 +308,8 @@ TEST(ChunkStreamer, RejectsInvalidSettingsAndViews) {
     EXPECT_THROW(streamer.set_settings(other), engine::Error);
     EXPECT_THROW(streamer.update({{NAN, 0.0f, 0.0f}, kFocal, 0}), engine::Error);
     EXPECT_THROW(streamer.update({{0.0f, 0.0f, 0.0f}, 0.0f, 0}), engine::Error);
+    EXPECT_THROW(streamer.update({{0.0f, 0.0f, 0.0f}, kFocal, 0, {}, 0.5f}), engine::Error) << "a cut scale below 1";
+    EXPECT_THROW(streamer.update({{0.0f, 0.0f, 0.0f}, kFocal, 0, {}, NAN}), engine::Error);
 }
 
 TEST(ChunkStreamer, ReleaseAllEmptiesTheSinkFinestFirst) {

@@ -20,6 +20,7 @@
 #include "splat_lod/msgs/splat_statistics.h"
 #include "splat_lod/msgs/stream_events.h"
 #include "splat_lod/stream/chunk_streamer.h"
+#include "splat_lod/stream/splat_budget.h"
 
 namespace sw = splat_lod::world;
 using namespace chunk_streamer_test;
@@ -224,22 +225,25 @@ TEST(ChunkStreamerGroups, ABindingSplatBudgetMakesTheCutCoarser) {
 
     // 60 m above the middle of the world (the boxes 60 m away): the depth-1 groups (0.5 m cells,
     // 0.83 px) are the cut at 1 px, the root (1 m cells, 1.67 px) once the switch is scaled by 2. The
-    // renderer's statistics reach the streamer on the bus: a budget drawn 4× over scales it by √4 = 2
-    // in steps of at most 2^(1/4).
+    // renderer's statistics reach the budget's controller on the bus, and its scale the cut: a budget
+    // drawn 4× over scales it by √4 = 2 in steps of at most 2^(1/4).
     engine::MessageBus bus;
     Harness h(sync_settings(), &bus, make_grouped_world());
+    sw::SplatBudgetController budget(bus);
     h.steps({20.0f, 62.0f, 20.0f}, 4);
     EXPECT_EQ(h.streamer.residency().drawn_groups, 4u);
     EXPECT_EQ(h.streamer.group_cell_scale(), 1.0f);
+    EXPECT_EQ(budget.update(), 1.0f) << "no statistics yet";
     plugin_msgs::SplatStatistics over;
     over.splat_budget = 100;
     over.unbudgeted = 400;
     for (int k = 0; k < 4; ++k) {
         bus.publish(over);
-        h.step({20.0f, 62.0f, 20.0f});
+        h.step({20.0f, 62.0f, 20.0f}, {}, budget.update());
     }
+    EXPECT_NEAR(budget.cut_scale(), 2.0f, 1e-5f);
     EXPECT_NEAR(h.streamer.group_cell_scale(), 2.0f, 1e-5f);
-    h.steps({20.0f, 62.0f, 20.0f}, 3);  // no new statistics: the scale holds
+    for (int k = 0; k < 3; ++k) h.step({20.0f, 62.0f, 20.0f}, {}, budget.update());  // no new statistics: held
     EXPECT_NEAR(h.streamer.group_cell_scale(), 2.0f, 1e-5f);
     EXPECT_TRUE(h.status("group_2_+000_+000").in_cut);
     EXPECT_TRUE(h.sink.drawn("group_2_+000_+000"));

@@ -150,8 +150,8 @@ Harness::Harness(sw::StreamerSettings settings, engine::MessageBus* bus, sw::Wor
     sink.pages = settings.gpu_pages;
 }
 
-void Harness::step(const glm::vec3& camera, const glm::vec3& velocity) {
-    streamer.update({camera, kFocal, frame++, velocity});
+void Harness::step(const glm::vec3& camera, const glm::vec3& velocity, float cut_scale) {
+    streamer.update({camera, kFocal, frame++, velocity, cut_scale});
     if (streamer.settings().background_thread) streamer.wait_idle();
     const std::uint64_t uploaded = sink.take_frame_bytes();
     max_frame_upload = std::max(max_frame_upload, uploaded);

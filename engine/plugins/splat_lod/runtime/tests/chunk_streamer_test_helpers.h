@@ -106,8 +106,9 @@ struct Harness {
     explicit Harness(sw::StreamerSettings settings, engine::MessageBus* bus = nullptr,
                      sw::WorldManifest world = make_world());
 
-    // One update; `velocity`: the camera's motion per update, for the cut's anticipation.
-    void step(const glm::vec3& camera, const glm::vec3& velocity = glm::vec3(0.0f));
+    // One update; `velocity`: the camera's motion per update, for the cut's anticipation; `cut_scale`:
+    // a splat budget's scale of the chunk-group switch (StreamView::cut_scale).
+    void step(const glm::vec3& camera, const glm::vec3& velocity = glm::vec3(0.0f), float cut_scale = 1.0f);
     void steps(const glm::vec3& camera, int n) {
         for (int k = 0; k < n; ++k) step(camera);
     }

@@ -24,7 +24,8 @@ plugin_msgs::SplatStatistics statistics_of(const FrameStatistics::Frame& f, cons
     s.hidden = c.skipping.z;
     s.splat_budget = f.splat_budget;
     s.unbudgeted = f.splat_budget > 0 ? c.budget.z : c.visible;
-    s.budget_scale = f.splat_budget > 0 ? std::exp2(static_cast<double>(c.budget.x) / SPLAT_BUDGET_BINS_PER_OCTAVE) : 1.0;
+    s.budget_scale =
+        f.splat_budget > 0 ? std::exp2(static_cast<double>(c.budget.x) / SPLAT_BUDGET_BINS_PER_OCTAVE) : 1.0;
     s.budget_threshold_px = s.budget_scale * f.size_threshold_px;
     s.budget_coverage_cut_px =
         f.splat_budget > 0 && c.budget.y > 0

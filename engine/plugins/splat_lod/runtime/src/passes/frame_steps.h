@@ -57,7 +57,7 @@ inline constexpr GLbitfield kStepBarrier =
     GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT;
 // Image writes visible to everything that reads the target or the images afterwards.
 inline constexpr GLbitfield kImageBarrier = GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-                                           GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
+                                            GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
 
 void record_selection(const FrameSteps& steps, std::uint32_t gaussians);
 void record_sort(const FrameSteps& steps, std::uint32_t gaussians);

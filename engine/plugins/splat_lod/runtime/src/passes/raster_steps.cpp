@@ -33,10 +33,11 @@ void record_raster(const FrameSteps& steps) {
         const auto method = static_cast<int>(steps.settings.lod.upscaler);
         const auto width = static_cast<std::uint32_t>(steps.frame.target.width());
         const auto height = static_cast<std::uint32_t>(steps.frame.target.height());
-        engine::gl::run({.program = &steps.program("splat_upscale.comp.glsl", {"UPSCALE_METHOD=" + std::to_string(method)}),
-                         .groups = {groups_for(width, SPLAT_UPSCALE_WORKGROUP_SIZE),
-                                    groups_for(height, SPLAT_UPSCALE_WORKGROUP_SIZE), 1},
-                         .barrier = kImageBarrier});
+        engine::gl::run(
+            {.program = &steps.program("splat_upscale.comp.glsl", {"UPSCALE_METHOD=" + std::to_string(method)}),
+             .groups = {groups_for(width, SPLAT_UPSCALE_WORKGROUP_SIZE),
+                        groups_for(height, SPLAT_UPSCALE_WORKGROUP_SIZE), 1},
+             .barrier = kImageBarrier});
     }
 }
 

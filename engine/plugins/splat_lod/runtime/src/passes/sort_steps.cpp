@@ -13,7 +13,8 @@ void record_sort(const FrameSteps& steps, std::uint32_t gaussians) {
     FrameBuffers& b = steps.buffers;
     {  // 2. exclusive scan of tile counts: each splat's key range; the total lands at [n]
         GpuTimerScope t(steps.frame.timers, "splat.scan");
-        steps.scan.record({b.tile_counts, b.count, 0, gaussians, b.tile_counts, std::size_t(gaussians) * sizeof(std::uint32_t)});
+        steps.scan.record(
+            {b.tile_counts, b.count, 0, gaussians, b.tile_counts, std::size_t(gaussians) * sizeof(std::uint32_t)});
     }
     {  // 3. bin: one (depth, tile) key per tile touched, within the key capacity
         GpuTimerScope t(steps.frame.timers, "splat.bin");

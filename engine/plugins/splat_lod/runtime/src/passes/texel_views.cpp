@@ -21,8 +21,8 @@ RasterFetch TexelViews::resolve(RasterFetch wanted, std::uint32_t gaussians, std
     const auto limit = static_cast<std::uint64_t>(driver_->max_texture_buffer_texels);
     if (fetch == RasterFetch::texel && needed > limit) {
         if (in_use != RasterFetch::shared)
-            engine::log_warning("splat_lod: " + std::to_string(needed) + " texels exceed the driver's buffer textures (" +
-                                std::to_string(limit) +
+            engine::log_warning("splat_lod: " + std::to_string(needed) +
+                                " texels exceed the driver's buffer textures (" + std::to_string(limit) +
                                 "); the passes read storage buffers and the raster stages splats in shared memory");
         fetch = RasterFetch::shared;
     }

@@ -96,8 +96,6 @@ ChunkStreamer::State::State(WorldManifest world, std::filesystem::path root, Str
     }
     link_groups();
     if (bus) {
-        statistics_subscription = bus->subscribe<plugin_msgs::SplatStatistics>(
-            [this](const plugin_msgs::SplatStatistics& latest) { statistics = latest; });
         // The rule the splat pass draws with: the latest LodSettings now, and every later one from the
         // next update on.
         if (const auto lod = bus->latest<plugin_msgs::LodSettings>()) settings.rule = *(bus_rule = lod->rule);
@@ -364,6 +362,9 @@ void ChunkStreamer::update(const StreamView& view) {
     if (!(view.focal_length_px > 0.0f) || !std::isfinite(view.focal_length_px))
         engine::fail("splat_lod::world::ChunkStreamer::update(): the focal length must be positive and finite, got " +
                      std::to_string(view.focal_length_px));
+    if (!(view.cut_scale >= 1.0f) || !std::isfinite(view.cut_scale))
+        engine::fail("splat_lod::world::ChunkStreamer::update(): the cut scale must be finite and at least 1, got " +
+                     std::to_string(view.cut_scale));
     s.frame = view.frame_index;
     s.events.clear();
     s.apply_pending_settings();
@@ -376,11 +377,7 @@ void ChunkStreamer::update(const StreamView& view) {
             slot.failed_level = 0;
         }
     }
-    if (s.statistics) {
-        s.group_cell_scale =
-            next_group_cell_scale(s.group_cell_scale, s.statistics->unbudgeted, s.statistics->splat_budget);
-        s.statistics.reset();
-    }
+    s.group_cell_scale = view.cut_scale;
     s.plan(view);
     s.release_unwanted();
     s.collect_reads();

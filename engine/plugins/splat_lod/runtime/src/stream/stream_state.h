@@ -12,7 +12,6 @@
 #include <utility>
 #include <vector>
 
-#include "splat_lod/msgs/splat_statistics.h"
 #include "splat_lod/stream/chunk_streamer.h"
 #include "splat_lod/stream/stream_reader.h"
 
@@ -116,9 +115,7 @@ struct ChunkStreamer::State {
     plugin_msgs::ResidencyReport report;
     std::vector<plugin_msgs::StreamEvent> events;
     StreamerStats stats;
-    // The splat budget's feedback to the cut (chunk_streamer.h): the newest statistics not yet used.
-    std::optional<plugin_msgs::SplatStatistics> statistics;
-    engine::Subscription statistics_subscription, lod_subscription;
+    engine::Subscription lod_subscription;
     std::optional<plugin_msgs::LodRule> bus_rule;  // the latest LodSettings' rule on the bus, once there is one
     float group_cell_scale = 1.0f;
     std::unique_ptr<StreamReader> reader;  // last: destroyed (and joined) first

@@ -55,9 +55,9 @@
 // So a camera that moves never sees a hole or a node drawn twice over the same ground where memory
 // allows, and a failed chunk shows its group where that is resident.
 //   The splat budget: group Gaussians are drawn whole, so the renderer's raised threshold cannot thin
-// them. With a bus, the streamer reads the renderer's plugin_msgs::SplatStatistics (a few frames late)
-// and, while a budget binds, scales group_cell_px for the cut by next_group_cell_scale()
-// (stream_policy.h), so that coarser groups replace more chunks; group_cell_scale() says by how much. group_cell_px = 0
+// them. While a budget binds, its controller (splat_budget.h, owned by whoever sets the budget) gives
+// each update a scale of group_cell_px for the cut (StreamView::cut_scale), so that coarser groups
+// replace more chunks; group_cell_scale() says which the last update used. group_cell_px = 0
 // or a manifest without groups: every chunk is always in the cut (the behaviour without groups).
 //
 // Fades (smooth transitions): what is drawn does not switch at once. A node (chunk or group) that
@@ -152,6 +152,9 @@ struct StreamView {
     // default) when it stands still, or after a cut or a teleport. The cut uses it to start a node's
     // fade-out early (see "anticipation").
     glm::vec3 camera_velocity{0.0f};
+    // What group_cell_px is multiplied by for this update's cut (≥ 1): a binding splat budget's, from its
+    // controller (splat_budget.h); 1 without one.
+    float cut_scale = 1.0f;
 };
 
 enum class LevelState {
@@ -217,7 +220,7 @@ public:
     std::uint64_t resident_bytes() const;
     std::size_t chunk_count() const;  // the manifest's chunks
     std::size_t group_count() const;  // the manifest's groups
-    float group_cell_scale() const;   // what a binding splat budget multiplies group_cell_px by now (≥ 1)
+    float group_cell_scale() const;   // the last update's StreamView::cut_scale (≥ 1)
     // A chunk's index (0 … chunk_count − 1) or a group's (chunk_count + its index in the manifest).
     std::optional<std::size_t> find_chunk(std::string_view id) const;
     // index < chunk_count() + group_count(): chunks, then groups.
