@@ -1,4 +1,5 @@
-// The bake's driver: runs docs/algorithms.md §4 steps 1–7 in order, times each stage and reports progress.
+// The bake's driver: runs docs/algorithms.md §4 steps 1–7 in order (bake_once() reads top to bottom;
+// each stage is a file of its own, listed in bake_steps.h), times each stage and reports progress.
 #include "splat_lod/bake/bake.h"
 
 #include <algorithm>
@@ -34,125 +35,6 @@ std::size_t peak_resident_bytes() {
             return kib * 1024;
         }
     return 0;
-}
-
-class StageClock {
-public:
-    StageClock(BakeSummary& summary, const BakeOptions& options) : summary_(summary), options_(options) {}
-    void start(const std::string& stage) {
-        stop();
-        stage_ = stage;
-        begin_ = std::chrono::steady_clock::now();
-        report(0.0);
-    }
-    void report(double fraction) const {
-        if (options_.progress && !stage_.empty()) options_.progress(stage_, std::clamp(fraction, 0.0, 1.0));
-    }
-    void stop() {
-        if (stage_.empty()) return;
-        report(1.0);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin_).count();
-        summary_.stages.push_back({stage_, seconds});
-        stage_.clear();
-    }
-
-private:
-    BakeSummary& summary_;
-    const BakeOptions& options_;
-    std::string stage_;
-    std::chrono::steady_clock::time_point begin_;
-};
-
-using CellMembers = detail::LevelMembers;
-
-// Steps 1–3 for one level: the Gaussians of finer levels that some camera sees smaller than S_T at
-// the level's scale, by cell. Cell g's members are members[starts[g] .. starts[g + 1]).
-CellMembers small_by_cell(const SplatCloud& cloud, const detail::CoverageTable& table, int level,
-                          const detail::Normaliser& normaliser, const std::vector<reference::ReferenceCamera>& cameras,
-                          const BakeOptions& options, LevelSummary& summary) {
-    const int scale = level_scale(level);
-    const int cells = (options.grid_cells + level - 1) / level;
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;  // (cell, Gaussian)
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-        if (cloud.lod_level[i] >= level) continue;
-        double smallest = std::numeric_limits<double>::infinity();
-        bool seen = false;
-        for (const float s : table.row(i))
-            if (s >= 0.0f) {
-                seen = true;
-                smallest = std::min(smallest, static_cast<double>(s) / scale);
-            }
-        if (!seen) continue;
-        ++summary.candidates;
-        if (smallest >= options.rule.size_threshold_px) continue;
-        ++summary.small;
-        keyed.emplace_back(detail::cell_key(glm::dvec3(cloud.positions[i]), level, cells, normaliser, cameras, options),
-                           static_cast<std::uint32_t>(i));
-    }
-    // Sorted by (cell, index): the cells, their members and the first member (the quaternion
-    // hemisphere) do not depend on anything but the input.
-    std::sort(keyed.begin(), keyed.end());
-    CellMembers out;
-    for (std::size_t j = 0; j < keyed.size(); ++j)
-        if (j == 0 || keyed[j].first != keyed[j - 1].first) out.starts.push_back(j);
-    out.starts.push_back(keyed.size());
-    out.members.resize(keyed.size());
-    for (std::size_t j = 0; j < keyed.size(); ++j) out.members[j] = keyed[j].second;
-    return out;
-}
-
-// Steps 1–5 for one level: pools the Gaussians of finer levels that are small at its scale into
-// one new Gaussian per grid cell, enlarged towards S_T, and appends them (and their coverage).
-// Returns the cells' members; the level's Gaussians start at its `first`.
-CellMembers build_level(SplatCloud& cloud, detail::CoverageTable& table, int level,
-                        const detail::Normaliser& normaliser, const std::vector<reference::ReferenceCamera>& cameras,
-                        const BakeOptions& options, LevelSummary& summary, const StageClock& clock) {
-    const int scale = level_scale(level);
-    summary.level = level;
-    summary.scale = scale;
-    CellMembers cells = small_by_cell(cloud, table, level, normaliser, cameras, options, summary);
-    const std::vector<std::uint32_t>& members = cells.members;
-    const std::vector<std::size_t>& starts = cells.starts;
-    const std::size_t groups = starts.size() - 1;
-    summary.added = groups;
-    cells.first = cloud.size();
-    if (groups == 0) return cells;
-    const std::size_t first_new = cloud.size();
-    cloud.resize(first_new + groups);
-    std::vector<double> factors(groups, 1.0);
-    reference::detail::parallel_for(
-        groups, reference::detail::resolve_thread_count(options.threads), [&](std::size_t g) {
-            const std::span<const std::uint32_t> cell(members.data() + starts[g], starts[g + 1] - starts[g]);
-            const std::size_t out = first_new + g;
-            cloud.lod_level[out] = static_cast<std::uint8_t>(level);
-            if (options.pooling == PoolingRule::moments) {
-                detail::pool_moments(cloud, cell, cloud, out);
-                detail::thicken(cloud, out, options.min_axis_ratio);
-                return;
-            }
-            detail::pool(cloud, cell, cloud, out);
-            detail::thicken(cloud, out, options.min_axis_ratio);
-            const double s_avg = detail::mean_median_coverage(table, cell, scale);
-            factors[g] = detail::enlargement(options.rule.size_threshold_px, s_avg, options.max_enlargement);
-            cloud.log_scales[out] += glm::vec3(static_cast<float>(std::log(factors[g])));
-        });
-    double sum = 0.0;
-    for (const double f : factors) {
-        sum += f;
-        if (f >= options.max_enlargement) ++summary.at_max_enlargement;
-    }
-    summary.mean_enlargement = sum / static_cast<double>(groups);
-    clock.report(0.5);
-    table.append(cloud, first_new, cameras, options.znear, options.threads);
-    return cells;
-}
-
-// Step 6, and with BakeOptions::member_ranges the cap of each coarse Gaussian's coverage_max at
-// the coverage where its members stop being drawn.
-void set_ranges(SplatCloud& cloud, const detail::CoverageTable& table, const std::vector<CellMembers>& levels,
-                const BakeOptions& options) {
-    detail::set_coverage_ranges(cloud, table, options.range_low_percentile, options.range_high_percentile);
-    if (options.member_ranges) detail::cap_coverage_max(cloud, table, levels, options);
 }
 
 }  // namespace
@@ -299,76 +181,35 @@ void check_input(const SplatCloud& fine, const std::vector<reference::ReferenceC
     for (const auto& camera : cameras) reference::detail::check_camera(camera, "bake");
 }
 
-// Step 1's table: the coverage of every Gaussian in every camera. Fails when no camera sees any.
-detail::CoverageTable measure_coverage(const SplatCloud& cloud, const std::vector<reference::ReferenceCamera>& cameras,
-                                       const BakeOptions& options) {
-    detail::CoverageTable table(cameras.size(), options.view_margin);
-    table.append(cloud, 0, cameras, options.znear, options.threads);
-    std::size_t seen = 0;
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-        const auto row = table.row(i);
-        seen += std::any_of(row.begin(), row.end(), [](float s) { return s >= 0.0f; });
-    }
-    if (seen == 0)
-        engine::fail("bake: none of the " + std::to_string(cameras.size()) + " cameras sees any of the " +
-                     std::to_string(cloud.size()) +
-                     " Gaussians (in front of it, centre inside its image, opacity above 1/255)");
-    return table;
-}
-
-// Step 7 for every coarse level that gained Gaussians, finest first (each is refined with the finer
-// ones already settled). Returns the refiner that ran (its targets serve the final check), or null.
-const detail::Refiner* refine_levels(SplatCloud& cloud, const SplatCloud& fine,
-                                     const std::vector<reference::ReferenceCamera>& cameras, const BakeOptions& options,
-                                     const detail::Refiner* shared_refiner, std::optional<detail::Refiner>& own_refiner,
-                                     BakeSummary& summary, StageClock& clock) {
-    const bool any_added =
-        std::any_of(summary.levels.begin(), summary.levels.end(), [](const LevelSummary& l) { return l.added > 0; });
-    if (options.refine_iterations == 0 || !any_added) return nullptr;
-    const detail::Refiner* refiner = shared_refiner;
-    if (refiner == nullptr) {
-        clock.start("refine targets");
-        refiner = &own_refiner.emplace(fine, cameras, options);
-    }
-    if (!refiner->usable())
-        summary.warnings.push_back("no camera has image sides divisible by 64: the refinement was skipped");
-    for (auto& level_summary : summary.levels) {
-        if (level_summary.added == 0 || !refiner->usable()) continue;
-        clock.start("refine level " + std::to_string(level_summary.level));
-        refiner->refine_level(cloud, level_summary.level, level_summary);
-    }
-    return refiner;
-}
-
 SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::ReferenceCamera>& cameras,
                      const BakeOptions& options, const detail::Refiner* shared_refiner, BakeSummary* summary_out) {
     check_input(fine, cameras);
     BakeSummary summary;
     summary.input_gaussians = fine.size();
     summary.cameras = cameras.size();
-    StageClock clock(summary, options);
+    detail::StageClock clock(summary, options);
 
     SplatCloud cloud = fine;
     clock.start("coverage");
-    detail::CoverageTable table = measure_coverage(cloud, cameras, options);
+    detail::CoverageTable table = detail::measure_coverage(cloud, cameras, options);
     const detail::Normaliser normaliser = detail::make_normaliser(cameras, cloud);
     summary.normalisation_radius = normaliser.radius;
     summary.radius_from_gaussians = normaliser.from_gaussians;
 
-    std::vector<CellMembers> members;
+    std::vector<detail::LevelMembers> members;
     for (int level = 2; level <= options.coarsest_level; ++level) {
         clock.start("level " + std::to_string(level));
         LevelSummary level_summary;
-        members.push_back(build_level(cloud, table, level, normaliser, cameras, options, level_summary, clock));
+        members.push_back(detail::build_level(cloud, table, level, normaliser, cameras, options, level_summary, clock));
         summary.levels.push_back(level_summary);
     }
 
     clock.start("ranges");
-    set_ranges(cloud, table, members, options);
+    detail::set_ranges(cloud, table, members, options);
 
     std::optional<detail::Refiner> own_refiner;
     const detail::Refiner* refiner =
-        refine_levels(cloud, fine, cameras, options, shared_refiner, own_refiner, summary, clock);
+        detail::refine_levels(cloud, fine, cameras, options, shared_refiner, own_refiner, summary, clock);
     const bool refined = std::any_of(summary.levels.begin(), summary.levels.end(),
                                      [](const LevelSummary& l) { return l.refine_iterations > 0; });
     if (refined && options.ranges_after_refine) {
@@ -376,7 +217,7 @@ SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::Refere
         // Gaussians as they are drawn.
         clock.start("ranges after refinement");
         table.recompute(cloud, cameras, options.znear, options.threads);
-        set_ranges(cloud, table, members, options);
+        detail::set_ranges(cloud, table, members, options);
     }
     table = detail::CoverageTable();
     if (refined) {

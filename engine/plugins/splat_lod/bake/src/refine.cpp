@@ -10,9 +10,9 @@
 #include <limits>
 #include <numeric>
 
-#include "bake_steps.h"
 #include "engine/core/error.h"
 #include "engine/render/image.h"
+#include "refine.h"
 #include "splat_lod/core/instance_frame.h"
 #include "splat_lod/core/lod_selection.h"
 #include "splat_lod/core/parallel_for.h"
@@ -375,6 +375,59 @@ void Refiner::refine_level(SplatCloud& cloud, int level, LevelSummary& summary) 
     summary.refine_iterations = options_.refine_iterations;
     summary.refine_psnr_after = mean_psnr(frames, cloud, p, options_, in);
     dump_images(frames, cloud, p, options_, level, "after", in);
+}
+
+reference::ReferenceCamera scaled_camera(const reference::ReferenceCamera& camera, int k) {
+    reference::ReferenceCamera scaled = camera;
+    scaled.fx /= k;
+    scaled.fy /= k;
+    scaled.cx /= k;
+    scaled.cy /= k;
+    scaled.width = camera.width / k;
+    scaled.height = camera.height / k;
+    return scaled;
+}
+
+std::vector<std::size_t> refinement_cameras(const std::vector<reference::ReferenceCamera>& cameras, int limit) {
+    std::vector<std::size_t> usable;
+    for (std::size_t i = 0; i < cameras.size(); ++i) {
+        const auto& c = cameras[i];
+        if (c.width % 64 != 0 || c.height % 64 != 0) continue;
+        if (!usable.empty()) {
+            const auto& first = cameras[usable.front()];
+            if (c.fx != first.fx || c.fy != first.fy || c.width != first.width || c.height != first.height) continue;
+        }
+        usable.push_back(i);
+    }
+    if (limit <= 0 || usable.size() <= static_cast<std::size_t>(limit)) return usable;
+    std::vector<std::size_t> spread;
+    for (int j = 0; j < limit; ++j)
+        spread.push_back(usable[static_cast<std::size_t>(j) * usable.size() / static_cast<std::size_t>(limit)]);
+    return spread;
+}
+
+// Step 7 for every coarse level that gained Gaussians, finest first (each is refined with the finer
+// ones already settled). Returns the refiner that ran (its targets serve the final check), or null.
+const Refiner* refine_levels(SplatCloud& cloud, const SplatCloud& fine,
+                             const std::vector<reference::ReferenceCamera>& cameras, const BakeOptions& options,
+                             const Refiner* shared_refiner, std::optional<Refiner>& own_refiner, BakeSummary& summary,
+                             StageClock& clock) {
+    const bool any_added =
+        std::any_of(summary.levels.begin(), summary.levels.end(), [](const LevelSummary& l) { return l.added > 0; });
+    if (options.refine_iterations == 0 || !any_added) return nullptr;
+    const Refiner* refiner = shared_refiner;
+    if (refiner == nullptr) {
+        clock.start("refine targets");
+        refiner = &own_refiner.emplace(fine, cameras, options);
+    }
+    if (!refiner->usable())
+        summary.warnings.push_back("no camera has image sides divisible by 64: the refinement was skipped");
+    for (auto& level_summary : summary.levels) {
+        if (level_summary.added == 0 || !refiner->usable()) continue;
+        clock.start("refine level " + std::to_string(level_summary.level));
+        refiner->refine_level(cloud, level_summary.level, level_summary);
+    }
+    return refiner;
 }
 
 }  // namespace splat_lod::bake::detail

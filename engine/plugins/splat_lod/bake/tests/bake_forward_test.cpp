@@ -1,7 +1,7 @@
 // A forward-facing bake of a tiny room (floor, far wall and side walls of small chequered Gaussians):
 // the generated grid is detected as a forward capture, the forward settings bake, and on views off the
 // grid the `full` selection keeps the fine level near and the coarse levels far; the members' cap and
-// the thickening do what bake_steps.h says.
+// the thickening do what the stage headers (ranges.h, pooling.h) say.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -69,7 +69,7 @@ struct BakeOptions {
     bool choose_recipe = true;
     double max_enlargement = 8.0;  // clamp of S_T / S_avg
     // Cap each coarse Gaussian's coverage_max at the coverage where its members stop being drawn
-    // (cap_coverage_max in bake_steps.h): the percentiles alone let a coarse Gaussian seen closer or
+    // (cap_coverage_max in bake/src/ranges.h): the percentiles alone let a coarse Gaussian seen closer or
     // more face-on by a bake camera than by a view be drawn on top of the members that view draws.
     bool member_ranges = false;
     double range_low_percentile = 10.0;
