@@ -40,21 +40,19 @@ struct Options {
     float transition_band = plugin_msgs::LodRule::kDefaultTransitionBand;
 };
 
-void apply_settings(splat_lod::SplatPassSettings& settings, const Options& o) {
-    settings.lod.mip_filter = o.mip_filter;
-    settings.lod.render_scale = o.render_scale;
+void apply_settings(splat_lod::SplatPassSettings& settings, plugin_msgs::LodSettings& lod, const Options& o) {
+    lod.mip_filter = o.mip_filter;
+    lod.render_scale = o.render_scale;
     settings.tile_size = o.tile;
     settings.low_res_tile_size = o.low_res_tile;
-    settings.lod.upscaler =
-        plugin_msgs::detail::enum_from_json<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, o.upscaler);
+    lod.upscaler = plugin_msgs::detail::enum_from_json<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, o.upscaler);
     settings.raster_fetch = o.raster_fetch == "texel"    ? splat_lod::RasterFetch::texel
                             : o.raster_fetch == "shared" ? splat_lod::RasterFetch::shared
                                                          : splat_lod::RasterFetch::automatic;
     settings.exact_tiles = !o.bbox_tiles;
     settings.compact_sort_keys = !o.wide_sort_keys;
-    settings.lod.rule.mode =
-        plugin_msgs::detail::enum_from_json<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, o.lod_mode);
-    settings.lod.rule.transition_band = o.transition_band;
+    lod.rule.mode = plugin_msgs::detail::enum_from_json<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, o.lod_mode);
+    lod.rule.transition_band = o.transition_band;
 }
 
 double median(std::vector<double> v) {
@@ -81,7 +79,9 @@ int run(const Options& o) {
     const auto camera = engine::make_look_at_camera(eye, target, engine::parse_vec3(o.up, "--up"),
                                                     glm::radians(o.fov_y_deg), o.width, o.height, 0.01f, 1e6f);
     splat_lod::SplatRenderer pass(engine.renderer());
-    apply_settings(pass.settings(), o);
+    plugin_msgs::LodSettings lod;
+    apply_settings(pass.settings(), lod, o);
+    engine.bus().publish(lod);
     engine::RenderTarget target_image(o.width, o.height);
 
     // Warm-up: the first frame compiles shaders and sizes the key buffer; the second is a plain one.

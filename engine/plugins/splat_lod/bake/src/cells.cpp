@@ -100,12 +100,11 @@ std::uint64_t cell_key(const glm::dvec3& p, int level, int grid_cells, const Nor
     return hash | (1ULL << 63);
 }
 
-
 // Steps 1–3 for one level: the Gaussians of finer levels that some camera sees smaller than S_T at
 // the level's scale, by cell. Cell g's members are members[starts[g] .. starts[g + 1]).
-LevelMembers small_by_cell(const SplatCloud& cloud, const CoverageTable& table, int level,
-                          const Normaliser& normaliser, const std::vector<reference::ReferenceCamera>& cameras,
-                          const BakeOptions& options, LevelSummary& summary) {
+LevelMembers small_by_cell(const SplatCloud& cloud, const CoverageTable& table, int level, const Normaliser& normaliser,
+                           const std::vector<reference::ReferenceCamera>& cameras, const BakeOptions& options,
+                           LevelSummary& summary) {
     const int scale = level_scale(level);
     const int cells = (options.grid_cells + level - 1) / level;
     std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;  // (cell, Gaussian)

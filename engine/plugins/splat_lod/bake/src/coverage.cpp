@@ -102,7 +102,7 @@ double percentile(std::vector<double>& values, double p) {
 
 // Step 1's table: the coverage of every Gaussian in every camera. Fails when no camera sees any.
 CoverageTable measure_coverage(const SplatCloud& cloud, const std::vector<reference::ReferenceCamera>& cameras,
-                                       const BakeOptions& options) {
+                               const BakeOptions& options) {
     CoverageTable table(cameras.size(), options.view_margin);
     table.append(cloud, 0, cameras, options.znear, options.threads);
     std::size_t seen = 0;

@@ -18,5 +18,4 @@ namespace splat_lod::bake::detail {
 // together when all are too small for the view (GpuCluster).
 std::vector<std::uint32_t> output_order(const SplatCloud& cloud, const Normaliser& normaliser);
 
-
 }  // namespace splat_lod::bake::detail

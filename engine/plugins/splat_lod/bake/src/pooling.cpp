@@ -122,9 +122,9 @@ double enlargement(double size_threshold, double mean_coverage, double max_enlar
 // Steps 1–5 for one level: pools the Gaussians of finer levels that are small at its scale into
 // one new Gaussian per grid cell, enlarged towards S_T, and appends them (and their coverage).
 // Returns the cells' members; the level's Gaussians start at its `first`.
-LevelMembers build_level(SplatCloud& cloud, CoverageTable& table, int level,
-                        const Normaliser& normaliser, const std::vector<reference::ReferenceCamera>& cameras,
-                        const BakeOptions& options, LevelSummary& summary, const StageClock& clock) {
+LevelMembers build_level(SplatCloud& cloud, CoverageTable& table, int level, const Normaliser& normaliser,
+                         const std::vector<reference::ReferenceCamera>& cameras, const BakeOptions& options,
+                         LevelSummary& summary, const StageClock& clock) {
     const int scale = level_scale(level);
     summary.level = level;
     summary.scale = scale;

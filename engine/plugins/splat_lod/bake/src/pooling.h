@@ -12,7 +12,6 @@
 
 namespace splat_lod::bake::detail {
 
-
 // Step 4: the pooled Gaussian of `members` (indices into `source`), written at `out` of `target`
 // (which has the same SH degree and extras): mean position, quaternions flipped to the first member's
 // hemisphere then averaged and renormalised, mean log-scales, mean activated opacity (back to a

@@ -12,21 +12,21 @@ namespace splat_lod::eval {
 const std::vector<Method>& method_registry() {
     static const std::vector<Method> methods = {
         {"baseline", "the baseline renderer, every Gaussian of the fine model (level 1)",
-         [](SplatPassSettings& settings) { settings.lod.rule.mode = plugin_msgs::LodMode::baseline; }},
+         [](plugin_msgs::LodSettings& lod, SplatPassSettings&) { lod.rule.mode = plugin_msgs::LodMode::baseline; }},
         {"baseline_mip", "the baseline renderer with the optional 2D mip filter",
-         [](SplatPassSettings& settings) {
-             settings.lod.rule.mode = plugin_msgs::LodMode::baseline;
-             settings.lod.mip_filter = true;
+         [](plugin_msgs::LodSettings& lod, SplatPassSettings&) {
+             lod.rule.mode = plugin_msgs::LodMode::baseline;
+             lod.mip_filter = true;
          }},
         // The LOD ablation modes (docs/algorithms.md §3); on a scene without baked levels they equal baseline.
         {"filter_small", "level 1 only, Gaussians too small for this view left out",
-         [](SplatPassSettings& settings) { settings.lod.rule.mode = plugin_msgs::LodMode::filter_small; }},
+         [](plugin_msgs::LodSettings& lod, SplatPassSettings&) { lod.rule.mode = plugin_msgs::LodMode::filter_small; }},
         {"insert_large", "every level, no filtering",
-         [](SplatPassSettings& settings) { settings.lod.rule.mode = plugin_msgs::LodMode::insert_large; }},
+         [](plugin_msgs::LodSettings& lod, SplatPassSettings&) { lod.rule.mode = plugin_msgs::LodMode::insert_large; }},
         {"full", "every level, selected by pixel coverage (the multi-scale method), smooth transitions",
-         [](SplatPassSettings& settings) { settings.lod.rule.mode = plugin_msgs::LodMode::full; }},
+         [](plugin_msgs::LodSettings& lod, SplatPassSettings&) { lod.rule.mode = plugin_msgs::LodMode::full; }},
         {"full_hard", "every level, selected by pixel coverage, each Gaussian switched on or off at once",
-         [](SplatPassSettings& settings) { settings.lod.rule.mode = plugin_msgs::LodMode::full_hard; }},
+         [](plugin_msgs::LodSettings& lod, SplatPassSettings&) { lod.rule.mode = plugin_msgs::LodMode::full_hard; }},
     };
     return methods;
 }
@@ -37,9 +37,9 @@ const Method& reference_method() {
 
 const Method& level_colouring_method() {
     static const Method method{"full", "every level, selected by pixel coverage, each Gaussian tinted by its level",
-                               [](SplatPassSettings& settings) {
-                                   settings.lod.rule.mode = plugin_msgs::LodMode::full;
-                                   settings.lod.level_colouring = true;
+                               [](plugin_msgs::LodSettings& lod, SplatPassSettings&) {
+                                   lod.rule.mode = plugin_msgs::LodMode::full;
+                                   lod.level_colouring = true;
                                }};
     return method;
 }
@@ -87,19 +87,20 @@ Method upscaled_method(const Method& mode, const UpscalerVariant& variant, int f
         engine::fail(std::string("splat_lod::eval::upscaled_method(): factor ") + std::to_string(factor) + " < 1");
     const auto configure_mode = mode.configure;
     return {variant.name, variant.description + ", " + mode.name + " at 1/" + std::to_string(factor),
-            [configure_mode, variant, factor](SplatPassSettings& settings) {
-                if (configure_mode) configure_mode(settings);
-                settings.lod.render_scale = 1.0f / static_cast<float>(factor);
-                settings.lod.upscaler = variant.upscaler;
+            [configure_mode, variant, factor](plugin_msgs::LodSettings& lod, SplatPassSettings& settings) {
+                if (configure_mode) configure_mode(lod, settings);
+                lod.render_scale = 1.0f / static_cast<float>(factor);
+                lod.upscaler = variant.upscaler;
                 settings.scaled_dilation = variant.scaled_dilation;
             }};
 }
 
 Method native_method(const Method& mode) {
     const auto configure_mode = mode.configure;
-    return {"native", mode.name + " at render scale 1", [configure_mode](SplatPassSettings& settings) {
-                if (configure_mode) configure_mode(settings);
-                settings.lod.render_scale = 1.0f;
+    return {"native", mode.name + " at render scale 1",
+            [configure_mode](plugin_msgs::LodSettings& lod, SplatPassSettings& settings) {
+                if (configure_mode) configure_mode(lod, settings);
+                lod.render_scale = 1.0f;
             }};
 }
 
@@ -121,9 +122,9 @@ std::optional<Method> banded_full(const std::string& name) {
     if (used != text.size() || !(band >= 0.0 && band <= plugin_msgs::LodRule::kMaxTransitionBand))
         engine::fail("--methods: \"" + name + "\": expected full@B with a transition band B in [0, 4] octaves");
     return Method{name, "every level, selected by pixel coverage, transition band " + text + " octaves",
-                  [band](SplatPassSettings& settings) {
-                      settings.lod.rule.mode = plugin_msgs::LodMode::full;
-                      settings.lod.rule.transition_band = band;
+                  [band](plugin_msgs::LodSettings& lod, SplatPassSettings&) {
+                      lod.rule.mode = plugin_msgs::LodMode::full;
+                      lod.rule.transition_band = band;
                   }};
 }
 

@@ -26,8 +26,11 @@ FrameMeasurer::FrameMeasurer(engine::Engine& engine, const engine::Scene& scene)
     : engine_(engine), scene_(scene), pass_(engine.renderer()) {}
 
 void FrameMeasurer::configure(const Method& method) {
-    pass_.settings() = SplatPassSettings{};
-    method.configure(pass_.settings());
+    SplatPassSettings settings;
+    plugin_msgs::LodSettings lod;
+    method.configure(lod, settings);
+    pass_.settings() = settings;
+    engine_.bus().publish(lod);  // the one way LOD settings reach the pass
 }
 
 // Wall time of one frame: the CPU recording plus the GPU work, closed by engine::gl::finish() so that the

@@ -129,11 +129,12 @@ TEST(SplatEvalMetrics, FullWithABandIsAMethod) {
     std::vector<double> bands;
     for (const auto& method : methods) {
         splat_lod::SplatPassSettings settings;
-        method.configure(settings);
+        plugin_msgs::LodSettings lod;
+        method.configure(lod, settings);
         // Every level and the coverage rule; the band that takes effect (0 without transitions).
-        const auto traits = plugin_msgs::traits(settings.lod.rule.mode);
+        const auto traits = plugin_msgs::traits(lod.rule.mode);
         EXPECT_TRUE(traits.all_levels && traits.coverage_rule);
-        bands.push_back(traits.transitions ? settings.lod.rule.transition_band : 0.0);
+        bands.push_back(traits.transitions ? lod.rule.transition_band : 0.0);
     }
     EXPECT_EQ(bands, (std::vector<double>{plugin_msgs::LodRule::kDefaultTransitionBand, 0.0, 0.5}));
     expect_error([] { eval::select_methods("full@-1"); }, {"full@-1", "[0, 4] octaves"});

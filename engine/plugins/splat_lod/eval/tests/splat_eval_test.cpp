@@ -276,24 +276,26 @@ TEST_F(SplatEvalTest, UpscaleSweepScoresEveryUpscalerAgainstNative) {
 }
 
 TEST_F(SplatEvalTest, UpscaleMethodsSetTheSplatPassAndBadFactorsFailFirst) {
+    splat_lod::SplatPassSettings settings;
+    plugin_msgs::LodSettings lod;
+    const eval::UpscalerVariant plain = eval::select_upscalers("spline_plain").front();
+    eval::upscaled_method(eval::find_method("full", "--upscale-mode"), plain, 4).configure(lod, settings);
+    EXPECT_FLOAT_EQ(lod.render_scale, 0.25f);
+    EXPECT_EQ(lod.upscaler, plugin_msgs::Upscaler::spline);
+    EXPECT_FALSE(settings.scaled_dilation);
+    EXPECT_EQ(lod.rule.mode, plugin_msgs::LodMode::full);
+    settings = splat_lod::SplatPassSettings{};
+    lod = plugin_msgs::LodSettings{};
+    eval::upscaled_method(eval::reference_method(), eval::select_upscalers("lanczos3").front(), 3)
+        .configure(lod, settings);
+    EXPECT_FLOAT_EQ(lod.render_scale, 1.0f / 3.0f);
+    EXPECT_EQ(lod.upscaler, plugin_msgs::Upscaler::lanczos3);
+    EXPECT_TRUE(settings.scaled_dilation);
+    eval::native_method(eval::reference_method()).configure(lod, settings);
+    EXPECT_FLOAT_EQ(lod.render_scale, 1.0f);
+
     engine::Engine engine;
     engine.plugins().add_static(splat_lod::make_plugin());
-    splat_lod::SplatRenderer pass(engine.renderer());
-    const eval::UpscalerVariant plain = eval::select_upscalers("spline_plain").front();
-    eval::upscaled_method(eval::find_method("full", "--upscale-mode"), plain, 4).configure(pass.settings());
-    EXPECT_FLOAT_EQ(pass.settings().lod.render_scale, 0.25f);
-    EXPECT_EQ(pass.settings().lod.upscaler, plugin_msgs::Upscaler::spline);
-    EXPECT_FALSE(pass.settings().scaled_dilation);
-    EXPECT_EQ(pass.settings().lod.rule.mode, plugin_msgs::LodMode::full);
-    pass.settings() = splat_lod::SplatPassSettings{};
-    eval::upscaled_method(eval::reference_method(), eval::select_upscalers("lanczos3").front(), 3)
-        .configure(pass.settings());
-    EXPECT_FLOAT_EQ(pass.settings().lod.render_scale, 1.0f / 3.0f);
-    EXPECT_EQ(pass.settings().lod.upscaler, plugin_msgs::Upscaler::lanczos3);
-    EXPECT_TRUE(pass.settings().scaled_dilation);
-    eval::native_method(eval::reference_method()).configure(pass.settings());
-    EXPECT_FLOAT_EQ(pass.settings().lod.render_scale, 1.0f);
-
     eval::EvalScene scene = eval::make_splat_scene(small_cloud());
     eval::FrameMeasurer measurer(engine, *scene.scene);
     eval::EvalOptions options;

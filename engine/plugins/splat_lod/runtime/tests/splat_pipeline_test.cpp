@@ -294,8 +294,8 @@ TEST_F(SplatPipelineTest, LodSelectionMatchesTheCpuRule) {
         lod.rule.mode = mode;
         lod.rule.transition_band = 0.0f;      // hard switching: the rule itself
         harness.engine().bus().publish(lod);  // the plugin takes settings from the bus
-        ASSERT_EQ(pass.settings().lod.rule.mode, mode);
-        const splat_lod::LodRule rule = pass.settings().lod.rule;
+        ASSERT_EQ(pass.lod().rule.mode, mode);
+        const splat_lod::LodRule rule = pass.lod().rule;
         std::vector<std::uint8_t> keep(cloud.size());
         std::array<std::uint64_t, 4> per_level{0, 0, 0, 0};
         for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -360,7 +360,7 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     const ref::ReferenceSettings settings;
     splat_lod::SplatRenderer pass(harness.engine().renderer());
     harness.engine().bus().publish(plugin_msgs::LodSettings{});  // full, the default band
-    const splat_lod::LodRule rule = pass.settings().lod.rule;
+    const splat_lod::LodRule rule = pass.lod().rule;
     const double band = plugin_msgs::LodRule::kDefaultTransitionBand;
     ASSERT_EQ(rule.transition_band, band);
     ASSERT_GT(band, 0.0);

@@ -103,7 +103,7 @@ TEST_F(SplatRasterTest, ExactFootprintDrawsTheSameBytesWithFewerPairsOnHardCases
     }
     // Below render scale 1 the raster also writes derivatives: the footprint must not change them either.
     pass.settings().tile_size = 16;
-    pass.settings().lod.render_scale = 0.5f;
+    harness.edit_lod([](plugin_msgs::LodSettings& lod) { lod.render_scale = 0.5f; });
     expect_same_bytes_with_exact_tiles(clouds, footprint_camera(333, 251));
     const auto low_exact = pass.read_low_res_image();
     pass.settings().exact_tiles = false;
@@ -150,7 +150,7 @@ TEST_F(SplatRasterTest, TexelAndSharedFetchDrawTheSameBytes) {
     };
     for (const float scale : {1.0f, 0.5f}) {
         SCOPED_TRACE("render scale " + std::to_string(scale));
-        pass.settings().lod.render_scale = scale;
+        harness.edit_lod([&](plugin_msgs::LodSettings& lod) { lod.render_scale = scale; });
         pass.settings().raster_fetch = splat_lod::RasterFetch::texel;
         const Frame texel = render_both(footprint_camera(200, 120));
         EXPECT_EQ(pass.raster_fetch_in_use(), splat_lod::RasterFetch::texel);

@@ -60,8 +60,10 @@ protected:
     engine::Image render(const std::shared_ptr<const splat_lod::SplatCloud>& cloud, const engine::CameraView& camera,
                          float render_scale, Upscaler upscaler = Upscaler::spline,
                          const glm::vec3& background = glm::vec3(0.0f)) {
-        pass().settings().lod.render_scale = render_scale;
-        pass().settings().lod.upscaler = upscaler;
+        harness.edit_lod([&](plugin_msgs::LodSettings& lod) {
+            lod.render_scale = render_scale;
+            lod.upscaler = upscaler;
+        });
         return harness.render({cloud}, camera, background);
     }
 
@@ -212,7 +214,7 @@ TEST_F(SplatUpscaleTest, LodSelectionUsesTheOutputCoverage) {
         cloud.coverage_max[i] = (i % 7 == 0) ? -1.0f : static_cast<float>(coverage / f);
     }
     const auto scene = shared(cloud);
-    pass().settings().lod.rule.mode = plugin_msgs::LodMode::full;
+    harness.edit_lod([](plugin_msgs::LodSettings& lod) { lod.rule.mode = plugin_msgs::LodMode::full; });
     render(scene, camera, 1.0f);
     const auto native = pass().latest_statistics()->per_level;
     render(scene, camera, 1.0f / 3.0f);
@@ -235,7 +237,7 @@ TEST_F(SplatUpscaleTest, MeshesHideSplatsWithSharpEdges) {
     const auto camera = *engine::scene_camera(*full, "", w, h);
     engine::RenderTarget target(w, h);
     auto render_frame = [&](const engine::Scene& scene, float s) {
-        pass().settings().lod.render_scale = s;
+        harness.edit_lod([&](plugin_msgs::LodSettings& lod) { lod.render_scale = s; });
         splat_lod::render_complete(engine, scene, camera, target);
         return target.read_color();
     };
@@ -310,12 +312,14 @@ TEST_F(SplatUpscaleTest, HardCasesStayFiniteAndInRange) {
         }
     }
     // An impossible render scale is a clear error, not a frame of garbage.
-    pass().settings().lod.render_scale = 0.0f;
+    harness.edit_lod([](plugin_msgs::LodSettings& lod) { lod.render_scale = 0.0f; });
     EXPECT_THROW(harness.render({needles}, front_camera(8, 8)), engine::Error);
-    pass().settings().lod.render_scale = 0.5f;
-    pass().settings().lod.rule.size_threshold_px = std::numeric_limits<float>::quiet_NaN();  // any field of the rule
+    harness.edit_lod([](plugin_msgs::LodSettings& lod) {
+        lod.render_scale = 0.5f;
+        lod.rule.size_threshold_px = std::numeric_limits<float>::quiet_NaN();  // any field of the rule
+    });
     EXPECT_THROW(harness.render({needles}, front_camera(8, 8)), engine::Error);
-    pass().settings().lod.rule = plugin_msgs::LodRule{};
+    harness.edit_lod([](plugin_msgs::LodSettings& lod) { lod.rule = plugin_msgs::LodRule{}; });
     pass().settings().low_res_tile_size = 5;
     EXPECT_THROW(harness.render({needles}, front_camera(8, 8)), engine::Error);
     pass().settings().low_res_tile_size = 8;

@@ -29,10 +29,11 @@ protected:
 
 engine::Image render_mode(engine::test::SplatRenderHarness& harness,
                           const std::shared_ptr<const splat_lod::SplatCloud>& cloud, const engine::CameraView& camera,
-                          plugin_msgs::LodMode mode, std::uint32_t splat_budget = 0) {
+                          plugin_msgs::LodMode mode, std::uint32_t splat_budget = 0, float render_scale = 1.0f) {
     plugin_msgs::LodSettings lod;
     lod.rule.mode = mode;
     lod.splat_budget = splat_budget;
+    lod.render_scale = render_scale;
     harness.engine().bus().publish(lod);
     return harness.render({cloud}, camera);
 }
@@ -157,18 +158,16 @@ TEST_F(SplatBakeRenderTest, FrustumCullingChangesNothingButTheWork) {
                 SCOPED_TRACE("pose " + std::to_string(p) + ", " + std::string(plugin_msgs::to_string(mode)) +
                              ", render scale " + std::to_string(scale));
                 const auto view = eval::make_view(poses[p], 120, 90);
-                pass.settings().lod.render_scale = scale;
                 pass.settings().frustum_culling = false;
-                const auto without = render_mode(harness, cloud, view, mode);
+                const auto without = render_mode(harness, cloud, view, mode, 0, scale);
                 const auto stats_without = *pass.latest_statistics();
                 pass.settings().frustum_culling = true;
-                const auto with = render_mode(harness, cloud, view, mode);
+                const auto with = render_mode(harness, cloud, view, mode, 0, scale);
                 EXPECT_EQ(with.rgba, without.rgba);
                 EXPECT_EQ(pass.latest_statistics()->per_level, stats_without.per_level);
                 EXPECT_EQ(stats_without.culled, 0u);
                 culled += pass.latest_statistics()->culled;
             }
-    pass.settings().lod.render_scale = 1.0f;
     EXPECT_GT(culled, 0u) << "clusters behind and beside the view are culled";
 }
 

@@ -3,6 +3,7 @@
 #include "engine/render/render_target.h"
 #include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
+#include "splat_lod/splat_renderer.h"
 #include "test_support.h"
 
 namespace engine::test {
@@ -46,6 +47,12 @@ splat_lod::reference::MeshLayer mesh_layer(const RenderTarget& target) {
         layer.colour.push_back(glm::dvec3(p[0], p[1], p[2]) / 255.0);
     }
     return layer;
+}
+
+void SplatRenderHarness::edit_lod(const std::function<void(plugin_msgs::LodSettings&)>& edit) {
+    plugin_msgs::LodSettings lod = splat_lod::SplatRenderer(engine_->renderer()).lod();
+    edit(lod);
+    engine_->bus().publish(lod);
 }
 
 }  // namespace engine::test

@@ -34,19 +34,18 @@ enum class RasterFetch {
 };
 const char* to_string(RasterFetch fetch);
 
+// The pass's own technical settings, for measurements and tests. What a user chooses (the selection
+// rule, the render scale and its upscaler, the mip filter, the level colouring and the splat budget) is
+// plugin_msgs::LodSettings, which reaches the pass one way only: published on the engine's bus, where
+// the pass takes each message whole (SplatRenderer::lod() reads it back).
+//   With render_scale < 1 the splats are rasterised at that fraction of the output size with their
+// analytic image derivatives and brought to the output by the upscaler (docs/algorithms.md §5). A
+// splat budget, when the selection would draw more, makes the frame select as if every coverage were
+// β times smaller (S_T and the coverage ranges β times larger: coarser levels), the smallest β in
+// eighth-octave steps that fits, chosen on the GPU in the same frame; if even β ≈ 3700 does not fit,
+// the smallest of those Gaussians are dropped. Invalid settings of either kind make the frame throw
+// engine::Error.
 struct SplatPassSettings {
-    // What a user chooses (plugin_msgs/lod_settings.h): the selection rule, the render scale and its
-    // upscaler, the mip filter, the level colouring and the splat budget. A LodSettings message on the
-    // engine's bus replaces it whole as it is published; tools without a bus set it here.
-    // With render_scale < 1 the splats are rasterised at that fraction of the output size with their
-    // analytic image derivatives and brought to the output by the upscaler (docs/algorithms.md §5).
-    // A splat budget, when the selection would draw more, makes the frame select as if every
-    // coverage were β times smaller (S_T and the coverage ranges β times larger: coarser levels), the
-    // smallest β in eighth-octave steps that fits, chosen on the GPU in the same frame; if even
-    // β ≈ 3700 does not fit, the smallest of those Gaussians are dropped. Invalid settings make
-    // execute() throw engine::Error.
-    plugin_msgs::LodSettings lod;
-    // The pass's own technical settings, for measurements and tests.
     float znear = 0.2f;     // docs/algorithms.md §1
     float dilation = 0.3f;  // the EWA low-pass, in px²
     // Skip whole project workgroups whose Gaussians are all too small to be selected (exact: the
@@ -93,6 +92,9 @@ public:
 
     SplatPassSettings& settings();
     const SplatPassSettings& settings() const;
+    // The LOD settings the pass draws with: the last plugin_msgs::LodSettings published on the engine's
+    // bus (the defaults before any). To change them, publish a new one.
+    const plugin_msgs::LodSettings& lod() const;
 
     // The statistics of the latest frame read back (a frame or more late; none before the first).
     const std::optional<plugin_msgs::SplatStatistics>& latest_statistics() const;

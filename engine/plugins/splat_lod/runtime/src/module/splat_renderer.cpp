@@ -17,6 +17,9 @@ SplatPassSettings& SplatRenderer::settings() {
 const SplatPassSettings& SplatRenderer::settings() const {
     return pass_->settings;
 }
+const plugin_msgs::LodSettings& SplatRenderer::lod() const {
+    return pass_->lod();
+}
 
 const std::optional<plugin_msgs::SplatStatistics>& SplatRenderer::latest_statistics() const {
     return pass_->latest_statistics();

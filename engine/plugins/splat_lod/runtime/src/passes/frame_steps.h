@@ -28,6 +28,7 @@ namespace splat_lod {
 struct FrameSteps {
     engine::FrameContext& frame;
     const SplatPassSettings& settings;
+    const plugin_msgs::LodSettings& lod;
     const RasterSize& raster;
     const gpu::GpuScene& scene;
     FrameBuffers& buffers;

@@ -12,9 +12,10 @@
 
 namespace splat_lod {
 
-RasterSize raster_size(const SplatPassSettings& settings, int output_width, int output_height) {
-    if (const std::string error = settings.lod.validate(); !error.empty()) engine::fail("splat_lod: " + error);
-    const float s = settings.lod.render_scale;
+RasterSize raster_size(const SplatPassSettings& settings, const plugin_msgs::LodSettings& lod, int output_width,
+                       int output_height) {
+    if (const std::string error = lod.validate(); !error.empty()) engine::fail("splat_lod: " + error);
+    const float s = lod.render_scale;
     RasterSize r;
     r.scale = s;
     r.upscaled = s < 1.0f;
@@ -32,8 +33,9 @@ RasterSize raster_size(const SplatPassSettings& settings, int output_width, int 
     return r;
 }
 
-gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const engine::FrameContext& frame,
-                                  const RasterSize& raster, const gpu::GpuScene& scene, std::uint32_t key_capacity) {
+gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const plugin_msgs::LodSettings& lod,
+                                  const engine::FrameContext& frame, const RasterSize& raster,
+                                  const gpu::GpuScene& scene, std::uint32_t key_capacity) {
     const engine::CameraView& camera = frame.camera;
     // The raster's pixel coordinates are the output's times s (splat_lod/core/upscale.h); the Jacobian's
     // clamp stays the output camera's, so both resolutions clamp the same Gaussians.
@@ -51,7 +53,7 @@ gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const engin
     u.jacobian_clamp = glm::vec2(1.3f * tan_x, 1.3f * tan_y);
     // Resolution-consistent dilation (docs/algorithms.md §5): 0.3 output px² is 0.3·s² raster px².
     u.dilation = settings.dilation * (settings.scaled_dilation ? s * s : 1.0f);
-    u.mip_filter = settings.lod.mip_filter ? 1u : 0u;
+    u.mip_filter = lod.mip_filter ? 1u : 0u;
     u.cluster_skipping = settings.cluster_skipping ? 1u : 0u;
     u.frustum_culling = settings.frustum_culling ? 1u : 0u;
     u.gaussian_count = scene.gaussian_count();
@@ -61,14 +63,14 @@ gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const engin
     u.tiles = glm::uvec2(raster.tiles_x, raster.tiles_y);
     u.tile_count = raster.tile_count();
     u.tile_size = raster.tile_size;
-    gpu::write_lod_rule(u, settings.lod.rule);
+    gpu::write_lod_rule(u, lod.rule);
     u.coverage_scale = 1.0f / s;
     u.coarsest_level = scene.coarsest_level();
-    u.level_colouring = settings.lod.level_colouring ? 1u : 0u;
+    u.level_colouring = lod.level_colouring ? 1u : 0u;
     u.output_size = glm::vec2(frame.target.width(), frame.target.height());
     u.render_scale = s;
     u.inverse_render_scale = 1.0f / s;
-    u.splat_budget = settings.lod.splat_budget;
+    u.splat_budget = lod.splat_budget;
     u.exact_tiles = settings.exact_tiles ? 1u : 0u;
     u.key_depth_bits = raster.key_depth_bits;
     return u;

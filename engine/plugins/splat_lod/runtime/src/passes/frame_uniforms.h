@@ -22,9 +22,11 @@ struct RasterSize {
 };
 
 // Throws engine::Error on invalid settings (set directly, not through the bus, which validates).
-RasterSize raster_size(const SplatPassSettings& settings, int output_width, int output_height);
+RasterSize raster_size(const SplatPassSettings& settings, const plugin_msgs::LodSettings& lod, int output_width,
+                       int output_height);
 
-gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const engine::FrameContext& frame,
-                                  const RasterSize& raster, const gpu::GpuScene& scene, std::uint32_t key_capacity);
+gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const plugin_msgs::LodSettings& lod,
+                                  const engine::FrameContext& frame, const RasterSize& raster,
+                                  const gpu::GpuScene& scene, std::uint32_t key_capacity);
 
 }  // namespace splat_lod

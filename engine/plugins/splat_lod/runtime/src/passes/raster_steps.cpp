@@ -30,7 +30,7 @@ void record_raster(const FrameSteps& steps) {
     if (!raster.upscaled) return;
     {  // 7. upscale to the output and composite over the mesh pass
         GpuTimerScope t(steps.frame.timers, "splat.upscale");
-        const auto method = static_cast<int>(steps.settings.lod.upscaler);
+        const auto method = static_cast<int>(steps.lod.upscaler);
         const auto width = static_cast<std::uint32_t>(steps.frame.target.width());
         const auto height = static_cast<std::uint32_t>(steps.frame.target.height());
         engine::gl::run(

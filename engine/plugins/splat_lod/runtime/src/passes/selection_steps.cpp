@@ -18,7 +18,7 @@ void record_selection(const FrameSteps& steps, std::uint32_t gaussians) {
     const auto& project =
         steps.input_program("splat_project.comp.glsl", [&] { steps.texels.bind_project(steps.scene); });
     engine::gl::run({.program = &project, .indirect = &steps.buffers.cluster_list, .barrier = kStepBarrier});
-    if (steps.settings.lod.splat_budget == 0) return;
+    if (steps.lod.splat_budget == 0) return;
     // c. the budget's scale β from the selected Gaussians' coverage histogram; d. keep those selected at β
     engine::gl::run({.program = &steps.program("splat_budget.comp.glsl"), .barrier = kStepBarrier});
     engine::gl::run({.program = &steps.program("splat_budget_trim.comp.glsl"),

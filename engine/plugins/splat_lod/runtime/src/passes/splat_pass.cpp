@@ -16,7 +16,7 @@ SplatPass::SplatPass() = default;
 SplatPass::~SplatPass() = default;
 
 void SplatPass::apply(const plugin_msgs::LodSettings& lod) {
-    settings.lod = lod;
+    lod_ = lod;
 }
 
 void SplatPass::execute(engine::FrameContext& frame) {
@@ -31,19 +31,20 @@ void SplatPass::execute(engine::FrameContext& frame) {
         scan_ = std::make_unique<engine::gl::PrefixScan>(frame.shaders);
         sort_ = std::make_unique<engine::gl::RadixSort>(frame.shaders);
     }
-    const RasterSize raster = raster_size(settings, frame.target.width(), frame.target.height());
+    const RasterSize raster = raster_size(settings, lod_, frame.target.width(), frame.target.height());
     if (raster.upscaled)
         low_.ensure(raster.width, raster.height);
     else if (low_.width > 0)
         low_ = LowResImages{};  // back at native resolution: nothing keeps them
     buffers_.ensure(n, raster.tile_count());
     fetch_in_use_ = texels_.resolve(settings.raster_fetch, n, buffers_.key_capacity, scene_, fetch_in_use_);
-    const gpu::FrameUniforms uniforms = frame_uniforms(settings, frame, raster, scene_, buffers_.key_capacity);
+    const gpu::FrameUniforms uniforms = frame_uniforms(settings, lod_, frame, raster, scene_, buffers_.key_capacity);
     buffers_.uniforms.upload(0, sizeof(uniforms), &uniforms);
     buffers_.count.upload(0, sizeof(n), &n);
-    buffers_.clear(settings.lod.splat_budget > 0);
+    buffers_.clear(lod_.splat_budget > 0);
 
-    const FrameSteps steps{frame, settings, raster, scene_, buffers_, low_, texels_, fetch_in_use_, *scan_, *sort_};
+    const FrameSteps steps{frame, settings, lod_,          raster, scene_, buffers_,
+                           low_,  texels_,  fetch_in_use_, *scan_, *sort_};
     record_selection(steps, n);  // 1. a–d: cull, skip, project, the splat budget
     record_sort(steps, n);       // 2–5. scan, bin, sort, tile ranges
     record_raster(steps);        // 6. raster; 7. upscale below render scale 1
@@ -52,8 +53,8 @@ void SplatPass::execute(engine::FrameContext& frame) {
     FrameStatistics::Frame facts;
     facts.index = frame.frame_index;
     facts.considered = scene_.live_gaussians();
-    facts.splat_budget = settings.lod.splat_budget;
-    facts.size_threshold_px = settings.lod.rule.size_threshold_px;
+    facts.splat_budget = lod_.splat_budget;
+    facts.size_threshold_px = lod_.rule.size_threshold_px;
     facts.resident_bytes = scene_.resident_bytes() + buffers_.bytes() + low_.bytes();
     statistics_.record(facts, buffers_, frame.bus);
 }

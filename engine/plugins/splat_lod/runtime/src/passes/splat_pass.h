@@ -34,8 +34,9 @@ public:
     void execute(engine::FrameContext& frame) override;
 
     SplatPassSettings settings;
-    // Takes a LodSettings message whole (published on the bus): settings.lod is that message.
+    // Takes a LodSettings message whole, as the bus delivers it (the only way LOD settings arrive).
     void apply(const plugin_msgs::LodSettings& lod);
+    const plugin_msgs::LodSettings& lod() const { return lod_; }
 
     // The newest statistics read back so far (also published on the bus).
     const std::optional<plugin_msgs::SplatStatistics>& latest_statistics() const { return statistics_.latest(); }
@@ -53,6 +54,7 @@ public:
     std::vector<float> read_low_res_front_depth() const { return low_.read_front_depth(); }
 
 private:
+    plugin_msgs::LodSettings lod_;
     gpu::GpuScene scene_;
     FrameBuffers buffers_;
     LowResImages low_;

@@ -17,8 +17,9 @@ namespace splat_lod::eval {
 struct Method {
     std::string name;
     std::string description;
-    // Called on the pass settings reset to their defaults.
-    std::function<void(SplatPassSettings&)> configure;
+    // Called on the LOD settings (published on the bus afterwards) and the pass's technical settings,
+    // both reset to their defaults.
+    std::function<void(plugin_msgs::LodSettings&, SplatPassSettings&)> configure;
 };
 
 // Every method known: "baseline" (the renderer as is) and "baseline_mip" (with the 2D mip filter).
