@@ -2,9 +2,8 @@
 
 #include <engine/mesh_shared.h>  // shaders/engine/mesh_shared.h, shared with GLSL
 
-#include <glm/gtc/type_ptr.hpp>
-
 #include "engine/assets/mesh_asset.h"
+#include "engine/gl/draw.h"
 #include "engine/gl/gpu_timers.h"
 #include "engine/gl/objects.h"
 #include "engine/gl/shader_library.h"
@@ -36,42 +35,19 @@ GpuPrimitive upload_primitive(const MeshPrimitive& p, const std::string& label) 
     g.vertices.storage(p.vertices.size() * sizeof(MeshVertex), p.vertices.data(), 0);
     g.indices = gl::Buffer(label + " indices");
     g.indices.storage(p.indices.size() * sizeof(std::uint32_t), p.indices.data(), 0);
-    g.vao = gl::VertexArray(label);
-    const GLuint vao = g.vao.id();
-    glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, sizeof(MeshVertex));
-    glVertexArrayElementBuffer(vao, g.indices.id());
-    const struct {
-        GLuint location;
-        GLint size;
-        GLuint offset;
-    } attributes[] = {{MESH_ATTRIBUTE_POSITION, 3, offsetof(MeshVertex, position)},
-                      {MESH_ATTRIBUTE_NORMAL, 3, offsetof(MeshVertex, normal)},
-                      {MESH_ATTRIBUTE_UV, 2, offsetof(MeshVertex, uv)}};
-    for (const auto& a : attributes) {
-        glEnableVertexArrayAttrib(vao, a.location);
-        glVertexArrayAttribFormat(vao, a.location, a.size, GL_FLOAT, GL_FALSE, a.offset);
-        glVertexArrayAttribBinding(vao, a.location, 0);
-    }
+    const gl::VertexAttribute attributes[] = {{MESH_ATTRIBUTE_POSITION, 3, offsetof(MeshVertex, position)},
+                                              {MESH_ATTRIBUTE_NORMAL, 3, offsetof(MeshVertex, normal)},
+                                              {MESH_ATTRIBUTE_UV, 2, offsetof(MeshVertex, uv)}};
+    g.vao = gl::vertex_array(g.vertices, sizeof(MeshVertex), g.indices, attributes, label);
     g.index_count = static_cast<GLsizei>(p.indices.size());
     g.material = p.material;
     g.transform = p.transform;
     return g;
 }
 
+// Base colour texels are sRGB-encoded: the sRGB format makes sampling return linear values.
 gl::Texture upload_image(const MeshImage& image, const std::string& label) {
-    gl::Texture t(GL_TEXTURE_2D, label);
-    int levels = 1;
-    for (int s = std::max(image.width, image.height); s > 1; s /= 2) ++levels;
-    // Base colour texels are sRGB-encoded: the sRGB format makes sampling return linear values.
-    glTextureStorage2D(t.id(), levels, GL_SRGB8_ALPHA8, image.width, image.height);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(t.id(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
-    glGenerateTextureMipmap(t.id());
-    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
-    return t;
+    return gl::srgb_texture(image.width, image.height, image.rgba.data(), label);
 }
 
 struct Lighting {
@@ -122,42 +98,25 @@ const GpuMesh& MeshPass::gpu_mesh(const std::shared_ptr<const MeshAsset>& asset)
 void MeshPass::execute(FrameContext& frame) {
     std::erase_if(meshes_, [](const auto& entry) { return entry.second.first.expired(); });
     const auto& program = frame.shaders.program({"engine/mesh.vert.glsl", "engine/mesh.frag.glsl"});
-    const GLuint p = program.id();
     const Lighting lights = gather_lights(frame.scene);
-    glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "u_view"), 1, GL_FALSE, glm::value_ptr(frame.camera.view));
-    const glm::mat4 projection = flip_y_for_target(frame.camera.projection);
-    glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "u_projection"), 1, GL_FALSE, glm::value_ptr(projection));
-    glProgramUniform3fv(p, glGetUniformLocation(p, "u_ambient"), 1, glm::value_ptr(lights.ambient));
-    const auto light_count = static_cast<GLsizei>(lights.directions.size());
-    glProgramUniform1i(p, glGetUniformLocation(p, "u_light_count"), light_count);
-    if (light_count > 0) {
-        glProgramUniform3fv(p, glGetUniformLocation(p, "u_light_direction"), light_count,
-                            glm::value_ptr(lights.directions[0]));
-        glProgramUniform3fv(p, glGetUniformLocation(p, "u_light_color"), light_count, glm::value_ptr(lights.colors[0]));
-    }
+    gl::set_uniform(program, "u_view", frame.camera.view);
+    gl::set_uniform(program, "u_projection", flip_y_for_target(frame.camera.projection));
+    gl::set_uniform(program, "u_ambient", lights.ambient);
+    gl::set_uniform(program, "u_light_count", static_cast<int>(lights.directions.size()));
+    gl::set_uniform(program, "u_light_direction", std::span<const glm::vec3>(lights.directions));
+    gl::set_uniform(program, "u_light_color", std::span<const glm::vec3>(lights.colors));
 
-    glBindFramebuffer(GL_FRAMEBUFFER, frame.target.framebuffer().id());
-    glViewport(0, 0, frame.target.width(), frame.target.height());
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-    glFrontFace(GL_CW);  // the target's Y flip reverses winding (render_target.h)
-    glUseProgram(p);
-    const GLint model_loc = glGetUniformLocation(p, "u_model");
-    const GLint normal_loc = glGetUniformLocation(p, "u_normal_matrix");
-    const GLint factor_loc = glGetUniformLocation(p, "u_base_color_factor");
-    const GLint has_tex_loc = glGetUniformLocation(p, "u_has_base_color_texture");
-
+    // The target's Y flip reverses winding (render_target.h): clockwise fronts.
+    const gl::RasterScope raster(program, frame.target.framebuffer(), frame.target.width(), frame.target.height(),
+                                 true);
     for (const auto* component : frame.scene.components<MeshComponent>()) {
         if (!component->mesh) continue;
         const GpuMesh& gpu = gpu_mesh(component->mesh);
         const glm::mat4 node_world = component->node()->world_matrix();
         for (const auto& prim : gpu.primitives) {
             const glm::mat4 model = node_world * prim.transform;
-            const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(model)));
-            glUniformMatrix4fv(model_loc, 1, GL_FALSE, glm::value_ptr(model));
-            glUniformMatrix3fv(normal_loc, 1, GL_FALSE, glm::value_ptr(normal_matrix));
+            gl::set_uniform(program, "u_model", model);
+            gl::set_uniform(program, "u_normal_matrix", glm::transpose(glm::inverse(glm::mat3(model))));
             glm::vec4 factor(1.0f);
             int image = -1;
             if (prim.material >= 0) {
@@ -165,19 +124,12 @@ void MeshPass::execute(FrameContext& frame) {
                 factor = material.base_color_factor;
                 image = material.base_color_image;
             }
-            glUniform4fv(factor_loc, 1, glm::value_ptr(factor));
-            glUniform1i(has_tex_loc, image >= 0);
-            if (image >= 0)
-                glBindTextureUnit(MESH_BASE_COLOR_TEXTURE_UNIT, gpu.textures[static_cast<std::size_t>(image)].id());
-            glBindVertexArray(prim.vao.id());
-            glDrawElements(GL_TRIANGLES, prim.index_count, GL_UNSIGNED_INT, nullptr);
+            gl::set_uniform(program, "u_base_color_factor", factor);
+            gl::set_uniform(program, "u_has_base_color_texture", image >= 0 ? 1 : 0);
+            const gl::Texture* texture = image >= 0 ? &gpu.textures[static_cast<std::size_t>(image)] : nullptr;
+            raster.draw_triangles(prim.vao, prim.index_count, texture, MESH_BASE_COLOR_TEXTURE_UNIT);
         }
     }
-    glBindVertexArray(0);
-    glUseProgram(0);
-    glDisable(GL_DEPTH_TEST);
-    glFrontFace(GL_CCW);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 }  // namespace engine
