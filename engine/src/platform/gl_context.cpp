@@ -96,21 +96,6 @@ DisplayChoice open_device(std::string& tried) {
 
 }  // namespace
 
-GlInfo query_current_gl_info(const std::string& platform) {
-    GlInfo info;
-    auto str = [](GLenum name) {
-        const auto* s = reinterpret_cast<const char*>(glGetString(name));
-        return std::string(s ? s : "?");
-    };
-    info.vendor = str(GL_VENDOR);
-    info.renderer = str(GL_RENDERER);
-    info.version = str(GL_VERSION);
-    info.platform = platform;
-    glGetIntegerv(GL_MAJOR_VERSION, &info.major);
-    glGetIntegerv(GL_MINOR_VERSION, &info.minor);
-    return info;
-}
-
 void require_compute_support(const GlInfo& info) {
     const bool ok = info.major > 4 || (info.major == 4 && info.minor >= 3);
     if (!ok) {
@@ -119,20 +104,6 @@ void require_compute_support(const GlInfo& info) {
     }
 }
 
-namespace {
-
-void GLAPIENTRY debug_callback(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei, const GLchar* message,
-                               const void*) {
-    if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
-    const std::string text = "GL[" + std::to_string(id) + "] " + message;
-    if (severity == GL_DEBUG_SEVERITY_HIGH || type == GL_DEBUG_TYPE_ERROR)
-        log_error(text);
-    else
-        log_warning(text);
-}
-
-}  // namespace
-
 bool gl_debug_requested() {
 #ifndef NDEBUG
     return true;
@@ -140,13 +111,6 @@ bool gl_debug_requested() {
     const char* env = std::getenv("ENGINE_GL_DEBUG");
     return env != nullptr && env[0] == '1';
 #endif
-}
-
-void install_gl_debug_output() {
-    if (!epoxy_has_gl_extension("GL_KHR_debug") && epoxy_gl_version() < 43) return;
-    glEnable(GL_DEBUG_OUTPUT);
-    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-    glDebugMessageCallback(debug_callback, nullptr);
 }
 
 std::unique_ptr<HeadlessGlContext> HeadlessGlContext::create(bool debug) {

@@ -1,3 +1,6 @@
+// The render target (engine/render/render_target.h): a framebuffer with its colour, depth and view-depth
+// textures, their clears and read-backs, and presenting it to a window. A GL resource, so it lives in the
+// GL layer.
 #include "engine/render/render_target.h"
 
 #include <algorithm>
