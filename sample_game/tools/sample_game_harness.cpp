@@ -15,6 +15,7 @@
 // profile's reference frames supersampled and caches them beside the world, where the profile with
 // the same size, frames and field of view finds them.
 #include <cstdio>
+#include <memory>
 #include <string>
 
 #include "engine/core/error.h"
@@ -81,6 +82,14 @@ void add_options(CLI::App& app, CommandLine& c) {
     app.add_option("--out", c.out, "Profile output folder (the soak's default is out/soak)")->capture_default_str();
 }
 
+// After the options are checked: the GL context every run draws in, and which renderer it is.
+std::unique_ptr<engine::HeadlessGlContext> headless_context() {
+    auto context = engine::HeadlessGlContext::create();
+    std::fprintf(stderr, "sample_game_harness: %s on %s\n", context->info().renderer.c_str(),
+                 context->info().platform.c_str());
+    return context;
+}
+
 int run_profile(const CommandLine& c) {
     sample_game::ProfileOptions o;
     o.world = c.world;
@@ -96,9 +105,7 @@ int run_profile(const CommandLine& c) {
     o.preload = !c.no_preload;
     o.reference_supersample = c.supersample;
     sample_game::validate(o);  // before making a GL context: option errors come first
-    const auto context = engine::HeadlessGlContext::create();
-    std::fprintf(stderr, "sample_game_harness: %s on %s\n", context->info().renderer.c_str(),
-                 context->info().platform.c_str());
+    const auto context = headless_context();
     const sample_game::ProfileOutcome outcome = sample_game::run_profile(o, stderr);
     std::printf("%s", outcome.summary_text.c_str());
     if (!outcome.plot_problem.empty()) std::fprintf(stderr, "sample_game_harness: %s\n", outcome.plot_problem.c_str());
@@ -115,9 +122,7 @@ int run_reference(const CommandLine& c) {
     o.supersample = c.supersample;
     o.force = c.force;
     sample_game::validate(o);
-    const auto context = engine::HeadlessGlContext::create();
-    std::fprintf(stderr, "sample_game_harness: %s on %s\n", context->info().renderer.c_str(),
-                 context->info().platform.c_str());
+    const auto context = headless_context();
     const sample_game::ReferenceOutcome outcome = sample_game::make_reference(o, stderr);
     std::printf("%s", outcome.text.c_str());
     return 0;
@@ -134,9 +139,7 @@ int run_soak(const CommandLine& c) {
     o.faults = !c.no_faults;
     o.settings = c.settings;
     sample_game::validate(o);
-    const auto context = engine::HeadlessGlContext::create();
-    std::fprintf(stderr, "sample_game_harness: %s on %s\n", context->info().renderer.c_str(),
-                 context->info().platform.c_str());
+    const auto context = headless_context();
     const sample_game::SoakOutcome outcome = sample_game::run_soak(o, stderr);
     std::printf("%s", outcome.summary_text.c_str());
     return outcome.passed ? 0 : 1;

@@ -36,33 +36,28 @@ Texture srgb_texture(int width, int height, const std::uint8_t* rgba, std::strin
     return t;
 }
 
-namespace {
-
-GLint location(const Program& program, const char* name) {
-    return glGetUniformLocation(program.id(), name);
+Uniform uniform(const Program& program, const char* name) {
+    return {&program, glGetUniformLocation(program.id(), name)};
 }
 
-}  // namespace
-
-void set_uniform(const Program& program, const char* name, const glm::mat4& value) {
-    glProgramUniformMatrix4fv(program.id(), location(program, name), 1, GL_FALSE, glm::value_ptr(value));
+void set_uniform(const Uniform& u, const glm::mat4& value) {
+    glProgramUniformMatrix4fv(u.program->id(), u.location, 1, GL_FALSE, glm::value_ptr(value));
 }
-void set_uniform(const Program& program, const char* name, const glm::mat3& value) {
-    glProgramUniformMatrix3fv(program.id(), location(program, name), 1, GL_FALSE, glm::value_ptr(value));
+void set_uniform(const Uniform& u, const glm::mat3& value) {
+    glProgramUniformMatrix3fv(u.program->id(), u.location, 1, GL_FALSE, glm::value_ptr(value));
 }
-void set_uniform(const Program& program, const char* name, const glm::vec4& value) {
-    glProgramUniform4fv(program.id(), location(program, name), 1, glm::value_ptr(value));
+void set_uniform(const Uniform& u, const glm::vec4& value) {
+    glProgramUniform4fv(u.program->id(), u.location, 1, glm::value_ptr(value));
 }
-void set_uniform(const Program& program, const char* name, const glm::vec3& value) {
-    glProgramUniform3fv(program.id(), location(program, name), 1, glm::value_ptr(value));
+void set_uniform(const Uniform& u, const glm::vec3& value) {
+    glProgramUniform3fv(u.program->id(), u.location, 1, glm::value_ptr(value));
 }
-void set_uniform(const Program& program, const char* name, std::span<const glm::vec3> values) {
+void set_uniform(const Uniform& u, std::span<const glm::vec3> values) {
     if (values.empty()) return;
-    glProgramUniform3fv(program.id(), location(program, name), static_cast<GLsizei>(values.size()),
-                        glm::value_ptr(values[0]));
+    glProgramUniform3fv(u.program->id(), u.location, static_cast<GLsizei>(values.size()), glm::value_ptr(values[0]));
 }
-void set_uniform(const Program& program, const char* name, int value) {
-    glProgramUniform1i(program.id(), location(program, name), value);
+void set_uniform(const Uniform& u, int value) {
+    glProgramUniform1i(u.program->id(), u.location, value);
 }
 
 RasterScope::RasterScope(const Program& program, const Framebuffer& framebuffer, int width, int height,

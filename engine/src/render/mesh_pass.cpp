@@ -105,6 +105,9 @@ void MeshPass::execute(FrameContext& frame) {
     gl::set_uniform(program, "u_light_count", static_cast<int>(lights.directions.size()));
     gl::set_uniform(program, "u_light_direction", std::span<const glm::vec3>(lights.directions));
     gl::set_uniform(program, "u_light_color", std::span<const glm::vec3>(lights.colors));
+    const gl::Uniform u_model = gl::uniform(program, "u_model"), u_normal = gl::uniform(program, "u_normal_matrix"),
+                      u_factor = gl::uniform(program, "u_base_color_factor"),
+                      u_has_texture = gl::uniform(program, "u_has_base_color_texture");
 
     // The target's Y flip reverses winding (render_target.h): clockwise fronts.
     const gl::RasterScope raster(program, frame.target.framebuffer(), frame.target.width(), frame.target.height(),
@@ -115,8 +118,8 @@ void MeshPass::execute(FrameContext& frame) {
         const glm::mat4 node_world = component->node()->world_matrix();
         for (const auto& prim : gpu.primitives) {
             const glm::mat4 model = node_world * prim.transform;
-            gl::set_uniform(program, "u_model", model);
-            gl::set_uniform(program, "u_normal_matrix", glm::transpose(glm::inverse(glm::mat3(model))));
+            gl::set_uniform(u_model, model);
+            gl::set_uniform(u_normal, glm::transpose(glm::inverse(glm::mat3(model))));
             glm::vec4 factor(1.0f);
             int image = -1;
             if (prim.material >= 0) {
@@ -124,8 +127,8 @@ void MeshPass::execute(FrameContext& frame) {
                 factor = material.base_color_factor;
                 image = material.base_color_image;
             }
-            gl::set_uniform(program, "u_base_color_factor", factor);
-            gl::set_uniform(program, "u_has_base_color_texture", image >= 0 ? 1 : 0);
+            gl::set_uniform(u_factor, factor);
+            gl::set_uniform(u_has_texture, image >= 0 ? 1 : 0);
             const gl::Texture* texture = image >= 0 ? &gpu.textures[static_cast<std::size_t>(image)] : nullptr;
             raster.draw_triangles(prim.vao, prim.index_count, texture, MESH_BASE_COLOR_TEXTURE_UNIT);
         }

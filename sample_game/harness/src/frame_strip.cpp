@@ -29,8 +29,8 @@ engine::Image temporal_error_picture(const engine::Image& previous, const engine
     const int w = current.width, h = current.height;
     for (const auto* image : {&reference_previous, &reference_current})
         if (previous.width != w || previous.height != h || image->width != w || image->height != h)
-            engine::fail(formatted("sample_game: frame strip: a frame of %dx%d against a reference of %dx%d", w, h,
-                                   image->width, image->height));
+            engine::fail(formatted("sample_game_harness: frame strip: a frame of %dx%d against a reference of %dx%d", w,
+                                   h, image->width, image->height));
     engine::Image out{w, h, std::vector<std::uint8_t>(current.rgba.size(), 255)};
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
@@ -52,8 +52,8 @@ double temporal_error(const splat_lod::eval::FloatImage& previous, const splat_l
     for (const auto* image : {&current, &reference_previous, &reference_current})
         if (image->width != previous.width || image->height != previous.height ||
             image->rgb.size() != previous.rgb.size())
-            engine::fail(formatted("sample_game: temporal_error: an image of %dx%d against one of %dx%d", image->width,
-                                   image->height, previous.width, previous.height));
+            engine::fail(formatted("sample_game_harness: temporal_error: an image of %dx%d against one of %dx%d",
+                                   image->width, image->height, previous.width, previous.height));
     if (previous.rgb.empty()) return 0.0;
     double sum = 0.0;
     for (std::size_t i = 0; i < previous.rgb.size(); ++i) {

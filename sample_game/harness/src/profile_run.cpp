@@ -360,22 +360,24 @@ std::string reference_note(const ProfileOptions& options, const std::optional<Ca
 
 void validate_path_run(const std::filesystem::path& world, int width, int height, int frames) {
     if (world.empty())
-        engine::fail("sample_game: --world is required (a folder holding world.json, made by splat_world)");
+        engine::fail("sample_game_harness: --world is required (a folder holding world.json, made by splat_world)");
     if (width < 16 || height < 16 || width > 16384 || height > 16384)
-        engine::fail("sample_game: --width and --height must be 16..16384, got " + std::to_string(width) + "x" +
+        engine::fail("sample_game_harness: --width and --height must be 16..16384, got " + std::to_string(width) + "x" +
                      std::to_string(height));
     if (frames < 10)
-        engine::fail("sample_game: --frames must be at least 10 (every segment of the path needs frames), got " +
-                     std::to_string(frames));
+        engine::fail(
+            "sample_game_harness: --frames must be at least 10 (every segment of the path needs frames), got " +
+            std::to_string(frames));
 }
 
 void validate(const ProfileOptions& o) {
     validate_path_run(o.world, o.width, o.height, o.frames);
-    if (o.frames_png_every < 0) engine::fail("sample_game: --frames-png must not be negative");
-    if (o.baseline_every < 0) engine::fail("sample_game: --baseline-every must not be negative");
-    if (o.baseline_overview_every < 1) engine::fail("sample_game: --baseline-overview-every must be at least 1");
+    if (o.frames_png_every < 0) engine::fail("sample_game_harness: --frames-png must not be negative");
+    if (o.baseline_every < 0) engine::fail("sample_game_harness: --baseline-every must not be negative");
+    if (o.baseline_overview_every < 1)
+        engine::fail("sample_game_harness: --baseline-overview-every must be at least 1");
     if (o.reference_supersample < 3 || o.reference_supersample > 8)
-        engine::fail("sample_game: --supersample must be 3..8, got " + std::to_string(o.reference_supersample));
+        engine::fail("sample_game_harness: --supersample must be 3..8, got " + std::to_string(o.reference_supersample));
     validate(o.settings);
     require_world_folder(o.world);
 }

@@ -25,14 +25,14 @@ void Progress::step(std::size_t done, const std::string& detail) {
     last_ = now;
     const double elapsed = seconds_since(start_);
     if (total_ == 0) {  // open-ended: no ETA
-        std::fprintf(out_, "sample_game: %s %zu%s, %s elapsed\n", stage_.c_str(), done, detail.c_str(),
+        std::fprintf(out_, "sample_game_harness: %s %zu%s, %s elapsed\n", stage_.c_str(), done, detail.c_str(),
                      duration(elapsed).c_str());
         std::fflush(out_);
         return;
     }
     const double per = done > 0 ? elapsed / static_cast<double>(done) : 0.0;
-    std::fprintf(out_, "sample_game: %s %zu/%zu%s, %.2f s each, %s elapsed, ETA %s\n", stage_.c_str(), done, total_,
-                 detail.c_str(), per, duration(elapsed).c_str(),
+    std::fprintf(out_, "sample_game_harness: %s %zu/%zu%s, %.2f s each, %s elapsed, ETA %s\n", stage_.c_str(), done,
+                 total_, detail.c_str(), per, duration(elapsed).c_str(),
                  duration(per * static_cast<double>(total_ - done)).c_str());
     std::fflush(out_);
 }

@@ -1,7 +1,7 @@
 #pragma once
 // Progress lines of the long headless runs (profile, reference): one line per step at most every
 // two seconds (and always the last), with the time per step and what is left:
-//   "sample_game: reference frame 3/12 (canopy), 41.20 s each, 2m04s elapsed, ETA 6m11s"
+//   "sample_game_harness: reference frame 3/12 (canopy), 41.20 s each, 2m04s elapsed, ETA 6m11s"
 #include <chrono>
 #include <cstdio>
 #include <string>

@@ -25,7 +25,7 @@ constexpr const char* kTemporaryPrefix = ".tmp-";
 constexpr const char* kOldPrefix = ".old-";
 
 [[noreturn]] void broken(const fs::path& file, const std::string& problem) {
-    engine::fail("sample_game: reference " + file.string() + ": " + problem +
+    engine::fail("sample_game_harness: reference " + file.string() + ": " + problem +
                  "; make the reference again with `sample_game_harness --reference --force` (same options)");
 }
 
@@ -156,8 +156,8 @@ void write_reference(const fs::path& world, const ReferenceKey& key, const std::
         for (const std::size_t frame : key.frame_indices) {
             const auto it = frames.find(static_cast<int>(frame));
             if (it == frames.end() || it->second.width != key.width || it->second.height != key.height)
-                engine::fail(formatted("sample_game: reference: frame %zu was not rendered at %dx%d", frame, key.width,
-                                       key.height));
+                engine::fail(formatted("sample_game_harness: reference: frame %zu was not rendered at %dx%d", frame,
+                                       key.width, key.height));
             engine::write_png(reference_frame_file(temporary, frame), it->second);
         }
         engine::write_text_file_atomic(temporary / kKeyFileName, key.json());  // last: the folder is complete
@@ -169,7 +169,7 @@ void write_reference(const fs::path& world, const ReferenceKey& key, const std::
         fs::remove_all(old, ec);
     } catch (const fs::filesystem_error& e) {
         fs::remove_all(temporary, ec);
-        engine::fail("sample_game: reference " + (parent / name).string() + ": " + e.what());
+        engine::fail("sample_game_harness: reference " + (parent / name).string() + ": " + e.what());
     } catch (...) {
         fs::remove_all(temporary, ec);
         throw;

@@ -31,9 +31,10 @@ std::vector<std::pair<int, int>> spans(int length, int max_side) {
 void validate(const ReferenceOptions& o) {
     validate_path_run(o.world, o.width, o.height, o.frames);
     if (o.supersample < 3 || o.supersample > 8)
-        engine::fail("sample_game: --supersample must be 3..8 (pixels per side averaged into one), got " +
+        engine::fail("sample_game_harness: --supersample must be 3..8 (pixels per side averaged into one), got " +
                      std::to_string(o.supersample));
-    if (o.max_render_side < 16) engine::fail("sample_game: reference: the largest render side must be at least 16");
+    if (o.max_render_side < 16)
+        engine::fail("sample_game_harness: reference: the largest render side must be at least 16");
     validate(o.settings);
     require_world_folder(o.world);
 }
@@ -97,7 +98,7 @@ ReferenceOutcome make_reference(const ReferenceOptions& o, std::FILE* progress) 
         outcome.cached = true;
         outcome.seconds = seconds_since(start);
         outcome.text = formatted(
-            "sample_game: reference: %s is there already (%zu frames, checked); nothing to do "
+            "sample_game_harness: reference: %s is there already (%zu frames, checked); nothing to do "
             "(--force makes it again)\n",
             outcome.folder.string().c_str(), key.frame_indices.size());
         return outcome;
@@ -128,7 +129,8 @@ ReferenceOutcome make_reference(const ReferenceOptions& o, std::FILE* progress) 
     write_reference(o.world, key, frames);
     outcome.seconds = seconds_since(start);
     outcome.text = formatted(
-        "sample_game: reference: %zu frames (%dx%d, %dx supersampled, baseline mode, every chunk resident) in %s; "
+        "sample_game_harness: reference: %zu frames (%dx%d, %dx supersampled, baseline mode, every chunk resident) in "
+        "%s; "
         "%.0f s in all (loading every chunk %.0f s, drawing %.0f s, %.1f s per frame)\n",
         key.frame_indices.size(), o.width, o.height, s, outcome.folder.string().c_str(), outcome.seconds,
         outcome.load_seconds, draw_seconds,

@@ -251,8 +251,8 @@ void SoakWalk::count_failures() {
         if (it == victims_.end()) {
             ++outcome_.failures_undamaged;
             if (progress_)
-                std::fprintf(progress_, "sample_game: soak: undamaged chunk failed: %s %s\n", event.chunk_id.c_str(),
-                             event.message.c_str());
+                std::fprintf(progress_, "sample_game_harness: soak: undamaged chunk failed: %s %s\n",
+                             event.chunk_id.c_str(), event.message.c_str());
         } else if (it->second == FaultKind::removed) {
             ++outcome_.failures_removed;
         } else if (it->second == FaultKind::truncated) {
@@ -339,7 +339,7 @@ const SoakLapEnd& SoakWalk::measure_lap_end(int lap, const engine::CameraView& c
 void SoakWalk::report_lap(const SoakLapEnd& end, bool faulted_lap, Clock::time_point lap_start) const {
     if (!progress_) return;
     std::fprintf(progress_,
-                 "sample_game: soak lap %d/%d (%.0f s%s): RSS %.1f MiB, GL %u objects %.2f MiB, streamed "
+                 "sample_game_harness: soak lap %d/%d (%.0f s%s): RSS %.1f MiB, GL %u objects %.2f MiB, streamed "
                  "%.1f MiB, %u failed chunks, %llu failures so far, settled in %u updates, %.1f dB vs lap 1\n",
                  end.lap, o_.laps, seconds_since(lap_start), faulted_lap ? ", chunk files damaged" : "",
                  mib(end.rss_bytes), end.gl_objects, mib(end.gl_bytes), mib(end.streamed_bytes), end.failed_chunks,
@@ -448,22 +448,22 @@ std::string summary_text(const SoakOptions& o, Clock::time_point start, const So
 }  // namespace
 
 void validate(const SoakOptions& o) {
-    if (o.world.empty()) engine::fail("sample_game: --world is required (a folder holding world.json)");
+    if (o.world.empty()) engine::fail("sample_game_harness: --world is required (a folder holding world.json)");
     if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
-        engine::fail("sample_game: --width and --height must be 16..16384");
+        engine::fail("sample_game_harness: --width and --height must be 16..16384");
     if (o.frames_per_lap < 20)
-        engine::fail("sample_game: --frames (per soak lap) must be at least 20, got " +
+        engine::fail("sample_game_harness: --frames (per soak lap) must be at least 20, got " +
                      std::to_string(o.frames_per_lap));
     if (o.laps < (o.faults ? 3 : 2))
-        engine::fail(std::string("sample_game: --laps must be at least ") + (o.faults ? "3 with faults" : "2") +
+        engine::fail(std::string("sample_game_harness: --laps must be at least ") + (o.faults ? "3 with faults" : "2") +
                      " (the first lap is the reference), got " + std::to_string(o.laps));
-    if (o.sample_every < 1) engine::fail("sample_game: the soak's sample interval must be at least 1 frame");
+    if (o.sample_every < 1) engine::fail("sample_game_harness: the soak's sample interval must be at least 1 frame");
     if (o.faults && o.settings.retry_failed_after_frames <= 0)
-        engine::fail("sample_game: a soak with faults needs retries (retry_failed_after_frames > 0)");
+        engine::fail("sample_game_harness: a soak with faults needs retries (retry_failed_after_frames > 0)");
     if (o.faults && o.settings.retry_failed_after_frames > kMaxRetryFrames)
-        engine::fail("sample_game: the soak's retry interval (" + std::to_string(o.settings.retry_failed_after_frames) +
-                     " frames) must be at most " + std::to_string(kMaxRetryFrames) +
-                     " frames, so that a lap end can wait for it");
+        engine::fail("sample_game_harness: the soak's retry interval (" +
+                     std::to_string(o.settings.retry_failed_after_frames) + " frames) must be at most " +
+                     std::to_string(kMaxRetryFrames) + " frames, so that a lap end can wait for it");
     validate(o.settings);
     require_world_folder(o.world);
 }
@@ -481,8 +481,8 @@ SoakOutcome run_soak(const SoakOptions& o, std::FILE* progress) {
     const auto& chunks = world.manifest().chunks;
     const std::vector<std::size_t> order = chunks_by_distance(chunks, poses.front().eye);
     if (o.faults && chunks.size() < 5)
-        engine::fail("sample_game: the soak's faults need a world of at least 5 chunks, " + o.world.string() + " has " +
-                     std::to_string(chunks.size()));
+        engine::fail("sample_game_harness: the soak's faults need a world of at least 5 chunks, " + o.world.string() +
+                     " has " + std::to_string(chunks.size()));
     std::optional<ChunkFaults> faults;
     if (o.faults) faults.emplace(world_folder, world.manifest());
 

@@ -26,13 +26,24 @@ VertexArray vertex_array(const Buffer& vertices, GLsizei stride, const Buffer& i
 // trilinearly and repeating; sampling returns linear values.
 Texture srgb_texture(int width, int height, const std::uint8_t* rgba, std::string_view label);
 
-// A uniform of `program` by name (nothing when the program has none of that name).
-void set_uniform(const Program& program, const char* name, const glm::mat4& value);
-void set_uniform(const Program& program, const char* name, const glm::mat3& value);
-void set_uniform(const Program& program, const char* name, const glm::vec4& value);
-void set_uniform(const Program& program, const char* name, const glm::vec3& value);
-void set_uniform(const Program& program, const char* name, std::span<const glm::vec3> values);
-void set_uniform(const Program& program, const char* name, int value);
+// A uniform of `program`, its location looked up once (−1, and setting it does nothing, when the program
+// has none of that name): look it up before a loop of draws, not in it.
+struct Uniform {
+    const Program* program = nullptr;
+    GLint location = -1;
+};
+Uniform uniform(const Program& program, const char* name);
+void set_uniform(const Uniform& uniform, const glm::mat4& value);
+void set_uniform(const Uniform& uniform, const glm::mat3& value);
+void set_uniform(const Uniform& uniform, const glm::vec4& value);
+void set_uniform(const Uniform& uniform, const glm::vec3& value);
+void set_uniform(const Uniform& uniform, std::span<const glm::vec3> values);
+void set_uniform(const Uniform& uniform, int value);
+// Once, by name.
+template <class T>
+void set_uniform(const Program& program, const char* name, const T& value) {
+    set_uniform(uniform(program, name), value);
+}
 
 // An opaque raster into `framebuffer` (`width` × `height`) with `program`: depth test (less), no blending,
 // no face culling, clockwise front faces when `clockwise_front` (a target whose Y is flipped). The state

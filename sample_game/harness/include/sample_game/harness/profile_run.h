@@ -53,7 +53,7 @@ struct ProfileOutcome {
     std::string plot_problem;  // why there are no plots, if there are none
 };
 
-// Throws engine::Error naming the option ("sample_game: --frames must be at least 10") or file.
+// Throws engine::Error naming the option ("sample_game_harness: --frames must be at least 10") or file.
 void validate(const ProfileOptions& options);
 // The checks every run along the path shares (the profile's and the reference's): a world folder,
 // an image of 16..16384 px per side and at least 10 path frames.

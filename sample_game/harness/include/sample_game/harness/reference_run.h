@@ -39,10 +39,10 @@ struct ReferenceOutcome {
     std::string text;  // what was done, for the console
 };
 
-// Throws engine::Error naming the option ("sample_game: --supersample must be 3..8").
+// Throws engine::Error naming the option ("sample_game_harness: --supersample must be 3..8").
 void validate(const ReferenceOptions& options);
 
-// Progress lines ("sample_game: reference frame 3/24 (canopy) ..., ETA 4m10s") go to `progress`.
+// Progress lines ("sample_game_harness: reference frame 3/24 (canopy) ..., ETA 4m10s") go to `progress`.
 ReferenceOutcome make_reference(const ReferenceOptions& options, std::FILE* progress);
 
 // Draws `camera` (any size) in tiles of at most max_side × max_side pixels and returns the whole

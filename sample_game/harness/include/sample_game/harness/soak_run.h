@@ -74,7 +74,7 @@ struct SoakOutcome {
     std::string plot_problem;
 };
 
-// Throws engine::Error naming the option ("sample_game: --laps must be at least 3 with faults").
+// Throws engine::Error naming the option ("sample_game_harness: --laps must be at least 3 with faults").
 void validate(const SoakOptions& options);
 
 // Progress lines go to `progress` (may be null). Needs a current GL context. Failed checks are
