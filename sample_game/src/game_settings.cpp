@@ -21,6 +21,7 @@ splat_lod::world::StreamerSettings streamer_settings(const GameSettings& s) {
     out.upload_budget_bytes_per_frame = s.upload_budget_bytes;
     out.memory_budget_bytes = s.memory_budget_bytes;
     out.gpu_sh_degree = s.sh_degree;
+    out.gpu_pages = splat_lod::page_layout(s.gpu_storage);
     out.rule = s.lod.rule;  // a streamer with the game's bus follows the published settings anyway
     out.load_distance_scale = s.load_distance_scale;
     out.group_cell_px = s.group_cell_px;

@@ -81,6 +81,7 @@ GameWorld::GameWorld(engine::Engine& engine, const std::filesystem::path& folder
     start_streamer(streamer_settings(settings_));
     const sw::StreamerSettings& s = streamer_->settings();
     const std::uint64_t page_bytes = sw::gpu_bytes(s.gpu_pages.page_gaussians, s.gpu_sh_degree, s.gpu_pages);
+    pass_->settings().gpu_storage = settings_.gpu_storage;  // before the reserve, which stores that way
     pass_->reserve(s.memory_budget_bytes / page_bytes * s.gpu_pages.page_gaussians, s.gpu_sh_degree);
     publish_lod_settings();
 }

@@ -19,7 +19,7 @@ struct GameCommandLine {
     std::string world = "out/world/default";
     int width = 0, height = 0, frames = -1;  // 0 / −1: the program's own default
     double memory_budget_mib = -1.0, upload_budget_mib = -1.0;
-    std::string mode, upscaler;
+    std::string mode, upscaler, gpu_storage;
     GameSettings settings;
 };
 
@@ -83,6 +83,8 @@ inline void add_streaming_options(CLI::App& app, GameCommandLine& c) {
     app.add_option("--sh-degree", c.settings.sh_degree, "SH degree stored on the GPU (the generated world has 0)")
         ->check(CLI::Range(0, 3))
         ->capture_default_str();
+    app.add_option("--gpu-storage", c.gpu_storage, "How the GPU stores Gaussians: compact (default) or full floats")
+        ->check(CLI::IsMember({"compact", "full"}));
 }
 
 // The world, the image, the field of view, the path, the LOD rule and the streamer. The help texts say
@@ -107,6 +109,8 @@ inline void apply(GameCommandLine& c) {
         c.settings.lod.rule.mode = enum_named<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, c.mode);
     if (!c.upscaler.empty())
         c.settings.lod.upscaler = enum_named<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, c.upscaler);
+    if (!c.gpu_storage.empty())
+        c.settings.gpu_storage = c.gpu_storage == "full" ? splat_lod::GpuStorage::full : splat_lod::GpuStorage::compact;
     if (c.memory_budget_mib > 0.0)
         c.settings.memory_budget_bytes = static_cast<std::uint64_t>(c.memory_budget_mib * static_cast<double>(kMiB));
     if (c.upload_budget_mib > 0.0)

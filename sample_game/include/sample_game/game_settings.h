@@ -25,6 +25,9 @@ struct GameSettings {
     std::uint64_t memory_budget_bytes = 384 * kMiB;
     std::uint64_t upload_budget_bytes = 8 * kMiB;
     int sh_degree = 0;  // SH degree the GPU stores (the generated world carries degree 0)
+    // How the GPU stores the Gaussians (docs/gpu_storage.md): compact, 20 bytes each at degree 0, or
+    // full floats, 76. The budgets above are bytes either way, so compact holds 3.8 times the Gaussians.
+    splat_lod::GpuStorage gpu_storage = splat_lod::GpuStorage::compact;
     // Loads levels this much earlier than the on-axis bound (chunk_streamer.h: off axis a Gaussian
     // covers up to ~1/cos²θ more pixels, 1.5–2.4 at the edges and corners of this lens).
     float load_distance_scale = 1.5f;

@@ -58,11 +58,14 @@ std::vector<splat_lod::eval::Sweep> parse_sweeps(const std::string& text, bool& 
             sweeps.push_back(Sweep::distance);
         else if (name == "upscale")
             sweeps.push_back(Sweep::upscale);
+        else if (name == "storage")
+            sweeps.push_back(Sweep::storage);
         else if (name == "temporal")
             temporal = true;
         else
-            engine::fail("--sweep: expected scale, distance, upscale, temporal (comma-separated) or both, got \"" +
-                         name + "\"");
+            engine::fail(
+                "--sweep: expected scale, distance, upscale, storage, temporal (comma-separated) or both, got \"" +
+                name + "\"");
     }
     return sweeps;
 }
@@ -177,9 +180,9 @@ int main(int argc, char** argv) {
     app.add_option("--methods", o.methods,
                    "comma-separated methods (baseline, baseline_mip, filter_small, insert_large, full, full_hard)");
     app.add_option("--sweep", o.sweeps,
-                   "comma-separated sweeps: scale, distance, upscale, temporal (both: scale,distance)");
+                   "comma-separated sweeps: scale, distance, upscale, storage, temporal (both: scale,distance)");
     app.add_option("--scales", o.scales, "downsampling factors per side; each must divide width and height");
-    app.add_option("--distances", o.distances, "dolly factors for the distance sweep");
+    app.add_option("--distances", o.distances, "dolly factors for the distance and storage sweeps");
     app.add_option("--out", o.out, "output folder")->required();
     app.add_option("--width", o.eval.width, "full-resolution width")->check(CLI::Range(1, 16384));
     app.add_option("--height", o.eval.height, "full-resolution height")->check(CLI::Range(1, 16384));

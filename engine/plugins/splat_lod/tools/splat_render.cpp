@@ -34,7 +34,7 @@ struct Options {
     float render_scale = 1.0f;
     std::string upscaler = "spline";
     unsigned tile = 16, low_res_tile = 8;
-    std::string raster_fetch = "automatic";
+    std::string raster_fetch = "automatic", gpu_storage = "compact";
     bool bbox_tiles = false, wide_sort_keys = false;
     std::string lod_mode = "full";
     float transition_band = plugin_msgs::LodRule::kDefaultTransitionBand;
@@ -50,6 +50,7 @@ void apply_settings(splat_lod::SplatPassSettings& settings, plugin_msgs::LodSett
                             : o.raster_fetch == "shared" ? splat_lod::RasterFetch::shared
                                                          : splat_lod::RasterFetch::automatic;
     settings.exact_tiles = !o.bbox_tiles;
+    settings.gpu_storage = o.gpu_storage == "full" ? splat_lod::GpuStorage::full : splat_lod::GpuStorage::compact;
     settings.compact_sort_keys = !o.wide_sort_keys;
     lod.rule.mode = plugin_msgs::detail::enum_from_json<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, o.lod_mode);
     lod.rule.transition_band = o.transition_band;
@@ -146,6 +147,8 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--raster-fetch", o.raster_fetch, "how the raster reads splats: automatic, texel or shared")
         ->check(CLI::IsMember({"automatic", "texel", "shared"}));
+    app.add_option("--gpu-storage", o.gpu_storage, "how the GPU stores Gaussians: compact or full (floats)")
+        ->check(CLI::IsMember({"compact", "full"}));
     app.add_flag("--bbox-tiles", o.bbox_tiles, "bin splats into every tile of their bounding box (to measure)");
     app.add_flag("--wide-sort-keys", o.wide_sort_keys, "sort (depth bits, tile) key pairs (to measure)");
     CLI11_PARSE(app, argc, argv);

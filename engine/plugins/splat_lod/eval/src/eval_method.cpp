@@ -104,6 +104,15 @@ Method native_method(const Method& mode) {
             }};
 }
 
+Method stored_as(const Method& method, GpuStorage storage) {
+    const auto configure_method = method.configure;
+    return {method.name, method.description,
+            [configure_method, storage](plugin_msgs::LodSettings& lod, SplatPassSettings& settings) {
+                if (configure_method) configure_method(lod, settings);
+                settings.gpu_storage = storage;
+            }};
+}
+
 namespace {
 
 // "full@B": `full` with a transition band of B octaves (to choose the band by measurement); none

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -144,6 +145,29 @@ std::string sheet_caption(const EvalOptions& o) {
            "average when shrinking, nearest neighbour when enlarging).*\n\n";
 }
 
+// The storage sweep: the compact storage against the same method drawn from full floats, per method
+// and distance, the worst view beside the mean (docs/gpu_storage.md: at least 45 dB wanted).
+std::string storage_section(const EvalResults& results) {
+    const auto& o = results.options;
+    std::ostringstream out;
+    out << "### Storage sweep\n\nEach method drawn from the compact GPU storage against the same method drawn "
+           "from full floats, at the distances of the distance sweep (\u221e: identical).\n\n"
+        << "| method | distance | PSNR, worst view | PSNR, mean | SSIM, mean | \u2265 45 dB "
+           "|\n|---|---|---|---|---|---|\n";
+    for (const Method& method : o.methods)
+        for (int d : o.distances) {
+            double worst = std::numeric_limits<double>::infinity();
+            for (const Measurement& row : results.rows)
+                if (row.sweep == Sweep::storage && row.method == method.name && row.factor == d && row.psnr)
+                    worst = std::min(worst, *row.psnr);
+            const Summary s = summarize(results, Sweep::storage, method.name, d);
+            out << "| " << method.name << " | " << d << "\u00d7 | " << format_db(worst) << " | " << format_db(s.psnr)
+                << " | " << (s.ssim ? format_fixed(*s.ssim, 4) : "\u2013") << " | "
+                << (worst >= 45.0 ? "\u2713" : "\u2717") << " |\n";
+        }
+    return out.str() + '\n';
+}
+
 std::string scale_section(const EvalResults& results) {
     const auto& o = results.options;
     std::ostringstream out;
@@ -274,6 +298,7 @@ void write_markdown_report(const EvalResults& results, const std::string& render
             << work_table(results, Sweep::distance, o.distances) << '\n';
     }
     if (has_sweep(results, Sweep::upscale)) out << upscale_section(results);
+    if (has_sweep(results, Sweep::storage)) out << storage_section(results);
     engine::write_text_file_atomic(path, out.str());
 }
 

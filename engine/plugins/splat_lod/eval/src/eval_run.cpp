@@ -165,6 +165,25 @@ void upscale_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, Pr
         for (const UpscalerVariant& variant : o.upscalers) measure(upscaled_method(mode, variant, f), f);
 }
 
+// The storage sweep at one view: every method at every distance of --distances drawn from the scene
+// stored as full floats (the reference: the trained values) and from the compact storage, which is
+// measured and scored against it (docs/gpu_storage.md).
+void storage_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, Progress& progress,
+                   EvalResults& results) {
+    const EvalOptions& o = results.options;
+    for (int d : o.distances) {
+        const engine::CameraView camera = make_view(dolly(pose, static_cast<float>(d)), o.width, o.height);
+        for (const Method& method : o.methods) {
+            progress.step(view, method.name, d, Sweep::storage);
+            const FloatImage reference = to_float(measurer.render(stored_as(method, GpuStorage::full), camera));
+            FrameMeasurement m = measurer.measure(stored_as(method, GpuStorage::compact), camera, o.frames, o.warmup);
+            Measurement row = make_row(o, Sweep::storage, view, pose, method.name, d, m);
+            score(row, reference, m.image);
+            results.rows.push_back(std::move(row));
+        }
+    }
+}
+
 void validate_upscale_options(const EvalOptions& o) {
     if (o.upscale_factors.empty()) engine::fail("--upscale-factors: no factor given");
     for (std::size_t i = 0; i < o.upscale_factors.size(); ++i) {
@@ -197,6 +216,7 @@ std::size_t measurements_per_view(const EvalOptions& o, Sweep sweep) {
         case Sweep::scale:
             return measured_methods(o, sweep).size() * o.scales.size();
         case Sweep::distance:
+        case Sweep::storage:
             return o.methods.size() * o.distances.size();
         case Sweep::upscale:
             return 1 + o.upscale_factors.size() * o.upscalers.size();
@@ -214,6 +234,8 @@ const char* sweep_name(Sweep sweep) {
             return "distance";
         case Sweep::upscale:
             return "upscale";
+        case Sweep::storage:
+            return "storage";
     }
     return "?";
 }
@@ -245,7 +267,7 @@ void validate_options(const EvalOptions& o) {
     if (o.frames < 1) engine::fail("--frames: at least one timed frame is needed");
     if (o.warmup < 0) engine::fail("--warmup: must not be negative");
     if (o.sweeps.empty()) engine::fail("--sweep: no sweep given");
-    if ((runs(o, Sweep::scale) || runs(o, Sweep::distance)) && o.methods.empty())
+    if ((runs(o, Sweep::scale) || runs(o, Sweep::distance) || runs(o, Sweep::storage)) && o.methods.empty())
         engine::fail("--methods: no method given");
     if (runs(o, Sweep::scale))
         for (int k : o.scales) check_scale(k, o.width, o.height, "--scales");
@@ -287,6 +309,10 @@ EvalResults run_evaluation(FrameMeasurer& measurer, const std::vector<CameraPose
             }
             if (sweep == Sweep::upscale) {
                 upscale_sweep(measurer, poses[v], static_cast<int>(v), progress, results);
+                continue;
+            }
+            if (sweep == Sweep::storage) {
+                storage_sweep(measurer, poses[v], static_cast<int>(v), progress, results);
                 continue;
             }
             References view_references = scale_sweep(measurer, poses[v], static_cast<int>(v), progress, results);

@@ -30,15 +30,22 @@ using plugin_msgs::StreamEvent;
 using plugin_msgs::StreamEventType;
 
 TEST(StreamPolicy, GpuBytesDistancesAndLoadDistances) {
-    EXPECT_EQ(sw::gpu_bytes(1, 3), 256u);
-    EXPECT_EQ(sw::gpu_bytes(10, 0), 760u);
-    // As the incremental GPU scene stores uploads: whole pages of 256 slots plus a 48-byte cluster.
+    // Compact slots: the 20-byte record and the higher SH bands a byte a coefficient, in words.
+    EXPECT_EQ(sw::gpu_bytes(1, 3), 20u + 48u);
+    EXPECT_EQ(sw::gpu_bytes(10, 0), 200u);
+    EXPECT_EQ(sw::gpu_bytes(1, 3, kFullSlots), 256u);
+    EXPECT_EQ(sw::gpu_bytes(10, 0, kFullSlots), 760u);
+    // As the incremental GPU scene stores uploads: whole pages of 256 slots plus a 48-byte cluster
+    // record, and when compact an 80-byte page codec.
     const sw::PageLayout pages;
     EXPECT_EQ(sw::gpu_bytes(0, 0, pages), 0u);
-    EXPECT_EQ(sw::gpu_bytes(1, 0, pages), 256u * 76u + 48u);
-    EXPECT_EQ(sw::gpu_bytes(300, 0, pages), 2u * (256u * 76u + 48u));
-    EXPECT_EQ(sw::max_gaussians_within(3u * (256u * 76u + 48u) - 1u, 0, pages), 512u);
+    EXPECT_EQ(sw::gpu_bytes(1, 0, pages), 256u * 20u + 128u);
+    EXPECT_EQ(sw::gpu_bytes(300, 0, pages), 2u * (256u * 20u + 128u));
+    EXPECT_EQ(sw::max_gaussians_within(3u * (256u * 20u + 128u) - 1u, 0, pages), 512u);
     EXPECT_EQ(sw::max_gaussians_within(100u, 0, pages), 0u);
+    const sw::PageLayout full = sw::page_layout(sw::GpuStorage::full);
+    EXPECT_EQ(sw::gpu_bytes(1, 0, full), 256u * 76u + 48u);
+    EXPECT_EQ(sw::max_gaussians_within(3u * (256u * 76u + 48u) - 1u, 0, full), 512u);
     const sw::ChunkEntry e = make_chunk(0, 0);
     EXPECT_EQ(sw::nearest_distance(e, {5.0f, 1.0f, 5.0f}), 0.0f);
     EXPECT_FLOAT_EQ(sw::nearest_distance(e, {13.0f, 1.0f, 14.0f}), 5.0f);

@@ -136,7 +136,7 @@ void RecordingSink::fade(const std::string& chunk, int level, float value) {
 sw::StreamerSettings sync_settings() {
     sw::StreamerSettings s;
     s.background_thread = false;
-    s.gpu_pages = {1, 0};  // per-Gaussian accounting keeps these tests' arithmetic exact
+    s.gpu_pages = kFullSlots;  // per-Gaussian accounting keeps these tests' arithmetic exact
     s.upload_budget_bytes_per_frame = 1ull << 30;
     s.memory_budget_bytes = 1ull << 30;
     s.max_requests_in_flight = 64;

@@ -31,8 +31,10 @@ namespace sw = splat_lod::world;
 inline constexpr int kGrid = 4;
 inline constexpr float kChunkSize = 10.0f;
 inline constexpr float kFocal = 100.0f;
-inline constexpr std::array<std::uint64_t, 4> kOwnCounts{640, 160, 40, 10};   // levels 1..4
-inline constexpr std::uint64_t kPerGaussian = sw::gpu_bytes_per_gaussian(3);  // 256
+inline constexpr std::array<std::uint64_t, 4> kOwnCounts{640, 160, 40, 10};  // levels 1..4
+// The streamer tests count full-storage bytes (256 a Gaussian at SH 3), which keeps their arithmetic round.
+inline constexpr sw::PageLayout kFullSlots{1, 0, sw::GpuStorage::full};
+inline constexpr std::uint64_t kPerGaussian = sw::gpu_bytes_per_gaussian(3, sw::GpuStorage::full);  // 256
 inline constexpr std::uint64_t kLevelBytes[5] = {0, 640 * 256, 160 * 256, 40 * 256, 10 * 256};
 inline constexpr double kLoadDistance[4] = {0.0, 15.0, 30.0, 60.0};  // levels 1..3
 
@@ -77,8 +79,8 @@ public:
     std::set<std::pair<std::string, int>> complete;
     std::uint64_t total = 0;
     std::uint64_t frame_bytes = 0;
-    std::set<std::string> throw_on;  // "chunk/level" keys whose upload throws
-    sw::PageLayout pages{1, 0};      // the streamer's (set by the harness)
+    std::set<std::string> throw_on;     // "chunk/level" keys whose upload throws
+    sw::PageLayout pages = kFullSlots;  // the streamer's (set by the harness)
 
     void upload(const sw::LevelPart& p) override;
     void release(const std::string& chunk, int level) override;

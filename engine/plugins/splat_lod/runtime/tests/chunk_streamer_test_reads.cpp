@@ -188,7 +188,7 @@ TEST(ChunkStreamer, StreamsRealChunkFilesAndReportsATruncatedOne) {
     }
     const sw::ChunkStatus near = streamer.chunk_status(0);
     EXPECT_EQ(near.finest_resident_level, 1);
-    EXPECT_EQ(near.resident_bytes, sw::gpu_bytes(30, 3));
+    EXPECT_EQ(near.resident_bytes, sw::gpu_bytes(30, 3, kFullSlots));
     const sw::ChunkStatus broken = streamer.chunk_status(1);
     EXPECT_TRUE(broken.failed);
     EXPECT_EQ(broken.finest_resident_level, 0);

@@ -59,10 +59,11 @@ TEST_F(SplatGpuSceneTest, ArrivingCloudsUploadOnlyTheirOwnBytes) {
     EXPECT_EQ(scene().last_upload_bytes(), 0u) << "an unchanged scene uploads nothing";
     const auto ab = incremental.render({a, b}, camera);
     const std::uint64_t second = scene().last_upload_bytes();
-    // Bytes per Gaussian slot: 64 (GpuGaussian) + 12 (SH degree 0) + a cluster record per 256.
+    // Bytes per Gaussian slot: the 20-byte compact record (no SH words at degree 0) + a cluster
+    // record and a page codec per 256.
     const auto slot_bytes = [](std::uint64_t count) {
         const std::uint64_t span = (count + 255) / 256 * 256;
-        return span * (64 + 12) + span / 256 * sizeof(splat_lod::gpu::GpuCluster);
+        return span * 20 + span / 256 * (sizeof(splat_lod::gpu::GpuCluster) + sizeof(splat_lod::gpu::GpuPageCodec));
     };
     EXPECT_EQ(first, slot_bytes(700));
     EXPECT_EQ(second, slot_bytes(300));
@@ -102,9 +103,9 @@ TEST_F(SplatGpuSceneTest, AHigherShDegreeRebuildsAndStaysCorrect) {
     with_sh.sh_rest_at(0, 1, 0) = 0.4f;
     const auto b = std::make_shared<const splat_lod::SplatCloud>(with_sh);
     incremental.render({a}, camera);
-    EXPECT_EQ(scene().sh_stride(), 3u);
+    EXPECT_EQ(scene().sh_stride(), 0u) << "compact degree 0: the DC term is in the record";
     const auto ab = incremental.render({a, b}, camera);
-    EXPECT_EQ(scene().sh_stride(), 12u);
+    EXPECT_EQ(scene().sh_stride(), 3u) << "degree 1: 9 bytes in 3 words";
     EXPECT_LE(max_difference(ab, from_scratch({a, b})), 1);
 }
 
@@ -127,11 +128,15 @@ TEST_F(SplatGpuSceneTest, CloudsSpreadOverScatteredPagesAndReservedBuffersDoNotG
     reserved.render({a}, camera);
     const_cast<splat_lod::gpu::GpuScene&>(reserved_pass->scene()).reserve(4096, 0);
     const auto& gpu = reserved_pass->scene();
-    const auto bytes = [&] { return gpu.gaussians().size() + gpu.sh().size() + gpu.clusters().size(); };
+    const auto bytes = [&] {
+        return gpu.gaussians().size() + gpu.sh().size() + gpu.clusters().size() + gpu.page_codecs().size();
+    };
     const std::size_t reserved_bytes = bytes();
-    EXPECT_EQ(reserved_bytes, 16u * gpu.page_bytes());
+    // Compact at degree 0 stores no SH; the SH buffer keeps one word for its binding.
+    EXPECT_EQ(gpu.sh().size(), 4u);
+    EXPECT_EQ(reserved_bytes, 16u * gpu.page_bytes() + 4u);
     reserved.render({a, b, c, d}, camera);
     reserved.render({d}, camera);
     reserved.render({a, b, c, d}, camera);
-    EXPECT_EQ(bytes(), reserved_bytes) << "the Gaussian, SH and cluster buffers never grew";
+    EXPECT_EQ(bytes(), reserved_bytes) << "the Gaussian, SH, cluster and codec buffers never grew";
 }

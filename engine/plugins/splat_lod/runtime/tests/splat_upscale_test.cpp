@@ -112,7 +112,9 @@ TEST_F(SplatUpscaleTest, LowResolutionDerivativesMatchTheReference) {
     ref::ReferenceSettings settings;
     settings.gradients = true;
     settings.dilation = 0.3 * s * s;
-    const ref::ReferenceInstance instance{cloud.get(), glm::dmat4(1.0), splat_lod::kMaxShDegree};
+    // The reference draws what the GPU scene stores: the compact records, decoded.
+    const splat_lod::SplatCloud stored = splat_lod::compact_round_trip(*cloud, cloud->sh_degree);
+    const ref::ReferenceInstance instance{&stored, glm::dmat4(1.0), splat_lod::kMaxShDegree};
     const auto low_camera = ref::scaled_camera(ref::make_reference_camera(camera), s);
     const up::GradientImage cpu =
         ref::to_gradient_image(ref::render_reference(std::span(&instance, 1), low_camera, settings));

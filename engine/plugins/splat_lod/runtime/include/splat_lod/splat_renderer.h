@@ -13,6 +13,7 @@
 
 #include "splat_lod/core/lod_selection.h"
 #include "splat_lod/core/upscale.h"
+#include "splat_lod/gpu_storage.h"
 #include "splat_lod/splat_lod_shared.h"
 
 namespace engine {
@@ -71,6 +72,10 @@ struct SplatPassSettings {
     // "Sort keys"); off only to measure what it saves.
     bool compact_sort_keys = true;
     RasterFetch raster_fetch = RasterFetch::automatic;
+    // How the scene's Gaussians are stored on the GPU (docs/gpu_storage.md): compact, 20 bytes a
+    // Gaussian plus a byte per higher SH coefficient, or full floats where every trained bit must
+    // reach the screen. A change re-uploads the scene.
+    GpuStorage gpu_storage = GpuStorage::compact;
 };
 
 // The GPU memory of the pass's scene: Gaussians live in fixed-size pages (docs/world_lod.md).
@@ -108,7 +113,7 @@ public:
     SplatMemory memory() const;
     // Allocates pages for `gaussians` Gaussians of SH degree `sh_degree` up front, so that streaming
     // within that budget never grows a buffer mid-walk.
-    void reserve(std::uint64_t gaussians, int sh_degree);
+    void reserve(std::uint64_t gaussians, int sh_degree);  // stored as settings().gpu_storage says
 
     // The low-resolution image of the latest frame rendered below render scale 1: colour, its
     // analytic gradients and the front depth (tests and evaluation; waits for the GPU).

@@ -7,13 +7,13 @@
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = SPLAT_PROJECT_WORKGROUP_SIZE) in;
-layout(std430, binding = SPLAT_BINDING_GAUSSIANS) readonly buffer Gaussians { GpuGaussian gaussians[]; };
 layout(std430, binding = SPLAT_BINDING_PROJECTED) buffer Projected { ProjectedSplat projected[]; };
 layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) buffer TileCounts { uint tile_counts[]; };
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
 layout(std430, binding = SPLAT_BINDING_BUDGET) readonly buffer Budget { SplatBudgetState budget; };
 
+#include "common_splat_storage.glsl"
 #include "common_splat_lod.glsl"
 #include "common_splat_tiles.glsl"
 
@@ -27,7 +27,7 @@ void main() {
     uint chosen = budget.choice.x, cut = budget.choice.y;
     if (lo <= chosen && chosen <= hi && cbin >= cut) {
         if (smooth_transitions()) {
-            vec4 lod = gaussians[index].lod;
+            vec4 lod = load_lod(index);
             float beta = chosen == 0u ? 1.0 : exp2(float(chosen) / SPLAT_BUDGET_BINS_PER_OCTAVE);
             float opacity = projected[index].mean_depth.w * lod_weight(level, projected[index].color.w / beta, lod.x, lod.y);
             if (!(opacity > 1.0 / 255.0)) {

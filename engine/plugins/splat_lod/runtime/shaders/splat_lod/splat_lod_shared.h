@@ -36,8 +36,12 @@ using mat4 = glm::mat4;
 #define SPLAT_LOD_TRANSITIONS 4u    // transition_band > 0 fades Gaussians at the rule's switches
 
 // Shader storage bindings.
-#define SPLAT_BINDING_GAUSSIANS 0    // GpuGaussian[N], static per cloud
-#define SPLAT_BINDING_SH 1           // float[N * sh_stride], static per cloud
+// The scene's Gaussians and SH in one of two storages (GpuStorage, splat_lod/gpu_storage.h): full,
+// GpuGaussian[N] and float[N * sh_stride]; compact (SPLAT_COMPACT_STORAGE), uint[N * 5], 20-byte records,
+// and uint[N * sh_stride], the higher SH bands at a byte per coefficient, decoded against the
+// GpuPageCodec of their page (splat_lod/core/compact_gaussians.h). Static per cloud.
+#define SPLAT_BINDING_GAUSSIANS 0
+#define SPLAT_BINDING_SH 1
 #define SPLAT_BINDING_INSTANCES 2    // GpuInstance[], per frame
 #define SPLAT_BINDING_PROJECTED 3    // ProjectedSplat[N], per frame
 #define SPLAT_BINDING_TILE_COUNTS 4  // uint[N + 1]: tiles touched; scanned in place into key offsets, total at [N]
@@ -48,13 +52,15 @@ using mat4 = glm::mat4;
 #define SPLAT_BINDING_ARGS 9         // uvec4: tile-range dispatch size (xyz) and keys in use (w)
 #define SPLAT_BINDING_CLUSTERS 10    // GpuCluster[ceil(N / SPLAT_PROJECT_WORKGROUP_SIZE)], static per scene
 #define SPLAT_BINDING_CLUSTER_LIST \
-    11                              // { uvec4 dispatch; uint ids[]; }: the clusters step 1b projects;
-                                    // dispatch = its indirect arguments (x = clusters kept; the
-                                    // CPU resets it to (0, 1, 1) each frame)
-#define SPLAT_BINDING_BUDGET 12     // SplatBudgetState: the splat budget's histograms and choice, per frame
-#define SPLAT_UNIFORM_FRAME 0       // FrameUniforms (uniform block binding)
-#define SPLAT_IMAGE_COLOR 0         // the frame's display-space colour (rgba8), read and written
-#define SPLAT_TEXTURE_VIEW_DEPTH 1  // the mesh pass's view depth (r32f), +inf where no mesh
+    11                                // { uvec4 dispatch; uint ids[]; }: the clusters step 1b projects;
+                                      // dispatch = its indirect arguments (x = clusters kept; the
+                                      // CPU resets it to (0, 1, 1) each frame)
+#define SPLAT_BINDING_BUDGET 12       // SplatBudgetState: the splat budget's histograms and choice, per frame
+#define SPLAT_BINDING_PAGE_CODECS 13  // GpuPageCodec[pages], compact storage only, static per scene
+#define SPLAT_COMPACT_WORDS 5         // 32-bit words of one compact record
+#define SPLAT_UNIFORM_FRAME 0         // FrameUniforms (uniform block binding)
+#define SPLAT_IMAGE_COLOR 0           // the frame's display-space colour (rgba8), read and written
+#define SPLAT_TEXTURE_VIEW_DEPTH 1    // the mesh pass's view depth (r32f), +inf where no mesh
 // Buffer textures over the projected splats (rgba32f, 4 texels a splat) and the sorted values (r32ui),
 // read by the raster with SplatPassSettings::raster_fetch = texel.
 #define SPLAT_TEXTURE_PROJECTED 2
@@ -70,6 +76,9 @@ using mat4 = glm::mat4;
 #define SPLAT_TEXTURE_KEY_OFFSETS 8
 // ... and the sorted keys (rg32ui) for the tile-ranges pass.
 #define SPLAT_TEXTURE_SORTED_KEYS 9
+// With compact storage the project pass's views are the records and SH words (r32ui) and the page
+// codecs (rgba32ui, 5 texels each).
+#define SPLAT_TEXTURE_PAGE_CODECS 10
 // Below render scale 1 (docs/algorithms.md §5) the raster writes these low-resolution images (rgba32f:
 // premultiplied colour C and alpha A, and their ∂/∂x, ∂/∂y, ∂²/∂x∂y per low-res pixel; r32f: the
 // view depth where the transmittance first falls below ½, else the depth the texel was cut at),
@@ -115,6 +124,16 @@ SPLAT_LOD_STRUCT(GpuGaussian) {
     vec4 covariance_a;      // Σ xx, xy, xz, yy
     vec4 covariance_b;      // Σ yz, zz, w = uintBitsToFloat(instance index)
     vec4 lod;               // x coverage_min, y coverage_max, z level (1..4), w unused
+};
+
+// The ranges one page's compact records are quantised against (CompactPage in
+// splat_lod/core/compact_gaussians.h, which states the record's bits).
+SPLAT_LOD_STRUCT(GpuPageCodec) {
+    vec4 position_lo;    // xyz, w: the log-scales' lo
+    vec4 position_step;  // xyz, w: the log-scales' step
+    vec4 colour_lo;      // rgb (the DC term as colour), w: lo of log2 of the coverage bounds
+    vec4 colour_step;    // rgb, w: the coverage bounds' step
+    vec4 sh_step;        // xyz: bands 1, 2, 3; w: the page's instance index as float bits
 };
 
 // One splat component this frame.
@@ -166,7 +185,7 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     uint cluster_skipping;       // 1: step 1a skips clusters that are all too small
     uint frustum_culling;        // 1: step 1a culls clusters outside the view
     uint gaussian_count;         // Gaussians in the scene's buffers (pages included)
-    uint sh_stride;              // floats of SH per Gaussian
+    uint sh_stride;              // SH per Gaussian: floats (full storage) or words (compact)
     uint key_capacity;           // (depth, tile) keys the key buffer holds
     uint instance_count;         // GpuInstance records
     uvec2 tiles;                 // tiles_x, tiles_y

@@ -6,8 +6,6 @@
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = SPLAT_PROJECT_WORKGROUP_SIZE) in;
-layout(std430, binding = SPLAT_BINDING_GAUSSIANS) readonly buffer Gaussians { GpuGaussian gaussians[]; };
-layout(std430, binding = SPLAT_BINDING_SH) readonly buffer ShCoefficients { float sh[]; };
 layout(std430, binding = SPLAT_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
 layout(std430, binding = SPLAT_BINDING_PROJECTED) writeonly buffer Projected { ProjectedSplat projected[]; };
 layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) writeonly buffer TileCounts { uint tile_counts[]; };
@@ -17,29 +15,19 @@ layout(std430, binding = SPLAT_BINDING_BUDGET) buffer Budget { SplatBudgetState 
 
 #ifdef SPLAT_INPUT_TEXELS
 // On CPU drivers a storage-buffer load is a loop over the SIMD lanes and a texel fetch one gather
-// (docs/algorithms.md §1): the same inputs read through buffer textures, as unsigned words (bit-exact).
-layout(binding = SPLAT_TEXTURE_GAUSSIANS) uniform usamplerBuffer gaussian_texels;  // rgba32ui, 4 per Gaussian
-layout(binding = SPLAT_TEXTURE_SH) uniform usamplerBuffer sh_texels;              // rgb32ui, 1 per coefficient
+// (docs/algorithms.md §1): the instances read through a buffer texture, as unsigned words (bit-exact),
+// like the Gaussians (common_splat_storage.glsl).
 layout(binding = SPLAT_TEXTURE_INSTANCES) uniform usamplerBuffer instance_texels;  // rgba32ui, 9 per instance
-vec4 fetch_vec4(usamplerBuffer t, int i) { return uintBitsToFloat(texelFetch(t, i)); }
-GpuGaussian load_gaussian(uint index) {
-    int b = int(index) * 4;
-    return GpuGaussian(fetch_vec4(gaussian_texels, b), fetch_vec4(gaussian_texels, b + 1),
-                       fetch_vec4(gaussian_texels, b + 2), fetch_vec4(gaussian_texels, b + 3));
-}
 GpuInstance load_instance(uint index) {
     int b = int(index) * 9;
-    mat4 model = mat4(fetch_vec4(instance_texels, b), fetch_vec4(instance_texels, b + 1),
-                      fetch_vec4(instance_texels, b + 2), fetch_vec4(instance_texels, b + 3));
-    mat4 rotation_inverse = mat4(fetch_vec4(instance_texels, b + 4), fetch_vec4(instance_texels, b + 5),
-                                 fetch_vec4(instance_texels, b + 6), fetch_vec4(instance_texels, b + 7));
-    return GpuInstance(model, rotation_inverse, texelFetch(instance_texels, b + 8));
+    vec4 c[8];
+    for (int k = 0; k < 8; ++k) c[k] = uintBitsToFloat(texelFetch(instance_texels, b + k));
+    return GpuInstance(mat4(c[0], c[1], c[2], c[3]), mat4(c[4], c[5], c[6], c[7]), texelFetch(instance_texels, b + 8));
 }
-#define SPLAT_SH_COEFFICIENT(base, k) uintBitsToFloat(texelFetch(sh_texels, int((base) / 3u + (k))).rgb)
 #else
-GpuGaussian load_gaussian(uint index) { return gaussians[index]; }
 GpuInstance load_instance(uint index) { return instances[index]; }
 #endif
+#include "common_splat_storage.glsl"
 #include "common_splat_sh.glsl"
 #include "common_splat_lod.glsl"
 #include "common_splat_tiles.glsl"
@@ -153,9 +141,8 @@ uint project(uint index) {
         }
     }
 
-    uint sh_base = index * frame.sh_stride;
     vec3 direction = normalize(mat3(inst.rotation_inverse) * (world - frame.camera_position));
-    vec3 color = evaluate_sh(sh_base, inst.info.z & SPLAT_INSTANCE_SH_DEGREE_MASK, direction);
+    vec3 color = evaluate_sh(index, inst.info.z & SPLAT_INSTANCE_SH_DEGREE_MASK, direction);
     if (frame.level_colouring != 0u) color = level_colour(level, color);  // debug view
 
     if (budgeted) {

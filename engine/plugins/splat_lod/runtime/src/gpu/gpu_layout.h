@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include <splat_lod/splat_lod_shared.h>
+#include "splat_lod/core/compact_gaussians.h"
 #include "splat_lod/core/lod_selection.h"
 #include "splat_lod/msgs/lod_settings.h"
 
@@ -15,6 +16,8 @@ static_assert(offsetof(GpuGaussian, lod) == 48);
 static_assert(sizeof(GpuInstance) == 144);
 static_assert(offsetof(GpuInstance, info) == 128);
 static_assert(sizeof(GpuCluster) == 48);
+static_assert(sizeof(GpuPageCodec) == 80);
+static_assert(SPLAT_COMPACT_WORDS == kCompactWords && SPLAT_PROJECT_WORKGROUP_SIZE == kCompactPageSize);
 static_assert(sizeof(ProjectedSplat) == 64);
 static_assert(offsetof(ProjectedSplat, tile_rect) == 48);
 static_assert(sizeof(FrameUniforms) == 224);

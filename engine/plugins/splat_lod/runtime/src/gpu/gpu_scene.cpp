@@ -13,6 +13,7 @@
 #include "engine/core/log.h"
 #include "engine/gl/compute_step.h"
 #include "engine/scene/node.h"
+#include "splat_lod/core/compact_gaussians.h"
 #include "splat_lod/core/gaussian_extent.h"
 #include "splat_lod/gpu_storage.h"
 #include "splat_lod/splat_component.h"
@@ -35,19 +36,6 @@ glm::mat4 inverse_rotation(const glm::mat4& model) {
     return glm::mat4(glm::transpose(r));
 }
 
-// Readers already drop such Gaussians (sanitise()); clouds made in code may still hold them.
-bool drawable(const SplatCloud& cloud, std::size_t i, std::size_t sh_stride_floats) {
-    const Rotation& q = cloud.rotations[i];
-    const double norm = std::sqrt(double(q.w) * q.w + double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z);
-    bool finite = std::isfinite(norm) && norm > 1e-12 && std::isfinite(cloud.opacity_logits[i]);
-    for (int c = 0; c < 3; ++c)
-        finite = finite && std::isfinite(cloud.positions[i][c]) && std::isfinite(cloud.log_scales[i][c]) &&
-                 std::isfinite(cloud.sh_dc[i][c]);
-    for (std::size_t k = 0; k < sh_stride_floats && finite; ++k)
-        finite = std::isfinite(cloud.sh_rest[i * sh_stride_floats + k]);
-    return finite;
-}
-
 }  // namespace
 
 std::size_t pack_gaussians(const SplatCloud& cloud, std::uint32_t instance, std::vector<GpuGaussian>& out) {
@@ -55,7 +43,7 @@ std::size_t pack_gaussians(const SplatCloud& cloud, std::uint32_t instance, std:
     const float instance_bits = std::bit_cast<float>(instance);
     std::size_t dropped = 0;
     for (std::size_t i = 0; i < cloud.size(); ++i) {
-        if (!drawable(cloud, i, cloud.sh_rest_stride())) {
+        if (!gaussian_is_drawable(cloud, i)) {
             // Kept in place (indices stay aligned with the SH buffer) but never drawn: opacity 0.
             GpuGaussian g{};
             g.covariance_b.w = instance_bits;
@@ -98,6 +86,28 @@ void pack_sh(const SplatCloud& cloud, int degree, std::uint32_t stride, std::vec
     }
 }
 
+void pack_compact(const SplatCloud& cloud, int degree, std::uint32_t instance, std::vector<std::uint32_t>& records,
+                  std::vector<std::uint32_t>& sh, std::vector<GpuPageCodec>& codecs) {
+    constexpr std::size_t size = SPLAT_PROJECT_WORKGROUP_SIZE;
+    const std::size_t pages = std::max<std::size_t>((cloud.size() + size - 1) / size, 1);
+    const std::uint32_t sh_words = compact_sh_words(degree);
+    records.assign(pages * size * kCompactWords, 0u);  // padding: opacity 0, never drawn
+    sh.assign(pages * size * sh_words, 0u);
+    codecs.assign(pages, GpuPageCodec{});
+    for (std::size_t page = 0; page < pages; ++page) {
+        const CompactPage p = fit_compact_page(cloud, page * size, size, degree);
+        codecs[page] =
+            GpuPageCodec{glm::vec4(p.position_lo, p.log_scale_lo), glm::vec4(p.position_step, p.log_scale_step),
+                         glm::vec4(p.colour_lo, p.coverage_lo), glm::vec4(p.colour_step, p.coverage_step),
+                         glm::vec4(p.sh_step, std::bit_cast<float>(instance))};
+        for (std::size_t i = page * size; i < std::min((page + 1) * size, cloud.size()); ++i) {
+            const CompactRecord r = encode_compact(cloud, i, p);
+            std::copy(r.begin(), r.end(), records.begin() + static_cast<std::ptrdiff_t>(i * kCompactWords));
+            encode_compact_sh(cloud, i, p, degree, std::span(sh).subspan(i * sh_words, sh_words));
+        }
+    }
+}
+
 namespace {
 
 // The clusters' spheres, a second pass over each cluster's members: the centre of their bounding
@@ -110,7 +120,7 @@ void fit_spheres(const std::vector<const SplatCloud*>& clouds, std::vector<GpuCl
     std::vector<glm::vec3> hi(clusters.size(), glm::vec3(std::numeric_limits<float>::lowest()));
     for (const SplatCloud* cloud : clouds)
         for (std::size_t i = 0; i < cloud->size(); ++i, ++global)
-            if (drawable(*cloud, i, cloud->sh_rest_stride())) {
+            if (gaussian_is_drawable(*cloud, i)) {
                 lo[global / size] = glm::min(lo[global / size], cloud->positions[i]);
                 hi[global / size] = glm::max(hi[global / size], cloud->positions[i]);
             }
@@ -120,7 +130,7 @@ void fit_spheres(const std::vector<const SplatCloud*>& clouds, std::vector<GpuCl
         clusters[c].sphere = glm::vec4(lo[c].x <= hi[c].x ? 0.5f * (lo[c] + hi[c]) : glm::vec3(0.0f), 0.0f);
     for (const SplatCloud* cloud : clouds)
         for (std::size_t i = 0; i < cloud->size(); ++i, ++global)
-            if (drawable(*cloud, i, cloud->sh_rest_stride())) {
+            if (gaussian_is_drawable(*cloud, i)) {
                 const std::size_t c = global / size;
                 radius[c] =
                     std::max(radius[c], glm::length(glm::dvec3(cloud->positions[i]) - glm::dvec3(clusters[c].sphere)));
@@ -155,7 +165,7 @@ std::vector<GpuCluster> build_clusters(const std::vector<const SplatCloud*>& clo
                 c.bounds.w = -1.0f;  // spans two instances: never skipped
             }
             c.bounds.z = std::max(c.bounds.z, cloud.lod_level.empty() ? 1.0f : static_cast<float>(cloud.lod_level[i]));
-            if (!drawable(cloud, i, cloud.sh_rest_stride())) continue;  // never drawn: no bound needed
+            if (!gaussian_is_drawable(cloud, i)) continue;  // never drawn: no bound needed
             // The shorter chord's bound (world/gaussian_extent.h): coverage ≤ 2·e·‖M‖₂·‖J‖₂.
             const double extent = world::gaussian_extent(cloud.log_scales[i], cloud.opacity_logits[i]);
             c.bounds.x = std::max(c.bounds.x, static_cast<float>(extent));
@@ -200,7 +210,8 @@ namespace {
 constexpr std::uint32_t kCluster = SPLAT_PROJECT_WORKGROUP_SIZE;
 // What this scene tells budgeters its pages cost (splat_lod/gpu_storage.h) is how it stores them.
 static_assert(PageLayout{}.page_gaussians == kCluster);
-static_assert(PageLayout{}.page_overhead_bytes == sizeof(GpuCluster));
+static_assert(page_layout(GpuStorage::full).page_overhead_bytes == sizeof(GpuCluster));
+static_assert(PageLayout{}.page_overhead_bytes == sizeof(GpuCluster) + sizeof(GpuPageCodec));
 
 // A cluster with no members: step 1a drops it in every mode (sphere radius < 0).
 GpuCluster empty_cluster() {
@@ -226,30 +237,38 @@ std::uint32_t GpuScene::pages_in_use() const {
     return n;
 }
 
-std::uint64_t GpuScene::page_bytes() const {
-    return std::uint64_t(kCluster) * (sizeof(GpuGaussian) + sh_stride_ * sizeof(float)) + sizeof(GpuCluster);
+std::size_t GpuScene::record_bytes() const {
+    return storage_ == GpuStorage::compact ? kCompactWords * sizeof(std::uint32_t) : sizeof(GpuGaussian);
 }
 
-void GpuScene::reserve(std::uint64_t gaussians, int sh_degree) {
+std::uint64_t GpuScene::page_bytes() const {
+    const std::size_t codec = storage_ == GpuStorage::compact ? sizeof(GpuPageCodec) : 0;
+    return std::uint64_t(kCluster) * (record_bytes() + sh_stride_ * sizeof(float)) + sizeof(GpuCluster) + codec;
+}
+
+void GpuScene::reserve(std::uint64_t gaussians, int sh_degree, GpuStorage storage) {
     if (sh_degree < 0 || sh_degree > kMaxShDegree)
         engine::fail("splat_lod: SH degree " + std::to_string(sh_degree) + " is not 0..3");
     const std::uint64_t pages = (gaussians + kCluster - 1) / kCluster;
     if (pages * kCluster > std::numeric_limits<std::uint32_t>::max() / 2)
         engine::fail("splat_lod: cannot reserve " + std::to_string(gaussians) + " Gaussians");
-    if (sh_degree > sh_degree_) reset(sh_degree);
+    if (sh_degree > sh_degree_ || storage != storage_) reset(std::max(sh_degree, sh_degree_), storage);
     if (pages * kCluster > capacity_) grow(static_cast<std::uint32_t>(pages * kCluster));
 }
 
-void GpuScene::reset(int sh_degree) {
+void GpuScene::reset(int sh_degree, GpuStorage storage) {
     slots_.clear();
     free_.clear();
     capacity_ = 0;
     gaussian_count_ = 0;
     sh_degree_ = sh_degree;
-    sh_stride_ = static_cast<std::uint32_t>(3 * (sh_degree + 1) * (sh_degree + 1));
+    storage_ = storage;
+    sh_stride_ = storage == GpuStorage::compact ? compact_sh_words(sh_degree)
+                                                : static_cast<std::uint32_t>(3 * (sh_degree + 1) * (sh_degree + 1));
     gaussians_ = engine::gl::Buffer(engine::gl::NoCreate);
     sh_ = engine::gl::Buffer(engine::gl::NoCreate);
     clusters_ = engine::gl::Buffer(engine::gl::NoCreate);
+    codecs_ = engine::gl::Buffer(engine::gl::NoCreate);
 }
 
 // Grows the buffers to `capacity` Gaussian slots (whole pages), keeping their contents (a
@@ -261,8 +280,11 @@ void GpuScene::grow(std::uint32_t capacity) {
         if (buffer && buffer.size() > 0) engine::gl::copy_buffer(buffer, bigger, buffer.size());
         buffer = std::move(bigger);
     };
-    regrow(gaussians_, std::size_t(capacity) * sizeof(GpuGaussian), "splat gaussians");
-    regrow(sh_, std::size_t(capacity) * sh_stride_ * sizeof(float), "splat sh");
+    regrow(gaussians_, std::size_t(capacity) * record_bytes(), "splat gaussians");
+    // At least one word: compact storage at degree 0 has no SH bytes, but the binding needs a buffer.
+    regrow(sh_, std::max<std::size_t>(std::size_t(capacity) * sh_stride_ * sizeof(float), 4), "splat sh");
+    if (storage_ == GpuStorage::compact)
+        regrow(codecs_, std::max<std::size_t>(capacity / kCluster, 1) * sizeof(GpuPageCodec), "splat page codecs");
     // New clusters start empty so that pages beyond the end are never drawn.
     const std::size_t old_clusters = capacity_ / kCluster;
     regrow(clusters_, std::max<std::size_t>(capacity / kCluster, 1) * sizeof(GpuCluster), "splat clusters");
@@ -314,42 +336,61 @@ void GpuScene::place(Slot& slot) {
     const SplatCloud& cloud = *slot.cloud;
     const auto instance = static_cast<std::uint32_t>(&slot - slots_.data());
     const std::size_t pages = std::max<std::size_t>((cloud.size() + kCluster - 1) / kCluster, 1);
-    std::vector<GpuGaussian> gaussians;
-    slot.dropped = pack_gaussians(cloud, instance, gaussians);
-    GpuGaussian padding{};
-    padding.covariance_b.w = std::bit_cast<float>(instance);
-    gaussians.resize(pages * kCluster, padding);
-    std::vector<float> sh;
-    pack_sh(cloud, slot.sh_degree, sh_stride_, sh);
-    sh.resize(pages * kCluster * sh_stride_, 0.0f);
-    std::vector<GpuCluster> clusters = build_clusters({&cloud});
-    clusters.resize(pages, empty_cluster());
-    for (GpuCluster& c : clusters)
-        if (c.bounds.w >= 0.0f) c.bounds.w = std::bit_cast<float>(instance);
     slot.pages.clear();
     for (std::size_t j = 0; j < pages; ++j) slot.pages.push_back(allocate_page());
-    for (std::size_t j = 0; j < pages;) {
-        std::size_t run = 1;
-        while (j + run < pages && slot.pages[j + run] == slot.pages[j] + run) ++run;
-        const std::size_t page = slot.pages[j];
-        gaussians_.upload(page * kCluster * sizeof(GpuGaussian), run * kCluster * sizeof(GpuGaussian),
-                          &gaussians[j * kCluster]);
-        sh_.upload(page * kCluster * sh_stride_ * sizeof(float), run * kCluster * sh_stride_ * sizeof(float),
-                   &sh[j * kCluster * sh_stride_]);
-        clusters_.upload(page * sizeof(GpuCluster), run * sizeof(GpuCluster), &clusters[j]);
-        j += run;
+    if (storage_ == GpuStorage::compact) {
+        std::vector<std::uint32_t> records, sh;
+        std::vector<GpuPageCodec> codecs;
+        pack_compact(cloud, slot.sh_degree, instance, records, sh, codecs);
+        slot.dropped = 0;
+        for (std::size_t i = 0; i < cloud.size(); ++i) slot.dropped += gaussian_is_drawable(cloud, i) ? 0 : 1;
+        upload_pages(slot, records.data(), sh.data(), codecs.data());
+    } else {
+        std::vector<GpuGaussian> gaussians;
+        slot.dropped = pack_gaussians(cloud, instance, gaussians);
+        GpuGaussian padding{};
+        padding.covariance_b.w = std::bit_cast<float>(instance);
+        gaussians.resize(pages * kCluster, padding);
+        std::vector<float> sh;
+        pack_sh(cloud, slot.sh_degree, sh_stride_, sh);
+        sh.resize(pages * kCluster * sh_stride_, 0.0f);
+        upload_pages(slot, gaussians.data(), sh.data(), nullptr);
     }
     last_upload_bytes_ += pages * page_bytes();
     slot.coarsest = 1;
     for (const std::uint8_t level : cloud.lod_level) slot.coarsest = std::max<std::uint32_t>(slot.coarsest, level);
 }
 
-bool GpuScene::update(const std::vector<const SplatComponent*>& components) {
+// Runs of adjacent pages go up in one call each; every page gets its cluster record.
+void GpuScene::upload_pages(const Slot& slot, const void* records, const void* sh, const void* codecs) {
+    std::vector<GpuCluster> clusters = build_clusters({slot.cloud.get()});
+    const auto instance = static_cast<std::uint32_t>(&slot - slots_.data());
+    clusters.resize(slot.pages.size(), empty_cluster());
+    for (GpuCluster& c : clusters)
+        if (c.bounds.w >= 0.0f) c.bounds.w = std::bit_cast<float>(instance);
+    const std::size_t record_page = kCluster * record_bytes(), sh_page = kCluster * sh_stride_ * sizeof(float);
+    const auto* record_bytes_in = static_cast<const std::byte*>(records);
+    const auto* sh_bytes_in = static_cast<const std::byte*>(sh);
+    for (std::size_t j = 0; j < slot.pages.size();) {
+        std::size_t run = 1;
+        while (j + run < slot.pages.size() && slot.pages[j + run] == slot.pages[j] + run) ++run;
+        const std::size_t page = slot.pages[j];
+        gaussians_.upload(page * record_page, run * record_page, record_bytes_in + j * record_page);
+        if (sh_page > 0) sh_.upload(page * sh_page, run * sh_page, sh_bytes_in + j * sh_page);
+        clusters_.upload(page * sizeof(GpuCluster), run * sizeof(GpuCluster), &clusters[j]);
+        if (codecs != nullptr)
+            codecs_.upload(page * sizeof(GpuPageCodec), run * sizeof(GpuPageCodec),
+                           static_cast<const GpuPageCodec*>(codecs) + j);
+        j += run;
+    }
+}
+
+bool GpuScene::update(const std::vector<const SplatComponent*>& components, GpuStorage storage) {
     last_upload_bytes_ = 0;
     int max_degree = 0;
     for (const auto* c : components) max_degree = std::max(max_degree, drawn_degree(*c));
-    // More SH coefficients than the buffers hold: start over at the new stride.
-    if (max_degree > sh_degree_) reset(max_degree);
+    // More SH coefficients than the buffers hold, or another storage: start over.
+    if (max_degree > sh_degree_ || storage != storage_) reset(std::max(max_degree, sh_degree_), storage);
 
     std::vector<std::int64_t> slot_of(components.size(), -1);
     std::vector<bool> kept(slots_.size(), false);

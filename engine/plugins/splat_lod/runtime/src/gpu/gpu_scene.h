@@ -10,6 +10,7 @@
 #include "engine/gl/objects.h"
 #include "gpu/gpu_layout.h"
 #include "splat_lod/core/splat_cloud.h"
+#include "splat_lod/gpu_storage.h"
 
 namespace splat_lod {
 
@@ -23,6 +24,11 @@ namespace gpu {
 std::size_t pack_gaussians(const SplatCloud& cloud, std::uint32_t instance, std::vector<GpuGaussian>& out);
 // Appends the SH coefficients up to `degree` (DC first), `stride` floats per Gaussian.
 void pack_sh(const SplatCloud& cloud, int degree, std::uint32_t stride, std::vector<float>& out);
+// The compact storage of one cloud (splat_lod/core/compact_gaussians.h) in pages of
+// SPLAT_PROJECT_WORKGROUP_SIZE, the last padded with never-drawn records: kCompactWords words per
+// Gaussian, `sh_words` per Gaussian of SH bands 1..degree, and one codec per page tagged with `instance`.
+void pack_compact(const SplatCloud& cloud, int degree, std::uint32_t instance, std::vector<std::uint32_t>& records,
+                  std::vector<std::uint32_t>& sh, std::vector<GpuPageCodec>& codecs);
 
 // The clusters of the project pass's workgroups over the packed Gaussians of `clouds` (concatenated
 // in order, as pack_gaussians packs them): bounding sphere, largest visible extent, smallest
@@ -39,38 +45,43 @@ float spectral_norm(const glm::mat3& m);
 // GPU-side copy when full); removing one marks its clusters empty, which step 1a drops in every
 // mode. This is what makes streaming affordable: a chunk level that arrives costs its own bytes,
 // not a re-upload of the scene. Only a cloud needing more SH coefficients than the buffers hold
-// rebuilds everything.
+// rebuilds everything, as does a change of storage.
 class GpuScene {
 public:
     // Uploads the clouds that are new since the last call, frees those that are gone, and
-    // refreshes the instance transforms. Returns true when anything was uploaded or freed.
-    bool update(const std::vector<const SplatComponent*>& components);
+    // refreshes the instance transforms, storing Gaussians as `storage` says. Returns true when
+    // anything was uploaded or freed.
+    bool update(const std::vector<const SplatComponent*>& components, GpuStorage storage = GpuStorage::compact);
+    GpuStorage storage() const { return storage_; }
 
     // Gaussian slots up to the end of the last page in use (what step 1a walks).
     std::uint32_t gaussian_count() const { return gaussian_count_; }
     std::uint32_t instance_count() const { return static_cast<std::uint32_t>(slots_.size()); }
-    std::uint32_t sh_stride() const { return sh_stride_; }
+    std::uint32_t sh_stride() const { return sh_stride_; }            // floats (full) or words (compact) per Gaussian
     std::uint32_t coarsest_level() const { return coarsest_level_; }  // highest LOD level present
     std::size_t dropped() const { return dropped_; }                  // not drawable (NaN/Inf, zero rotation)
-    std::size_t resident_bytes() const { return gaussians_.size() + sh_.size() + instances_.size() + clusters_.size(); }
+    std::size_t resident_bytes() const {
+        return gaussians_.size() + sh_.size() + instances_.size() + clusters_.size() + codecs_.size();
+    }
     // Bytes sent to the GPU by the last update() for Gaussians, SH and clusters (GPU-side copies
     // when the buffers grow are not uploads and are not counted).
     std::uint64_t last_upload_bytes() const { return last_upload_bytes_; }
     // Gaussians of the resident clouds (without the padding of their last pages).
     std::uint64_t live_gaussians() const;
-    // Pages in use and free below the end; bytes one page costs (Gaussians, SH, cluster record).
+    // Pages in use and free below the end; bytes one page costs (Gaussians, SH, cluster record, codec).
     std::uint32_t pages_in_use() const;
     std::uint32_t free_pages() const { return static_cast<std::uint32_t>(free_.size()); }
     std::uint64_t page_bytes() const;
     // Makes room for `gaussians` slots (rounded up to pages) with SH up to `sh_degree` now, so that
     // a streamed world of a known budget never grows or rebuilds the buffers while running. A
     // higher degree than the resident one starts the scene over (what update() would do).
-    void reserve(std::uint64_t gaussians, int sh_degree);
+    void reserve(std::uint64_t gaussians, int sh_degree, GpuStorage storage = GpuStorage::compact);
 
     const engine::gl::Buffer& gaussians() const { return gaussians_; }
     const engine::gl::Buffer& sh() const { return sh_; }
     const engine::gl::Buffer& instances() const { return instances_; }
     const engine::gl::Buffer& clusters() const { return clusters_; }
+    const engine::gl::Buffer& page_codecs() const { return codecs_; }  // compact storage only
 
 private:
     struct Slot {  // one instance index; `cloud` null when free
@@ -80,7 +91,10 @@ private:
         std::uint32_t coarsest = 1;
         std::size_t dropped = 0;
     };
-    void reset(int sh_degree);
+    void reset(int sh_degree, GpuStorage storage);
+    std::size_t record_bytes() const;  // bytes of one Gaussian's record
+    // Uploads page-sized runs of the slot's `records`, `sh` and `codecs` (per page) into its pages.
+    void upload_pages(const Slot& slot, const void* records, const void* sh, const void* codecs);
     std::uint32_t allocate_page();
     void release(Slot& slot);
     void place(Slot& slot);
@@ -103,12 +117,14 @@ private:
     std::uint64_t last_upload_bytes_ = 0;
     std::size_t dropped_ = 0;
     int sh_degree_ = -1;  // the degree the SH stride holds; −1 before the first upload
+    GpuStorage storage_ = GpuStorage::compact;
     std::uint32_t sh_stride_ = 3;
     std::uint32_t coarsest_level_ = 1;
     engine::gl::Buffer gaussians_{engine::gl::NoCreate};
     engine::gl::Buffer sh_{engine::gl::NoCreate};
     engine::gl::Buffer instances_{engine::gl::NoCreate};
     engine::gl::Buffer clusters_{engine::gl::NoCreate};
+    engine::gl::Buffer codecs_{engine::gl::NoCreate};
 };
 
 }  // namespace gpu

@@ -63,7 +63,7 @@ SplatMemory SplatRenderer::memory() const {
 }
 
 void SplatRenderer::reserve(std::uint64_t gaussians, int sh_degree) {
-    pass_->scene().reserve(gaussians, sh_degree);
+    pass_->scene().reserve(gaussians, sh_degree, settings().gpu_storage);
 }
 
 upscale::GradientImage SplatRenderer::read_low_res_image() const {

@@ -43,13 +43,19 @@ struct FrameSteps {
     void bind_all() const;
     // A program of the plugin's shaders, with `defines`.
     const engine::gl::Program& program(const char* file, const std::vector<std::string>& defines = {}) const;
-    // The variant that reads its inputs through texel views when `fetch` is texel (binding them with
-    // `bind_views`, SPLAT_INPUT_TEXELS defined), else from storage buffers.
+    // A program that reads the scene's Gaussians (common_splat_storage.glsl): SPLAT_COMPACT_STORAGE
+    // defined when the scene is compact.
+    const engine::gl::Program& storage_program(const char* file, std::vector<std::string> defines = {}) const {
+        if (scene.storage() == GpuStorage::compact) defines.emplace_back("SPLAT_COMPACT_STORAGE");
+        return program(file, defines);
+    }
+    // The storage program that reads its inputs through texel views when `fetch` is texel (binding
+    // them with `bind_views`, SPLAT_INPUT_TEXELS defined), else from storage buffers.
     template <typename BindViews>
     const engine::gl::Program& input_program(const char* file, BindViews&& bind_views) const {
-        if (fetch != RasterFetch::texel) return program(file);
+        if (fetch != RasterFetch::texel) return storage_program(file);
         bind_views();
-        return program(file, {"SPLAT_INPUT_TEXELS"});
+        return storage_program(file, {"SPLAT_INPUT_TEXELS"});
     }
 };
 

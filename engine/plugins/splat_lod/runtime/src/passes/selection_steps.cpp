@@ -21,7 +21,7 @@ void record_selection(const FrameSteps& steps, std::uint32_t gaussians) {
     if (steps.lod.splat_budget == 0) return;
     // c. the budget's scale β from the selected Gaussians' coverage histogram; d. keep those selected at β
     engine::gl::run({.program = &steps.program("splat_budget.comp.glsl"), .barrier = kStepBarrier});
-    engine::gl::run({.program = &steps.program("splat_budget_trim.comp.glsl"),
+    engine::gl::run({.program = &steps.storage_program("splat_budget_trim.comp.glsl"),
                      .indirect = &steps.buffers.cluster_list,
                      .barrier = kStepBarrier});
 }

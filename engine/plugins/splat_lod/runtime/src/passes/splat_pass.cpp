@@ -24,7 +24,7 @@ void SplatPass::execute(engine::FrameContext& frame) {
     std::vector<const SplatComponent*> components;
     for (const auto* c : frame.scene.components<SplatComponent>())
         if (c->cloud && !c->cloud->empty()) components.push_back(c);
-    scene_.update(components);
+    scene_.update(components, settings.gpu_storage);
     const std::uint32_t n = scene_.gaussian_count();
     if (n == 0) return;
     if (!scan_) {

@@ -15,9 +15,12 @@ RasterFetch TexelViews::resolve(RasterFetch wanted, std::uint32_t gaussians, std
     if (!driver_) driver_ = engine::gl::driver_limits();
     RasterFetch fetch = wanted;
     if (fetch == RasterFetch::automatic) fetch = driver_->cpu_rasteriser ? RasterFetch::texel : RasterFetch::shared;
-    const std::uint64_t needed = std::max(
-        {std::uint64_t(gaussians) * 4, std::uint64_t(key_capacity), std::uint64_t(scene.gaussians().size() / 16),
-         std::uint64_t(scene.sh().size() / 12), std::uint64_t(scene.instances().size() / 16)});
+    // Compact records and SH are read a word a texel, full ones a vec4 and a coefficient (12 bytes).
+    const bool compact = scene.storage() == GpuStorage::compact;
+    const std::uint64_t needed =
+        std::max({std::uint64_t(gaussians) * 4, std::uint64_t(key_capacity),
+                  std::uint64_t(scene.gaussians().size() / (compact ? 4 : 16)),
+                  std::uint64_t(scene.sh().size() / (compact ? 4 : 12)), std::uint64_t(scene.instances().size() / 16)});
     const auto limit = static_cast<std::uint64_t>(driver_->max_texture_buffer_texels);
     if (fetch == RasterFetch::texel && needed > limit) {
         if (in_use != RasterFetch::shared)
@@ -30,9 +33,14 @@ RasterFetch TexelViews::resolve(RasterFetch wanted, std::uint32_t gaussians, std
 }
 
 void TexelViews::bind_project(const gpu::GpuScene& scene) {
-    engine::gl::bind_buffer_texture(gaussian_texels_, "splat gaussian texels", GL_RGBA32UI, scene.gaussians(),
-                                    SPLAT_TEXTURE_GAUSSIANS);
-    engine::gl::bind_buffer_texture(sh_texels_, "splat sh texels", GL_RGB32UI, scene.sh(), SPLAT_TEXTURE_SH);
+    const bool compact = scene.storage() == GpuStorage::compact;
+    engine::gl::bind_buffer_texture(gaussian_texels_, "splat gaussian texels", compact ? GL_R32UI : GL_RGBA32UI,
+                                    scene.gaussians(), SPLAT_TEXTURE_GAUSSIANS);
+    engine::gl::bind_buffer_texture(sh_texels_, "splat sh texels", compact ? GL_R32UI : GL_RGB32UI, scene.sh(),
+                                    SPLAT_TEXTURE_SH);
+    if (compact)
+        engine::gl::bind_buffer_texture(codec_texels_, "splat page codec texels", GL_RGBA32UI, scene.page_codecs(),
+                                        SPLAT_TEXTURE_PAGE_CODECS);
     engine::gl::bind_buffer_texture(instance_texels_, "splat instance texels", GL_RGBA32UI, scene.instances(),
                                     SPLAT_TEXTURE_INSTANCES);
     engine::gl::memory_barrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // uploaded as buffers, read as texels

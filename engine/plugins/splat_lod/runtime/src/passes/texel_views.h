@@ -33,8 +33,9 @@ private:
     std::optional<engine::gl::DriverLimits> driver_;  // asked once
     engine::gl::Texture projected_texels_{engine::gl::NoCreate}, value_texels_{engine::gl::NoCreate};
     engine::gl::Texture gaussian_texels_{engine::gl::NoCreate}, sh_texels_{engine::gl::NoCreate},
-        instance_texels_{engine::gl::NoCreate}, projected_words_{engine::gl::NoCreate},
-        key_offset_texels_{engine::gl::NoCreate}, key_texels_{engine::gl::NoCreate};
+        instance_texels_{engine::gl::NoCreate}, codec_texels_{engine::gl::NoCreate},
+        projected_words_{engine::gl::NoCreate}, key_offset_texels_{engine::gl::NoCreate},
+        key_texels_{engine::gl::NoCreate};
 };
 
 }  // namespace splat_lod

@@ -411,7 +411,8 @@ void ChunkStreamer::set_settings(const StreamerSettings& settings) {
     if (settings.gpu_sh_degree != state_->settings.gpu_sh_degree)
         engine::fail("splat_lod::world::ChunkStreamer::set_settings(): gpu_sh_degree cannot change while streaming");
     if (settings.gpu_pages.page_gaussians != state_->settings.gpu_pages.page_gaussians ||
-        settings.gpu_pages.page_overhead_bytes != state_->settings.gpu_pages.page_overhead_bytes)
+        settings.gpu_pages.page_overhead_bytes != state_->settings.gpu_pages.page_overhead_bytes ||
+        settings.gpu_pages.storage != state_->settings.gpu_pages.storage)
         engine::fail("splat_lod::world::ChunkStreamer::set_settings(): gpu_pages cannot change while streaming");
     state_->pending_settings = settings;
     if (state_->bus_rule) state_->pending_settings->rule = *state_->bus_rule;  // the splat pass's, not a copy

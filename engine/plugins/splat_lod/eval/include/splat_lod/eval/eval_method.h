@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "splat_lod/gpu_storage.h"
 #include "splat_lod/msgs/lod_settings.h"
 
 namespace splat_lod {
@@ -51,6 +52,9 @@ std::vector<UpscalerVariant> select_upscalers(const std::string& list);
 Method upscaled_method(const Method& mode, const UpscalerVariant& variant, int factor);
 // `mode` at render scale 1 under the name "native": the upscale sweep's reference and time base.
 Method native_method(const Method& mode);
+
+// `method` with the scene stored on the GPU as `storage` says (the storage sweep), under the same name.
+Method stored_as(const Method& method, GpuStorage storage);
 
 // "1,2,4" → {1, 2, 4}; throws naming `option` on anything but positive integers.
 std::vector<int> parse_int_list(const std::string& text, const std::string& option);

@@ -30,7 +30,7 @@ namespace splat_lod::eval {
 
 class FrameMeasurer;
 
-enum class Sweep { scale, distance, upscale };
+enum class Sweep { scale, distance, upscale, storage };
 const char* sweep_name(Sweep sweep);
 
 // A scene measured against the main scene's references (scale sweep only).

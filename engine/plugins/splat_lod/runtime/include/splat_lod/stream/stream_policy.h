@@ -17,7 +17,9 @@ namespace splat_lod::world {
 // counts with it.
 using splat_lod::gpu_bytes;
 using splat_lod::gpu_bytes_per_gaussian;
+using splat_lod::GpuStorage;
 using splat_lod::max_gaussians_within;
+using splat_lod::page_layout;
 using splat_lod::PageLayout;
 
 // Euclidean distance from `point` to the box of the chunk's Gaussian means (0 inside it). Every
