@@ -30,9 +30,10 @@ float dequantise(std::uint32_t q, float lo, float step) {
 void fit_range(double lo, double hi, std::uint32_t codes, float& out_lo, float& out_step) {
     if (!(lo <= hi)) lo = hi = 0.0;
     out_lo = static_cast<float>(lo);
-    const double step = (hi - double(out_lo)) / codes;
-    out_step = std::isfinite(step) && step > 0.0 ? static_cast<float>(step * (1.0 + 1e-7)) : 0.0f;
-    if (!std::isfinite(out_step)) out_step = std::numeric_limits<float>::max();
+    const double step = (hi - double(out_lo)) / codes * (1.0 + 1e-7);
+    // Beyond the float range (a box from −3·10³⁸ to 3·10³⁸) the step saturates.
+    const double largest = std::numeric_limits<float>::max();
+    out_step = std::isfinite(step) && step > 0.0 ? static_cast<float>(std::min(step, largest)) : 0.0f;
 }
 
 std::uint32_t bits(std::uint32_t word, int offset, int count) {
@@ -151,7 +152,8 @@ CompactRecord encode_compact(const SplatCloud& cloud, std::size_t i, const Compa
         s[a] = quantise(cloud.log_scales[i][a], page.log_scale_lo, page.log_scale_step, 255);
         c[a] = quantise(colour[a], page.colour_lo[a], page.colour_step[a], 255);
     }
-    const auto opacity = static_cast<std::uint32_t>(std::lround(std::clamp(activated_opacity(cloud, i), 0.0f, 1.0f) * 255.0f));
+    const auto opacity =
+        static_cast<std::uint32_t>(std::lround(std::clamp(activated_opacity(cloud, i), 0.0f, 1.0f) * 255.0f));
     const std::uint32_t level = cloud.lod_level.empty() ? 0u : std::clamp<std::uint32_t>(cloud.lod_level[i], 1, 4) - 1;
     const float cmin = cloud.coverage_min.empty() ? -1.0f : cloud.coverage_min[i];
     const float cmax = cloud.coverage_max.empty() ? -1.0f : cloud.coverage_max[i];
@@ -172,7 +174,8 @@ void encode_compact_sh(const SplatCloud& cloud, std::size_t i, const CompactPage
         for (int c = 0; c < 3; ++c) {
             const float step = page.sh_step[band_of(k) - 1];
             const float v = drawable && k <= sh_rest_coeffs(stored) ? cloud.sh_rest_at(i, k, c) : 0.0f;
-            const auto q = static_cast<std::uint32_t>(128 + std::lround(step > 0.0f ? std::clamp(v / step, -127.0f, 127.0f) : 0.0f));
+            const auto q = static_cast<std::uint32_t>(
+                128 + std::lround(step > 0.0f ? std::clamp(v / step, -127.0f, 127.0f) : 0.0f));
             const std::size_t byte = std::size_t(k - 1) * 3 + c;
             sh_words[byte / 4] |= q << (8 * (byte % 4));
         }
@@ -224,7 +227,8 @@ SplatCloud compact_round_trip(const SplatCloud& cloud, int sh_degree) {
             const double o = std::clamp(double(g.opacity), 1e-30, 1.0 - 1e-7);
             out.opacity_logits[i] = g.opacity > 0.0f ? static_cast<float>(std::log(o / (1.0 - o))) : -100.0f;
             out.sh_dc[i] = g.sh_dc;
-            decode_compact_sh(sh, page, sh_degree, std::span(out.sh_rest).subspan(i * out.sh_rest_stride(), out.sh_rest_stride()));
+            decode_compact_sh(sh, page, sh_degree,
+                              std::span(out.sh_rest).subspan(i * out.sh_rest_stride(), out.sh_rest_stride()));
             if (lod) {
                 out.lod_level[i] = g.level;
                 out.coverage_min[i] = g.coverage_min;

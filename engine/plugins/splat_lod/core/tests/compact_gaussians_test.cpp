@@ -63,7 +63,8 @@ TEST(CompactGaussians, EveryFieldRoundTripsWithinHalfItsStep) {
             EXPECT_LE(std::abs(g.position[a] - c.positions[i][a]), 0.5f * page.position_step[a] * 1.001f + 1e-6f);
             EXPECT_LE(std::abs(g.log_scale[a] - c.log_scales[i][a]), 0.5f * page.log_scale_step * 1.001f + 1e-6f);
             const float colour = splat_lod::kShC0 * c.sh_dc[i][a] + 0.5f;
-            EXPECT_LE(std::abs(splat_lod::kShC0 * g.sh_dc[a] + 0.5f - colour), 0.5f * page.colour_step[a] * 1.001f + 1e-6f);
+            EXPECT_LE(std::abs(splat_lod::kShC0 * g.sh_dc[a] + 0.5f - colour),
+                      0.5f * page.colour_step[a] * 1.001f + 1e-6f);
         }
         const double opacity = splat_lod::world::opacity_from_logit(c.opacity_logits[i]);
         EXPECT_LE(std::abs(g.opacity - opacity), 0.5 / 255.0 + 1e-6);
@@ -107,12 +108,16 @@ TEST(CompactGaussians, HardCasesStayBoundedAndFinite) {
     SplatCloud c;
     c.resize(6);
     // Tiny and huge scales in one page: the log range is wide, every decoded scale still within its step.
-    c.log_scales = {glm::vec3(-25.0f), glm::vec3(9.0f), glm::vec3(-25.0f, 9.0f, 0.0f), glm::vec3(0.0f),
-                    glm::vec3(0.0f), glm::vec3(0.0f)};
+    c.log_scales = {glm::vec3(-25.0f), glm::vec3(9.0f), glm::vec3(-25.0f, 9.0f, 0.0f),
+                    glm::vec3(0.0f),   glm::vec3(0.0f), glm::vec3(0.0f)};
     // Near-degenerate rotations: the identity, a half turn (w = 0), two equal largest components, a
     // negative largest component and a quaternion far from unit length.
-    c.rotations = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0.7071068f, 0.7071068f, 0, 0}, {-0.9f, 0.1f, 0.3f, -0.2f},
-                   {1e-6f, 3e-6f, 0, 0}, {0.5f, 0.5f, 0.5f, 0.5f}};
+    c.rotations = {{1, 0, 0, 0},
+                   {0, 1, 0, 0},
+                   {0.7071068f, 0.7071068f, 0, 0},
+                   {-0.9f, 0.1f, 0.3f, -0.2f},
+                   {1e-6f, 3e-6f, 0, 0},
+                   {0.5f, 0.5f, 0.5f, 0.5f}};
     c.opacity_logits = {0.0f, 0.0f, 0.0f, std::numeric_limits<float>::quiet_NaN(), 0.0f, 0.0f};
     const CompactPage page = splat_lod::fit_compact_page(c, 0, 6, 0);
     EXPECT_EQ(page.position_step, glm::vec3(0.0f));  // every mean the same: zero-width box

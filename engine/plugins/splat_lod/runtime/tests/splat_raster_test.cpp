@@ -148,19 +148,23 @@ TEST_F(SplatRasterTest, TexelAndSharedFetchDrawTheSameBytes) {
         f.pairs = pass.latest_statistics()->tile_splat_pairs;
         return f;
     };
-    for (const float scale : {1.0f, 0.5f}) {
-        SCOPED_TRACE("render scale " + std::to_string(scale));
-        harness.edit_lod([&](plugin_msgs::LodSettings& lod) { lod.render_scale = scale; });
-        pass.settings().raster_fetch = splat_lod::RasterFetch::texel;
-        const Frame texel = render_both(footprint_camera(200, 120));
-        EXPECT_EQ(pass.raster_fetch_in_use(), splat_lod::RasterFetch::texel);
-        pass.settings().raster_fetch = splat_lod::RasterFetch::shared;
-        const Frame staged = render_both(footprint_camera(200, 120));
-        EXPECT_EQ(pass.raster_fetch_in_use(), splat_lod::RasterFetch::shared);
-        EXPECT_EQ(texel.image.rgba, staged.image.rgba);
-        EXPECT_EQ(texel.pairs, staged.pairs);
-        EXPECT_GT(texel.pairs, 0u);
-    }
+    // Both storages: the compact records and SH bytes decode the same through texels and buffers.
+    for (const auto storage : {splat_lod::GpuStorage::compact, splat_lod::GpuStorage::full})
+        for (const float scale : {1.0f, 0.5f}) {
+            SCOPED_TRACE("render scale " + std::to_string(scale) +
+                         (storage == splat_lod::GpuStorage::compact ? ", compact" : ", full"));
+            pass.settings().gpu_storage = storage;
+            harness.edit_lod([&](plugin_msgs::LodSettings& lod) { lod.render_scale = scale; });
+            pass.settings().raster_fetch = splat_lod::RasterFetch::texel;
+            const Frame texel = render_both(footprint_camera(200, 120));
+            EXPECT_EQ(pass.raster_fetch_in_use(), splat_lod::RasterFetch::texel);
+            pass.settings().raster_fetch = splat_lod::RasterFetch::shared;
+            const Frame staged = render_both(footprint_camera(200, 120));
+            EXPECT_EQ(pass.raster_fetch_in_use(), splat_lod::RasterFetch::shared);
+            EXPECT_EQ(texel.image.rgba, staged.image.rgba);
+            EXPECT_EQ(texel.pairs, staged.pairs);
+            EXPECT_GT(texel.pairs, 0u);
+        }
     // Automatic: texel fetches on a CPU driver, shared-memory batches on a GPU.
     pass.settings().raster_fetch = splat_lod::RasterFetch::automatic;
     render(clouds, footprint_camera(64, 48));

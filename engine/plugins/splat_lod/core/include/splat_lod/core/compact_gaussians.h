@@ -29,8 +29,8 @@
 
 namespace splat_lod {
 
-inline constexpr std::size_t kCompactWords = 5;        // 32-bit words of one record (20 bytes)
-inline constexpr std::size_t kCompactPageSize = 256;   // Gaussians one page's ranges cover
+inline constexpr std::size_t kCompactWords = 5;       // 32-bit words of one record (20 bytes)
+inline constexpr std::size_t kCompactPageSize = 256;  // Gaussians one page's ranges cover
 inline constexpr std::uint32_t kCompactCoverageCodes = 2047;
 
 // 32-bit words of SH bands 1..degree per Gaussian: 3·((d + 1)² − 1) bytes, rounded up to words
