@@ -2,9 +2,12 @@
 // bytes, freed ranges are reused, and the frame is the same as with the whole set uploaded at once.
 #include <cmath>
 
+#include "engine/render/render_target.h"
+#include "engine/scene/scene.h"
 #include "gpu/gpu_scene.h"
 #include "gpu_fixture.h"
 #include "passes/splat_pass.h"
+#include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_test_scenes.h"
 #include "test_support.h"
@@ -139,4 +142,35 @@ TEST_F(SplatGpuSceneTest, CloudsSpreadOverScatteredPagesAndReservedBuffersDoNotG
     reserved.render({d}, camera);
     reserved.render({a, b, c, d}, camera);
     EXPECT_EQ(bytes(), reserved_bytes) << "the Gaussian, SH, cluster and codec buffers never grew";
+}
+
+// A resident component that is hidden keeps its pages but takes no frame slots: the per-frame buffers
+// follow what can be drawn, and the frame is the one without it.
+TEST_F(SplatGpuSceneTest, HiddenComponentsKeepTheirPagesButTakeNoFrameSlots) {
+    const auto a = slab(700, -1.2f, 1), b = slab(6000, 0.0f, 2);
+    engine::Scene s;
+    s.background = glm::vec3(0.0f);  // as the harness draws
+    splat_lod::SplatComponent* shown[2] = {};
+    for (const auto& [i, cloud] : {std::pair{0, a}, std::pair{1, b}}) {
+        auto component = std::make_unique<splat_lod::SplatComponent>();
+        component->cloud = cloud;
+        shown[i] = component.get();
+        s.root().add_child("splats " + std::to_string(i)).attach(std::move(component));
+    }
+    engine::RenderTarget target(camera.width, camera.height);
+    const std::uint64_t both_bytes = splat_lod::render_complete(incremental.engine(), s, camera, target).resident_bytes;
+    EXPECT_EQ(scene().slot_count(), 27u * 256u) << "a's 3 pages and b's 24";
+
+    shown[1]->visible = false;
+    const std::uint64_t a_bytes = splat_lod::render_complete(incremental.engine(), s, camera, target).resident_bytes;
+    EXPECT_EQ(scene().pages_in_use(), 27u) << "b stays resident";
+    EXPECT_EQ(scene().slot_count(), 3u * 256u);
+    EXPECT_EQ(max_difference(target.read_color(), from_scratch({a})), 0);
+    // Nine times fewer slots: the projected splats and tile counts are made anew at the smaller size.
+    EXPECT_LT(a_bytes, both_bytes) << "the frame's buffers shrank with the slots";
+
+    shown[1]->visible = true;
+    splat_lod::render_complete(incremental.engine(), s, camera, target);
+    EXPECT_EQ(scene().slot_count(), 27u * 256u);
+    EXPECT_EQ(max_difference(target.read_color(), from_scratch({a, b})), 0);
 }

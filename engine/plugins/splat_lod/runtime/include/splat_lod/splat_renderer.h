@@ -84,9 +84,10 @@ struct SplatMemory {
     std::uint32_t gaussian_count = 0;  // slots in use by the resident instances
     std::uint32_t pages_in_use = 0;
     std::uint32_t free_pages = 0;
-    std::uint64_t page_bytes = 0;         // bytes of one page (Gaussians, SH, cluster records)
-    std::uint64_t last_upload_bytes = 0;  // bytes the latest frame uploaded
-    std::uint32_t sh_stride = 0;          // SH coefficients stored per Gaussian
+    std::uint64_t page_bytes = 0;              // bytes of one page (Gaussians, SH, cluster records)
+    std::uint64_t last_upload_bytes = 0;       // bytes the latest frame uploaded
+    std::uint32_t sh_stride = 0;               // SH stored per Gaussian: floats (full) or 32-bit words (compact)
+    GpuStorage storage = GpuStorage::compact;  // how the scene is stored (docs/gpu_storage.md)
 };
 
 // A non-owning handle to the plugin's splat pass in `renderer`; valid while the engine runs.

@@ -8,7 +8,7 @@
 // smallest (FrameCounters::depth_range), shifted right just enough to fit D bits. Positive floats
 // order like their bits, so depth_q orders like the depth; two depths share a step only when they
 // differ by less than 2^(shift − 23) of the depth (2^-13 for D = 16 and depths spanning a factor of
-// 256), and then keep their Gaussians' index order (the sort is stable).
+// 256), and then keep their slots' order, which is their Gaussians' index order (the sort is stable).
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = SPLAT_BIN_WORKGROUP_SIZE) in;
@@ -57,8 +57,8 @@ uvec2 depth_key(float depth) {
 }
 
 void main() {
-    uint index = gl_GlobalInvocationID.x;
-    if (index >= frame.gaussian_count) return;
+    uint index = gl_GlobalInvocationID.x;  // the splat's slot
+    if (index >= frame.slot_count) return;
     g_begin = key_offset(index);
     g_end = key_offset(index + 1u);
     if (g_begin == g_end) return;

@@ -12,6 +12,7 @@ layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) writeonly buffer TileCounts 
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
 layout(std430, binding = SPLAT_BINDING_CLUSTERS) readonly buffer Clusters { GpuCluster clusters[]; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
+layout(std430, binding = SPLAT_BINDING_CLUSTER_SLOTS) readonly buffer ClusterSlots { uint cluster_slots[]; };
 
 const mat3 VIEW_TO_CAMERA = mat3(1, 0, 0, 0, -1, 0, 0, 0, -1);
 
@@ -75,7 +76,7 @@ bool skip_cluster(uint cluster) {
 void main() {
     uint cluster = gl_GlobalInvocationID.x;
     uint count = frame.gaussian_count;
-    if (cluster == 0u) tile_counts[count] = 0u;  // the scan's extra slot, which receives the total
+    if (cluster == 0u) tile_counts[frame.slot_count] = 0u;  // the scan's extra slot, which receives the total
     uint first = cluster * SPLAT_PROJECT_WORKGROUP_SIZE;
     if (first >= count) return;
     if (clusters[cluster].sphere.w < 0.0) return;  // an empty range of the scene (GpuScene): no members
@@ -93,5 +94,8 @@ void main() {
         atomicAdd(stats.skipping.x, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
         return;
     }
+    // Every cluster that gets this far has slots (the GPU scene gives them to all that are resident and
+    // not hidden); the test keeps a cluster without any from ever being projected.
+    if (cluster_slots[cluster] == SPLAT_NO_SLOT) return;
     cluster_list.ids[atomicAdd(cluster_list.dispatch.x, 1u)] = cluster;
 }

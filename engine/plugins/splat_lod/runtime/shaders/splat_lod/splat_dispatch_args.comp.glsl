@@ -9,7 +9,7 @@ layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats
 layout(std430, binding = SPLAT_BINDING_ARGS) writeonly buffer Args { uvec4 args; };
 
 void main() {
-    uint total = key_offsets[frame.gaussian_count];
+    uint total = key_offsets[frame.slot_count];
     uint used = min(total, frame.key_capacity);
     stats.considered = frame.gaussian_count;
     stats.keys_needed = total;

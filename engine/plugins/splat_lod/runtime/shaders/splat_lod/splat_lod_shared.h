@@ -42,11 +42,15 @@ using mat4 = glm::mat4;
 // GpuPageCodec of their page (splat_lod/core/compact_gaussians.h). Static per cloud.
 #define SPLAT_BINDING_GAUSSIANS 0
 #define SPLAT_BINDING_SH 1
-#define SPLAT_BINDING_INSTANCES 2    // GpuInstance[], per frame
-#define SPLAT_BINDING_PROJECTED 3    // ProjectedSplat[N], per frame
-#define SPLAT_BINDING_TILE_COUNTS 4  // uint[N + 1]: tiles touched; scanned in place into key offsets, total at [N]
-#define SPLAT_BINDING_KEYS 5         // uvec2[capacity]: (depth bits, tile index)
-#define SPLAT_BINDING_VALUES 6       // uint[capacity]: Gaussian index
+#define SPLAT_BINDING_INSTANCES 2  // GpuInstance[], per frame
+// The frame's splats live in slots: the Gaussians of the clusters that may be drawn (resident, not
+// hidden), in cluster order, 256 a cluster (GpuScene's cluster slots), so that the per-frame buffers
+// are sized by what the view can draw rather than by everything resident.
+#define SPLAT_BINDING_PROJECTED 3  // ProjectedSplat[S], per frame, at its slot
+#define SPLAT_BINDING_TILE_COUNTS \
+    4                           // uint[S + 1]: tiles touched per slot; scanned in place into key offsets, total at [S]
+#define SPLAT_BINDING_KEYS 5    // uvec2[capacity]: (depth bits, tile index)
+#define SPLAT_BINDING_VALUES 6  // uint[capacity]: the splat's slot
 #define SPLAT_BINDING_TILE_RANGES 7  // uvec2[tile_count]: [begin, end) into the sorted keys
 #define SPLAT_BINDING_STATS 8        // FrameCounters
 #define SPLAT_BINDING_ARGS 9         // uvec4: tile-range dispatch size (xyz) and keys in use (w)
@@ -57,10 +61,14 @@ using mat4 = glm::mat4;
                                       // CPU resets it to (0, 1, 1) each frame)
 #define SPLAT_BINDING_BUDGET 12       // SplatBudgetState: the splat budget's histograms and choice, per frame
 #define SPLAT_BINDING_PAGE_CODECS 13  // GpuPageCodec[pages], compact storage only, static per scene
-#define SPLAT_COMPACT_WORDS 5         // 32-bit words of one compact record
-#define SPLAT_UNIFORM_FRAME 0         // FrameUniforms (uniform block binding)
-#define SPLAT_IMAGE_COLOR 0           // the frame's display-space colour (rgba8), read and written
-#define SPLAT_TEXTURE_VIEW_DEPTH 1    // the mesh pass's view depth (r32f), +inf where no mesh
+// uint[clusters]: the first slot / 256 of each cluster's Gaussians this frame, in cluster order over
+// the clusters that may be drawn; SPLAT_NO_SLOT for free pages and hidden instances.
+#define SPLAT_BINDING_CLUSTER_SLOTS 14
+#define SPLAT_NO_SLOT 0xFFFFFFFFu
+#define SPLAT_COMPACT_WORDS 5       // 32-bit words of one compact record
+#define SPLAT_UNIFORM_FRAME 0       // FrameUniforms (uniform block binding)
+#define SPLAT_IMAGE_COLOR 0         // the frame's display-space colour (rgba8), read and written
+#define SPLAT_TEXTURE_VIEW_DEPTH 1  // the mesh pass's view depth (r32f), +inf where no mesh
 // Buffer textures over the projected splats (rgba32f, 4 texels a splat) and the sorted values (r32ui),
 // read by the raster with SplatPassSettings::raster_fetch = texel.
 #define SPLAT_TEXTURE_PROJECTED 2
@@ -161,7 +169,7 @@ SPLAT_LOD_STRUCT(GpuCluster) {
                   //    (non-finite bounds); yzw unused
 };
 
-// A projected Gaussian, stored at its Gaussian index (entries of culled ones are not read).
+// A projected Gaussian, stored at its slot (entries of culled ones are not read).
 SPLAT_LOD_STRUCT(ProjectedSplat) {
     vec4 mean_depth;  // x, y image position (top-left origin), z view depth, w opacity
     vec4 conic;       // inverse of the dilated 2D covariance: xx, xy, yy; w unused
@@ -206,6 +214,8 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     float transition_band;       // octaves of coverage over which a Gaussian fades (0: hard switching)
     uint exact_tiles;            // 1: a splat's keys are the tiles its ellipse touches, 0: its bounding box
     uint key_depth_bits;         // D > 0: one-word sort keys (tile << D | depth_q), 0: (depth bits, tile)
+    uint slot_count;             // S: the frame's splat slots (SPLAT_BINDING_CLUSTER_SLOTS), a multiple of 256
+    uint pad0, pad1, pad2;
 };
 
 // Written by the GPU each frame and read back asynchronously by the CPU.

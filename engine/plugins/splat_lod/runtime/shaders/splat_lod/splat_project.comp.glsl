@@ -12,6 +12,7 @@ layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) writeonly buffer TileCounts 
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
 layout(std430, binding = SPLAT_BINDING_BUDGET) buffer Budget { SplatBudgetState budget; };
+layout(std430, binding = SPLAT_BINDING_CLUSTER_SLOTS) readonly buffer ClusterSlots { uint cluster_slots[]; };
 
 #ifdef SPLAT_INPUT_TEXELS
 // On CPU drivers a storage-buffer load is a loop over the SIMD lanes and a texel fetch one gather
@@ -66,8 +67,8 @@ float dissolve_rank(uint slot) {
     return float(h >> 8) * (1.0 / 16777216.0);
 }
 
-// Returns the tile count; 0 means culled.
-uint project(uint index) {
+// Returns the tile count; 0 means culled. The projected form goes to `slot`.
+uint project(uint index, uint slot) {
     GpuGaussian g = load_gaussian(index);
     GpuInstance inst = load_instance(floatBitsToUint(g.covariance_b.w));
     vec3 world = (inst.model * vec4(g.position_opacity.xyz, 1.0)).xyz;
@@ -159,15 +160,17 @@ uint project(uint index) {
     atomicMax(stats.depth_range.x, floatBitsToUint(z));  // positive floats order like their bits
     atomicMax(stats.depth_range.y, ~floatBitsToUint(z));
     // color.w: the coverage, from which the budget's trim computes the weight at its β.
-    projected[index] = ProjectedSplat(vec4(mean, z, opacity), conic, vec4(color, coverage), rect);
+    projected[slot] = ProjectedSplat(vec4(mean, z, opacity), conic, vec4(color, coverage), rect);
     return tiles;
 }
 
-// One workgroup per cluster that step 1a kept (GpuCluster): the Gaussians of skipped clusters
-// keep the tile count 0 they were cleared to.
+// One workgroup per cluster that step 1a kept (GpuCluster): the slots of skipped clusters keep the
+// tile count 0 they were cleared to.
 void main() {
     uint cluster = cluster_list.ids[gl_WorkGroupID.x];
     uint index = cluster * SPLAT_PROJECT_WORKGROUP_SIZE + gl_LocalInvocationIndex;
-    if (index >= frame.gaussian_count) return;
-    tile_counts[index] = project(index);
+    uint first = cluster_slots[cluster];
+    if (index >= frame.gaussian_count || first == SPLAT_NO_SLOT) return;
+    uint slot = first * SPLAT_PROJECT_WORKGROUP_SIZE + gl_LocalInvocationIndex;
+    tile_counts[slot] = project(index, slot);
 }

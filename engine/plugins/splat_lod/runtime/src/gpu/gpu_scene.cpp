@@ -7,8 +7,6 @@
 #include <limits>
 #include <unordered_map>
 
-#include <glm/gtc/quaternion.hpp>
-
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "engine/gl/compute_step.h"
@@ -37,76 +35,6 @@ glm::mat4 inverse_rotation(const glm::mat4& model) {
 }
 
 }  // namespace
-
-std::size_t pack_gaussians(const SplatCloud& cloud, std::uint32_t instance, std::vector<GpuGaussian>& out) {
-    out.reserve(out.size() + cloud.size());
-    const float instance_bits = std::bit_cast<float>(instance);
-    std::size_t dropped = 0;
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-        if (!gaussian_is_drawable(cloud, i)) {
-            // Kept in place (indices stay aligned with the SH buffer) but never drawn: opacity 0.
-            GpuGaussian g{};
-            g.covariance_b.w = instance_bits;
-            out.push_back(g);
-            ++dropped;
-            continue;
-        }
-        const Rotation& q = cloud.rotations[i];
-        const glm::dmat3 r = glm::mat3_cast(glm::normalize(glm::dquat(q.w, q.x, q.y, q.z)));
-        const glm::dvec3 s = glm::exp(glm::dvec3(cloud.log_scales[i]));
-        glm::dmat3 m = r;
-        for (int c = 0; c < 3; ++c) m[c] *= s[c];
-        const glm::dmat3 sigma = m * glm::transpose(m);
-        GpuGaussian g;
-        g.position_opacity =
-            glm::vec4(cloud.positions[i], static_cast<float>(world::opacity_from_logit(cloud.opacity_logits[i])));
-        g.covariance_a = glm::vec4(sigma[0][0], sigma[0][1], sigma[0][2], sigma[1][1]);
-        g.covariance_b =
-            glm::vec4(static_cast<float>(sigma[1][2]), static_cast<float>(sigma[2][2]), 0.0f, instance_bits);
-        const float level = cloud.lod_level.empty() ? 1.0f : static_cast<float>(cloud.lod_level[i]);
-        const float cmin = cloud.coverage_min.empty() ? -1.0f : cloud.coverage_min[i];
-        const float cmax = cloud.coverage_max.empty() ? -1.0f : cloud.coverage_max[i];
-        g.lod = glm::vec4(cmin, cmax, level, 0.0f);
-        out.push_back(g);
-    }
-    return dropped;
-}
-
-void pack_sh(const SplatCloud& cloud, int degree, std::uint32_t stride, std::vector<float>& out) {
-    const std::size_t base = out.size();
-    out.resize(base + cloud.size() * stride, 0.0f);
-    const int rest = sh_rest_coeffs(degree);
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-        float* dst = &out[base + i * stride];
-        dst[0] = cloud.sh_dc[i].x;
-        dst[1] = cloud.sh_dc[i].y;
-        dst[2] = cloud.sh_dc[i].z;
-        for (int k = 1; k <= rest; ++k)
-            for (int c = 0; c < 3; ++c) dst[k * 3 + c] = cloud.sh_rest_at(i, k, c);
-    }
-}
-
-void pack_compact(const SplatCloud& cloud, int degree, std::uint32_t instance, std::vector<std::uint32_t>& records,
-                  std::vector<std::uint32_t>& sh, std::vector<GpuPageCodec>& codecs) {
-    constexpr std::size_t size = SPLAT_PROJECT_WORKGROUP_SIZE;
-    const std::size_t pages = std::max<std::size_t>((cloud.size() + size - 1) / size, 1);
-    const std::uint32_t sh_words = compact_sh_words(degree);
-    records.assign(pages * size * kCompactWords, 0u);  // padding: opacity 0, never drawn
-    sh.assign(pages * size * sh_words, 0u);
-    codecs.assign(pages, GpuPageCodec{});
-    for (std::size_t page = 0; page < pages; ++page) {
-        const CompactPage p = fit_compact_page(cloud, page * size, size, degree);
-        codecs[page] =
-            GpuPageCodec{glm::vec4(p.position_lo, p.log_scale_lo), glm::vec4(p.position_step, p.log_scale_step),
-                         glm::vec4(p.colour_lo, p.coverage_lo), glm::vec4(p.colour_step, p.coverage_step),
-                         glm::vec4(p.sh_step, std::bit_cast<float>(instance))};
-        for (std::size_t i = page * size; i < std::min((page + 1) * size, cloud.size()); ++i) {
-            const CompactRecord r = encode_compact(cloud, i, p);
-            std::copy(r.begin(), r.end(), records.begin() + static_cast<std::ptrdiff_t>(i * kCompactWords));
-            encode_compact_sh(cloud, i, p, degree, std::span(sh).subspan(i * sh_words, sh_words));
-        }
-    }
-}
 
 namespace {
 
@@ -474,6 +402,7 @@ void GpuScene::tally_slots(bool changed) {
 void GpuScene::upload_instances(const std::vector<const SplatComponent*>& components,
                                 const std::vector<std::int64_t>& slot_of) {
     std::vector<GpuInstance> instances(slots_.size());  // free instance indices keep count 0
+    std::vector<bool> drawn(slots_.size(), false);
     for (std::size_t i = 0; i < components.size(); ++i) {
         const Slot& slot = slots_[static_cast<std::size_t>(slot_of[i])];
         GpuInstance& inst = instances[static_cast<std::size_t>(slot_of[i])];
@@ -484,6 +413,7 @@ void GpuScene::upload_instances(const std::vector<const SplatComponent*>& compon
         const SplatComponent& component = *components[i];
         const float opacity = std::isnan(component.opacity) ? 1.0f : std::clamp(component.opacity, 0.0f, 1.0f);
         const bool hidden = !component.visible || opacity == 0.0f;
+        drawn[static_cast<std::size_t>(slot_of[i])] = !hidden;
         inst.info = glm::uvec4(std::bit_cast<std::uint32_t>(opacity), static_cast<std::uint32_t>(slot.cloud->size()),
                                static_cast<std::uint32_t>(slot.sh_degree) |
                                    (hidden ? std::uint32_t{SPLAT_INSTANCE_HIDDEN} : 0u) |
@@ -493,6 +423,22 @@ void GpuScene::upload_instances(const std::vector<const SplatComponent*>& compon
     const std::size_t bytes = std::max<std::size_t>(instances.size(), 1) * sizeof(GpuInstance);
     instances_.ensure_size(bytes, "splat instances");
     if (!instances.empty()) instances_.upload(0, instances.size() * sizeof(GpuInstance), instances.data());
+    assign_frame_slots(drawn);
+}
+
+void GpuScene::assign_frame_slots(const std::vector<bool>& drawn) {
+    std::vector<std::uint32_t> table(gaussian_count_ / kCluster, SPLAT_NO_SLOT);
+    for (std::size_t k = 0; k < slots_.size(); ++k)
+        if (slots_[k].cloud && drawn[k])
+            for (const std::uint32_t page : slots_[k].pages) table[page] = 0;
+    std::uint32_t next = 0;
+    for (std::uint32_t& first : table)
+        if (first == 0) first = next++;
+    slot_count_ = std::max<std::uint32_t>(next, 1) * kCluster;  // one page at least: no pass has zero length
+    if (table == frame_slots_ && cluster_slots_) return;
+    cluster_slots_.ensure_size(std::max<std::size_t>(table.size(), 1) * sizeof(std::uint32_t), "splat cluster slots");
+    if (!table.empty()) cluster_slots_.upload(0, table.size() * sizeof(std::uint32_t), table.data());
+    frame_slots_ = std::move(table);
 }
 
 }  // namespace splat_lod::gpu

@@ -59,6 +59,7 @@ SplatMemory SplatRenderer::memory() const {
     m.page_bytes = scene.page_bytes();
     m.last_upload_bytes = scene.last_upload_bytes();
     m.sh_stride = scene.sh_stride();
+    m.storage = scene.storage();
     return m;
 }
 

@@ -10,7 +10,7 @@
 namespace splat_lod {
 namespace {
 
-constexpr std::uint32_t initial_keys_per_gaussian = 4;
+constexpr std::uint32_t initial_keys_per_slot = 4;
 constexpr std::uint32_t minimum_key_capacity = 1u << 16;
 
 engine::gl::Buffer fixed_buffer(const char* label, std::size_t bytes) {
@@ -19,25 +19,34 @@ engine::gl::Buffer fixed_buffer(const char* label, std::size_t bytes) {
     return buffer;
 }
 
+// `buffer` holding at least `bytes`: made anew with a quarter to spare when smaller, or when more
+// than four times larger (a view that draws less), its contents not kept.
+void fit(engine::gl::Buffer& buffer, std::size_t bytes, const char* label) {
+    if (buffer && buffer.size() >= bytes && buffer.size() / 4 <= bytes) return;
+    buffer = engine::gl::Buffer(engine::gl::NoCreate);
+    buffer.ensure_size(bytes + bytes / 4, label);
+}
+
 }  // namespace
 
-void FrameBuffers::ensure(std::uint32_t gaussians, std::uint32_t tile_count) {
+void FrameBuffers::ensure(std::uint32_t slots, std::uint32_t clusters, std::uint32_t tile_count) {
     if (!uniforms) {
         uniforms = fixed_buffer("splat frame uniforms", sizeof(gpu::FrameUniforms));
         counters = fixed_buffer("splat frame counters", sizeof(gpu::FrameCounters));
         args = fixed_buffer("splat dispatch args", sizeof(glm::uvec4));
-        count = fixed_buffer("splat gaussian count", sizeof(std::uint32_t));
+        count = fixed_buffer("splat slot count", sizeof(std::uint32_t));
         budget = fixed_buffer("splat budget", sizeof(gpu::SplatBudgetState));
     }
-    projected.ensure_size(std::size_t(gaussians) * sizeof(gpu::ProjectedSplat), "splat projected");
-    const std::uint32_t clusters = engine::gl::groups_for(gaussians, SPLAT_PROJECT_WORKGROUP_SIZE);
+    fit(projected, std::size_t(slots) * sizeof(gpu::ProjectedSplat), "splat projected");
     cluster_list.ensure_size(sizeof(glm::uvec4) + std::size_t(clusters) * sizeof(std::uint32_t), "splat cluster list");
-    tile_counts.ensure_size((std::size_t(gaussians) + 1) * sizeof(std::uint32_t), "splat tile counts");
+    fit(tile_counts, (std::size_t(slots) + 1) * sizeof(std::uint32_t), "splat tile counts");
     tile_ranges.ensure_size(std::size_t(tile_count) * sizeof(glm::uvec2), "splat tile ranges");
-    const std::uint32_t wanted = std::max({key_capacity, minimum_key_capacity, gaussians * initial_keys_per_gaussian,
-                                           pending_growth + pending_growth / 4});
+    const std::uint32_t wanted =
+        std::max({minimum_key_capacity, slots * initial_keys_per_slot, pending_growth + pending_growth / 4});
     const std::uint32_t capacity = std::min(wanted, engine::gl::RadixSort::max_sort_count());
-    if (capacity != key_capacity) {
+    if (capacity > key_capacity || capacity < key_capacity / 4) {
+        keys = engine::gl::Buffer(engine::gl::NoCreate);
+        values = engine::gl::Buffer(engine::gl::NoCreate);
         keys.ensure_size(std::size_t(capacity) * sizeof(glm::uvec2), "splat tile keys");
         values.ensure_size(std::size_t(capacity) * sizeof(std::uint32_t), "splat tile values");
         key_capacity = capacity;

@@ -24,7 +24,8 @@ void FrameSteps::bind_all() const {
                                                  {SPLAT_BINDING_STATS, &b.counters},
                                                  {SPLAT_BINDING_ARGS, &b.args},
                                                  {SPLAT_BINDING_BUDGET, &b.budget},
-                                                 {SPLAT_BINDING_PAGE_CODECS, &scene.page_codecs()}};
+                                                 {SPLAT_BINDING_PAGE_CODECS, &scene.page_codecs()},
+                                                 {SPLAT_BINDING_CLUSTER_SLOTS, &scene.cluster_slots()}};
     const engine::gl::ImageBinding images[] = {{SPLAT_IMAGE_COLOR, &frame.target.color(), GL_RGBA8},
                                                {SPLAT_IMAGE_LOW_VALUE + 0, &low.images[0], GL_RGBA32F},
                                                {SPLAT_IMAGE_LOW_VALUE + 1, &low.images[1], GL_RGBA32F},

@@ -67,7 +67,7 @@ inline constexpr GLbitfield kImageBarrier = GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                                             GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
 
 void record_selection(const FrameSteps& steps, std::uint32_t gaussians);
-void record_sort(const FrameSteps& steps, std::uint32_t gaussians);
+void record_sort(const FrameSteps& steps, std::uint32_t slots);
 void record_raster(const FrameSteps& steps);
 
 }  // namespace splat_lod

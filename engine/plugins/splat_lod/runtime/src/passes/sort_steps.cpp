@@ -8,13 +8,13 @@
 
 namespace splat_lod {
 
-void record_sort(const FrameSteps& steps, std::uint32_t gaussians) {
+void record_sort(const FrameSteps& steps, std::uint32_t slots) {
     using engine::gl::GpuTimerScope;
     FrameBuffers& b = steps.buffers;
-    {  // 2. exclusive scan of tile counts: each splat's key range; the total lands at [n]
+    {  // 2. exclusive scan of tile counts: each splat's key range; the total lands at [slots]
         GpuTimerScope t(steps.frame.timers, "splat.scan");
         steps.scan.record(
-            {b.tile_counts, b.count, 0, gaussians, b.tile_counts, std::size_t(gaussians) * sizeof(std::uint32_t)});
+            {b.tile_counts, b.count, 0, slots, b.tile_counts, std::size_t(slots) * sizeof(std::uint32_t)});
     }
     {  // 3. bin: one (depth, tile) key per tile touched, within the key capacity
         GpuTimerScope t(steps.frame.timers, "splat.bin");
@@ -22,7 +22,7 @@ void record_sort(const FrameSteps& steps, std::uint32_t gaussians) {
         engine::gl::run({.program = &steps.program("splat_dispatch_args.comp.glsl")});
         const auto& bin = steps.input_program("splat_bin.comp.glsl", [&] { steps.texels.bind_bin(b); });
         engine::gl::run({.program = &bin,
-                         .groups = {engine::gl::groups_for(gaussians, SPLAT_BIN_WORKGROUP_SIZE), 1, 1},
+                         .groups = {engine::gl::groups_for(slots, SPLAT_BIN_WORKGROUP_SIZE), 1, 1},
                          .barrier = kStepBarrier});
     }
     {  // 4. stable radix sort by (tile, depth); the key count stays on the GPU

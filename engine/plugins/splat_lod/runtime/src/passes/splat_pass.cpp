@@ -36,17 +36,19 @@ void SplatPass::execute(engine::FrameContext& frame) {
         low_.ensure(raster.width, raster.height);
     else if (low_.width > 0)
         low_ = LowResImages{};  // back at native resolution: nothing keeps them
-    buffers_.ensure(n, raster.tile_count());
-    fetch_in_use_ = texels_.resolve(settings.raster_fetch, n, buffers_.key_capacity, scene_, fetch_in_use_);
+    // Step 1 walks the scene's n Gaussian slots; the frame's buffers and steps 2 on hold its splat slots.
+    const std::uint32_t slots = scene_.slot_count();
+    buffers_.ensure(slots, engine::gl::groups_for(n, SPLAT_PROJECT_WORKGROUP_SIZE), raster.tile_count());
+    fetch_in_use_ = texels_.resolve(settings.raster_fetch, slots, buffers_.key_capacity, scene_, fetch_in_use_);
     const gpu::FrameUniforms uniforms = frame_uniforms(settings, lod_, frame, raster, scene_, buffers_.key_capacity);
     buffers_.uniforms.upload(0, sizeof(uniforms), &uniforms);
-    buffers_.count.upload(0, sizeof(n), &n);
+    buffers_.count.upload(0, sizeof(slots), &slots);
     buffers_.clear(lod_.splat_budget > 0);
 
     const FrameSteps steps{frame, settings, lod_,          raster, scene_, buffers_,
                            low_,  texels_,  fetch_in_use_, *scan_, *sort_};
     record_selection(steps, n);  // 1. a–d: cull, skip, project, the splat budget
-    record_sort(steps, n);       // 2–5. scan, bin, sort, tile ranges
+    record_sort(steps, slots);   // 2–5. scan, bin, sort, tile ranges
     record_raster(steps);        // 6. raster; 7. upscale below render scale 1
     engine::gl::end_steps();
 
