@@ -79,10 +79,7 @@ GameWorld::GameWorld(engine::Engine& engine, const std::filesystem::path& folder
     // streamer's byte counts) are that degree's even for a world stored with more.
     sink_ = std::make_unique<sw::SceneResidencySink>(*chunks_root_, settings_.sh_degree);
     start_streamer(streamer_settings(settings_));
-    const sw::StreamerSettings& s = streamer_->settings();
-    const std::uint64_t page_bytes = sw::gpu_bytes(s.gpu_pages.page_gaussians, s.gpu_sh_degree, s.gpu_pages);
-    pass_->settings().gpu_storage = settings_.gpu_storage;  // before the reserve, which stores that way
-    pass_->reserve(s.memory_budget_bytes / page_bytes * s.gpu_pages.page_gaussians, s.gpu_sh_degree);
+    pass_->settings().gpu_storage = settings_.gpu_storage;
     publish_lod_settings();
 }
 

@@ -33,9 +33,9 @@ void require_world_folder(const std::filesystem::path& folder);
 
 class GameWorld {
 public:
-    // Reads `folder`/world.json, loads the props and the terrain mesh, starts the streamer, reserves
-    // the GPU scene for the memory budget (so its buffers never grow mid-walk) and publishes the
-    // LOD settings. Holds the folder's shared lock until destroyed (splat_world refuses to rewrite
+    // Reads `folder`/world.json, loads the props and the terrain mesh, starts the streamer, sets how
+    // the GPU stores Gaussians and publishes the LOD settings. The GPU scene grows with what is
+    // resident (by half again, a copy on the GPU) rather than holding the whole memory budget. Holds the folder's shared lock until destroyed (splat_world refuses to rewrite
     // it meanwhile). Throws engine::Error naming the file on a missing or bad world, or when
     // splat_world is writing into the folder.
     GameWorld(engine::Engine& engine, const std::filesystem::path& folder, const GameSettings& settings);
