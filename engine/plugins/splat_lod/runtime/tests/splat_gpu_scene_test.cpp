@@ -2,6 +2,8 @@
 // bytes, freed ranges are reused, and the frame is the same as with the whole set uploaded at once.
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "engine/render/render_target.h"
 #include "engine/scene/scene.h"
 #include "gpu/gpu_scene.h"
@@ -173,4 +175,19 @@ TEST_F(SplatGpuSceneTest, HiddenComponentsKeepTheirPagesButTakeNoFrameSlots) {
     splat_lod::render_complete(incremental.engine(), s, camera, target);
     EXPECT_EQ(scene().slot_count(), 27u * 256u);
     EXPECT_EQ(max_difference(target.read_color(), from_scratch({a, b})), 0);
+}
+
+// Pages whose cluster step 1a surely culls for the view take no frame slots either; the frame is the
+// one drawn without frustum culling, where every drawn page has its slots.
+TEST_F(SplatGpuSceneTest, PagesOutsideTheViewTakeNoFrameSlots) {
+    const auto inside = slab(700, -1.2f, 1), behind = slab(600, 0.0f, 2);
+    const std::vector<glm::mat4> models{glm::mat4(1.0f), glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, 10.0f})};
+    const auto culled = incremental.render({inside, behind}, camera, glm::vec3(0.0f), models);
+    EXPECT_EQ(scene().pages_in_use(), 6u);
+    EXPECT_EQ(scene().slot_count(), 3u * 256u) << "the three pages behind the camera have none";
+    splat_lod::SplatRenderer pass(incremental.engine().renderer());
+    pass.settings().frustum_culling = false;
+    const auto whole = incremental.render({inside, behind}, camera, glm::vec3(0.0f), models);
+    EXPECT_EQ(scene().slot_count(), 6u * 256u);
+    EXPECT_EQ(max_difference(culled, whole), 0);
 }

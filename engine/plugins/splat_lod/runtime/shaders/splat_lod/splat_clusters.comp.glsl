@@ -94,8 +94,8 @@ void main() {
         atomicAdd(stats.skipping.x, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
         return;
     }
-    // Every cluster that gets this far has slots (the GPU scene gives them to all that are resident and
-    // not hidden); the test keeps a cluster without any from ever being projected.
+    // Every cluster that gets this far has slots (the GPU scene gives them to all that are resident, not
+    // hidden and not surely culled above); the test keeps a cluster without any from ever being projected.
     if (cluster_slots[cluster] == SPLAT_NO_SLOT) return;
     cluster_list.ids[atomicAdd(cluster_list.dispatch.x, 1u)] = cluster;
 }

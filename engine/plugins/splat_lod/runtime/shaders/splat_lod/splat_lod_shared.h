@@ -44,8 +44,8 @@ using mat4 = glm::mat4;
 #define SPLAT_BINDING_SH 1
 #define SPLAT_BINDING_INSTANCES 2  // GpuInstance[], per frame
 // The frame's splats live in slots: the Gaussians of the clusters that may be drawn (resident, not
-// hidden), in cluster order, 256 a cluster (GpuScene's cluster slots), so that the per-frame buffers
-// are sized by what the view can draw rather than by everything resident.
+// hidden, not surely outside the view), in cluster order, 256 a cluster (GpuScene's cluster slots), so
+// that the per-frame buffers are sized by what the view can draw rather than by everything resident.
 #define SPLAT_BINDING_PROJECTED 3  // ProjectedSplat[S], per frame, at its slot
 #define SPLAT_BINDING_TILE_COUNTS \
     4                           // uint[S + 1]: tiles touched per slot; scanned in place into key offsets, total at [S]
@@ -62,7 +62,8 @@ using mat4 = glm::mat4;
 #define SPLAT_BINDING_BUDGET 12       // SplatBudgetState: the splat budget's histograms and choice, per frame
 #define SPLAT_BINDING_PAGE_CODECS 13  // GpuPageCodec[pages], compact storage only, static per scene
 // uint[clusters]: the first slot / 256 of each cluster's Gaussians this frame, in cluster order over
-// the clusters that may be drawn; SPLAT_NO_SLOT for free pages and hidden instances.
+// the clusters that may be drawn; SPLAT_NO_SLOT for free pages, hidden instances and clusters that
+// step 1a's frustum test surely culls (the CPU makes the same test with wide margins).
 #define SPLAT_BINDING_CLUSTER_SLOTS 14
 #define SPLAT_NO_SLOT 0xFFFFFFFFu
 #define SPLAT_COMPACT_WORDS 5       // 32-bit words of one compact record

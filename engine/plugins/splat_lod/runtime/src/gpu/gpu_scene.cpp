@@ -290,12 +290,13 @@ void GpuScene::place(Slot& slot) {
 }
 
 // Runs of adjacent pages go up in one call each; every page gets its cluster record.
-void GpuScene::upload_pages(const Slot& slot, const void* records, const void* sh, const void* codecs) {
+void GpuScene::upload_pages(Slot& slot, const void* records, const void* sh, const void* codecs) {
     std::vector<GpuCluster> clusters = build_clusters({slot.cloud.get()});
     const auto instance = static_cast<std::uint32_t>(&slot - slots_.data());
     clusters.resize(slot.pages.size(), empty_cluster());
     for (GpuCluster& c : clusters)
         if (c.bounds.w >= 0.0f) c.bounds.w = std::bit_cast<float>(instance);
+    slot.clusters = clusters;
     const std::size_t record_page = kCluster * record_bytes(), sh_page = kCluster * sh_stride_ * sizeof(float);
     const auto* record_bytes_in = static_cast<const std::byte*>(records);
     const auto* sh_bytes_in = static_cast<const std::byte*>(sh);
@@ -402,7 +403,6 @@ void GpuScene::tally_slots(bool changed) {
 void GpuScene::upload_instances(const std::vector<const SplatComponent*>& components,
                                 const std::vector<std::int64_t>& slot_of) {
     std::vector<GpuInstance> instances(slots_.size());  // free instance indices keep count 0
-    std::vector<bool> drawn(slots_.size(), false);
     for (std::size_t i = 0; i < components.size(); ++i) {
         const Slot& slot = slots_[static_cast<std::size_t>(slot_of[i])];
         GpuInstance& inst = instances[static_cast<std::size_t>(slot_of[i])];
@@ -413,7 +413,7 @@ void GpuScene::upload_instances(const std::vector<const SplatComponent*>& compon
         const SplatComponent& component = *components[i];
         const float opacity = std::isnan(component.opacity) ? 1.0f : std::clamp(component.opacity, 0.0f, 1.0f);
         const bool hidden = !component.visible || opacity == 0.0f;
-        drawn[static_cast<std::size_t>(slot_of[i])] = !hidden;
+        slots_[static_cast<std::size_t>(slot_of[i])].drawn = !hidden;
         inst.info = glm::uvec4(std::bit_cast<std::uint32_t>(opacity), static_cast<std::uint32_t>(slot.cloud->size()),
                                static_cast<std::uint32_t>(slot.sh_degree) |
                                    (hidden ? std::uint32_t{SPLAT_INSTANCE_HIDDEN} : 0u) |
@@ -423,22 +423,9 @@ void GpuScene::upload_instances(const std::vector<const SplatComponent*>& compon
     const std::size_t bytes = std::max<std::size_t>(instances.size(), 1) * sizeof(GpuInstance);
     instances_.ensure_size(bytes, "splat instances");
     if (!instances.empty()) instances_.upload(0, instances.size() * sizeof(GpuInstance), instances.data());
-    assign_frame_slots(drawn);
-}
-
-void GpuScene::assign_frame_slots(const std::vector<bool>& drawn) {
-    std::vector<std::uint32_t> table(gaussian_count_ / kCluster, SPLAT_NO_SLOT);
-    for (std::size_t k = 0; k < slots_.size(); ++k)
-        if (slots_[k].cloud && drawn[k])
-            for (const std::uint32_t page : slots_[k].pages) table[page] = 0;
-    std::uint32_t next = 0;
-    for (std::uint32_t& first : table)
-        if (first == 0) first = next++;
-    slot_count_ = std::max<std::uint32_t>(next, 1) * kCluster;  // one page at least: no pass has zero length
-    if (table == frame_slots_ && cluster_slots_) return;
-    cluster_slots_.ensure_size(std::max<std::size_t>(table.size(), 1) * sizeof(std::uint32_t), "splat cluster slots");
-    if (!table.empty()) cluster_slots_.upload(0, table.size() * sizeof(std::uint32_t), table.data());
-    frame_slots_ = std::move(table);
+    for (std::size_t i = 0; i < components.size(); ++i)
+        slots_[static_cast<std::size_t>(slot_of[i])].instance = instances[static_cast<std::size_t>(slot_of[i])];
+    assign_frame_slots(nullptr);
 }
 
 }  // namespace splat_lod::gpu

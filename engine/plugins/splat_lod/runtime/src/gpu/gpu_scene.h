@@ -60,6 +60,9 @@ public:
     // resident and not hidden (one page at least), numbered in page order, so that the frame's buffers
     // hold what this frame can draw and a splat's slot orders like its Gaussian's index.
     std::uint32_t slot_count() const { return slot_count_; }
+    // Numbers the pages of the drawn components, leaving out those whose cluster step 1a surely culls
+    // for `view` (none when null; update() numbers them so). The splat pass calls it every frame.
+    void assign_frame_slots(const FrameUniforms* view);
     const engine::gl::Buffer& cluster_slots() const { return cluster_slots_; }
     std::uint32_t instance_count() const { return static_cast<std::uint32_t>(slots_.size()); }
     std::uint32_t sh_stride() const { return sh_stride_; }            // floats (full) or words (compact) per Gaussian
@@ -96,11 +99,15 @@ private:
         std::vector<std::uint32_t> pages;  // page j holds the cloud's Gaussians [256·j, 256·(j + 1))
         std::uint32_t coarsest = 1;
         std::size_t dropped = 0;
+        std::vector<GpuCluster> clusters;  // the cluster record of each page, as uploaded
+        GpuInstance instance{};            // this frame's record
+        bool drawn = false;                // resident and not hidden this frame
     };
     void reset(int sh_degree, GpuStorage storage);
     std::size_t record_bytes() const;  // bytes of one Gaussian's record
-    // Uploads page-sized runs of the slot's `records`, `sh` and `codecs` (per page) into its pages.
-    void upload_pages(const Slot& slot, const void* records, const void* sh, const void* codecs);
+    // Uploads page-sized runs of the slot's `records`, `sh` and `codecs` (per page) into its pages, and
+    // keeps its cluster records.
+    void upload_pages(Slot& slot, const void* records, const void* sh, const void* codecs);
     std::uint32_t allocate_page();
     void release(Slot& slot);
     void place(Slot& slot);
@@ -115,8 +122,6 @@ private:
     void tally_slots(bool changed);
     void upload_instances(const std::vector<const SplatComponent*>& components,
                           const std::vector<std::int64_t>& slot_of);
-    // Numbers the pages of the instances `drawn` says may be drawn this frame (cluster_slots()).
-    void assign_frame_slots(const std::vector<bool>& drawn);
 
     std::vector<Slot> slots_;
     std::vector<std::uint32_t> free_;  // free pages below the end, sorted descending (lowest at the back)

@@ -73,7 +73,6 @@ gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const plugi
     u.splat_budget = lod.splat_budget;
     u.exact_tiles = settings.exact_tiles ? 1u : 0u;
     u.key_depth_bits = raster.key_depth_bits;
-    u.slot_count = scene.slot_count();
     return u;
 }
 

@@ -36,11 +36,15 @@ void SplatPass::execute(engine::FrameContext& frame) {
         low_.ensure(raster.width, raster.height);
     else if (low_.width > 0)
         low_ = LowResImages{};  // back at native resolution: nothing keeps them
-    // Step 1 walks the scene's n Gaussian slots; the frame's buffers and steps 2 on hold its splat slots.
+    // Step 1 walks the scene's n Gaussian slots; the frame's buffers and steps 2 on hold its splat slots,
+    // those of the pages that are drawn and not surely outside this view.
+    gpu::FrameUniforms uniforms = frame_uniforms(settings, lod_, frame, raster, scene_, 0);
+    scene_.assign_frame_slots(&uniforms);
     const std::uint32_t slots = scene_.slot_count();
     buffers_.ensure(slots, engine::gl::groups_for(n, SPLAT_PROJECT_WORKGROUP_SIZE), raster.tile_count());
     fetch_in_use_ = texels_.resolve(settings.raster_fetch, slots, buffers_.key_capacity, scene_, fetch_in_use_);
-    const gpu::FrameUniforms uniforms = frame_uniforms(settings, lod_, frame, raster, scene_, buffers_.key_capacity);
+    uniforms.key_capacity = buffers_.key_capacity;
+    uniforms.slot_count = slots;
     buffers_.uniforms.upload(0, sizeof(uniforms), &uniforms);
     buffers_.count.upload(0, sizeof(slots), &slots);
     buffers_.clear(lod_.splat_budget > 0);
