@@ -88,7 +88,10 @@ ReferenceOutcome make_reference(const ReferenceOptions& o, std::FILE* progress) 
     const auto start = Clock::now();
     engine::Engine engine;
     engine.plugins().add_static(splat_lod::make_plugin());
-    GameWorld world(engine, o.world, o.settings);
+    // The reference is the truth the profile scores against: the Gaussians as trained, full floats.
+    GameSettings settings = o.settings;
+    settings.gpu_storage = splat_lod::GpuStorage::full;
+    GameWorld world(engine, o.world, settings);
     const std::vector<PathPose> poses = world.path(o.frames);
     const ReferenceKey key = reference_key(o.world, o.width, o.height, poses, o.settings.fov_y_deg, o.supersample);
     ReferenceOutcome outcome;

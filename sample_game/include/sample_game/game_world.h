@@ -35,9 +35,9 @@ class GameWorld {
 public:
     // Reads `folder`/world.json, loads the props and the terrain mesh, starts the streamer, sets how
     // the GPU stores Gaussians and publishes the LOD settings. The GPU scene grows with what is
-    // resident (by half again, a copy on the GPU) rather than holding the whole memory budget. Holds the folder's shared lock until destroyed (splat_world refuses to rewrite
-    // it meanwhile). Throws engine::Error naming the file on a missing or bad world, or when
-    // splat_world is writing into the folder.
+    // resident (by half again, a copy on the GPU) rather than holding the whole memory budget. Holds the folder's
+    // shared lock until destroyed (splat_world refuses to rewrite it meanwhile). Throws engine::Error naming the file
+    // on a missing or bad world, or when splat_world is writing into the folder.
     GameWorld(engine::Engine& engine, const std::filesystem::path& folder, const GameSettings& settings);
     ~GameWorld();  // stops the streamer before the scene it feeds goes
     GameWorld(const GameWorld&) = delete;

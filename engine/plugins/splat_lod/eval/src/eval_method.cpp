@@ -35,6 +35,11 @@ const Method& reference_method() {
     return method_registry().front();
 }
 
+const Method& truth_method() {
+    static const Method method = stored_as(reference_method(), GpuStorage::full);
+    return method;
+}
+
 const Method& level_colouring_method() {
     static const Method method{"full", "every level, selected by pixel coverage, each Gaussian tinted by its level",
                                [](plugin_msgs::LodSettings& lod, SplatPassSettings&) {

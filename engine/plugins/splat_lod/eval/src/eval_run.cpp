@@ -74,7 +74,7 @@ void level_picture(FrameMeasurer& measurer, const CameraPose& pose, EvalResults&
 References scale_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, Progress& progress,
                        EvalResults& results) {
     const EvalOptions& o = results.options;
-    const FloatImage full = to_float(measurer.render(reference_method(), make_view(pose, o.width, o.height)));
+    const FloatImage full = to_float(measurer.render(truth_method(), make_view(pose, o.width, o.height)));
     References references;
     for (int k : o.scales) {
         references[k] = area_average(full, k);
@@ -122,8 +122,8 @@ void distance_sweep(FrameMeasurer& measurer, const CameraPose& pose, int view, P
         const CameraPose far = dolly(pose, static_cast<float>(d));
         std::optional<FloatImage> reference;
         if (d * o.width <= o.max_reference_side && d * o.height <= o.max_reference_side) {
-            reference = area_average(
-                to_float(measurer.render(reference_method(), make_view(far, d * o.width, d * o.height))), d);
+            reference =
+                area_average(to_float(measurer.render(truth_method(), make_view(far, d * o.width, d * o.height))), d);
             results.max_reference_distance = std::max(results.max_reference_distance, d);
         }
         for (const Method& method : o.methods) {

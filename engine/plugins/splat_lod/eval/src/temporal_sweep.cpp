@@ -29,7 +29,7 @@ struct Progress {
 
 // The baseline render of the fine model at s·W × s·H, area-averaged by s×s.
 FloatImage reference_frame(FrameMeasurer& measurer, const CameraPose& pose, const TemporalOptions& o, int s) {
-    const FloatImage full = to_float(measurer.render(reference_method(), make_view(pose, s * o.width, s * o.height)));
+    const FloatImage full = to_float(measurer.render(truth_method(), make_view(pose, s * o.width, s * o.height)));
     return s == 1 ? full : area_average(full, s);
 }
 

@@ -106,8 +106,11 @@ TEST_F(SplatEvalTest, WholeRunWritesMeasurementsReportPlotsAndContactSheet) {
     const auto& first = results.rows.front();
     ASSERT_EQ(first.method, "baseline");
     ASSERT_EQ(first.factor, 1);
-    EXPECT_GT(*first.psnr, 60.0) << "the baseline at scale 1 is its own reference";
-    EXPECT_NEAR(*first.ssim, 1.0, 1e-6);
+    // The reference is the same model and renderer drawn from full floats: only the compact storage's
+    // error is left (docs/gpu_storage.md wants at least 45 dB).
+    EXPECT_GT(*first.psnr, 50.0) << "the baseline at scale 1 against its reference";
+    EXPECT_LT(*first.psnr, 200.0) << "the reference is drawn from full floats, the method compact";
+    EXPECT_NEAR(*first.ssim, 1.0, 1e-3);
     EXPECT_GT(first.statistics.visible, 0u);
 
     const auto folder = engine::test::output_dir("splat_eval") / "tiny";
@@ -164,7 +167,7 @@ TEST_F(SplatEvalTest, ChainLevelsAreMeasuredAgainstTheMainScenesReference) {
     EXPECT_EQ(find("chain_L0", 1).statistics.considered, 27u);
     EXPECT_EQ(find("chain_L1", 4).statistics.considered, 8u);
     EXPECT_EQ(find("chain_L1", 4).width, 16);
-    EXPECT_GT(*find("chain_L0", 1).psnr, 60.0) << "level 0 is the main scene: it matches its own reference";
+    EXPECT_GT(*find("chain_L0", 1).psnr, 50.0) << "level 0 is the main scene: its reference up to the storage";
     EXPECT_NEAR(*find("chain_L0", 4).psnr, *find("baseline", 4).psnr, 0.01);
     EXPECT_LT(*find("chain_L1", 1).psnr, 40.0) << "the coarse level is a different model";
     EXPECT_GT(*find("chain_L1", 1).psnr, 5.0);

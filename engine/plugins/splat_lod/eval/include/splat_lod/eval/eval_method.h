@@ -29,6 +29,9 @@ const std::vector<Method>& method_registry();
 std::vector<Method> select_methods(const std::string& list);
 // The reference renderer's setup (docs/algorithms.md §6: the fine model with the baseline renderer).
 const Method& reference_method();
+// The references' own frames: reference_method() drawn from full floats (docs/gpu_storage.md), so that
+// what every method is scored against carries no storage error.
+const Method& truth_method();
 // `full` with each Gaussian tinted by its LOD level (the pass's debug view), for the level picture.
 const Method& level_colouring_method();
 
