@@ -40,13 +40,12 @@ bool surely_outside(const GpuCluster& c, const GpuInstance& instance, const Fram
 
 }  // namespace
 
-void GpuScene::assign_frame_slots(const FrameUniforms* view) {
+void GpuScene::assign_frame_slots(const FrameUniforms& view) {
     std::vector<std::uint32_t> table(gaussian_count_ / SPLAT_PROJECT_WORKGROUP_SIZE, SPLAT_NO_SLOT);
     for (const Slot& slot : slots_) {
         if (!slot.cloud || !slot.drawn) continue;
         for (std::size_t j = 0; j < slot.pages.size(); ++j)
-            if (view == nullptr || j >= slot.clusters.size() || !surely_outside(slot.clusters[j], slot.instance, *view))
-                table[slot.pages[j]] = 0;
+            if (!surely_outside(slot.clusters[j], slot.instance, view)) table[slot.pages[j]] = 0;
     }
     std::uint32_t next = 0;
     for (std::uint32_t& first : table)

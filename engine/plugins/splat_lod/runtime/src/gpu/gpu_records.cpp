@@ -60,14 +60,16 @@ void pack_sh(const SplatCloud& cloud, int degree, std::uint32_t stride, std::vec
     }
 }
 
-void pack_compact(const SplatCloud& cloud, int degree, std::uint32_t instance, std::vector<std::uint32_t>& records,
-                  std::vector<std::uint32_t>& sh, std::vector<GpuPageCodec>& codecs) {
+std::size_t pack_compact(const SplatCloud& cloud, int degree, std::uint32_t instance,
+                         std::vector<std::uint32_t>& records, std::vector<std::uint32_t>& sh,
+                         std::vector<GpuPageCodec>& codecs) {
     constexpr std::size_t size = SPLAT_PROJECT_WORKGROUP_SIZE;
     const std::size_t pages = std::max<std::size_t>((cloud.size() + size - 1) / size, 1);
     const std::uint32_t sh_words = compact_sh_words(degree);
     records.assign(pages * size * kCompactWords, 0u);  // padding: opacity 0, never drawn
     sh.assign(pages * size * sh_words, 0u);
     codecs.assign(pages, GpuPageCodec{});
+    std::size_t dropped = 0;
     for (std::size_t page = 0; page < pages; ++page) {
         const CompactPage p = fit_compact_page(cloud, page * size, size, degree);
         codecs[page] =
@@ -75,11 +77,16 @@ void pack_compact(const SplatCloud& cloud, int degree, std::uint32_t instance, s
                          glm::vec4(p.colour_lo, p.coverage_lo), glm::vec4(p.colour_step, p.coverage_step),
                          glm::vec4(p.sh_step, std::bit_cast<float>(instance))};
         for (std::size_t i = page * size; i < std::min((page + 1) * size, cloud.size()); ++i) {
+            if (!gaussian_is_drawable(cloud, i)) {  // its record and SH stay zero: opacity 0
+                ++dropped;
+                continue;
+            }
             const CompactRecord r = encode_compact(cloud, i, p);
             std::copy(r.begin(), r.end(), records.begin() + static_cast<std::ptrdiff_t>(i * kCompactWords));
             encode_compact_sh(cloud, i, p, degree, std::span(sh).subspan(i * sh_words, sh_words));
         }
     }
+    return dropped;
 }
 
 }  // namespace splat_lod::gpu

@@ -269,9 +269,7 @@ void GpuScene::place(Slot& slot) {
     if (storage_ == GpuStorage::compact) {
         std::vector<std::uint32_t> records, sh;
         std::vector<GpuPageCodec> codecs;
-        pack_compact(cloud, slot.sh_degree, instance, records, sh, codecs);
-        slot.dropped = 0;
-        for (std::size_t i = 0; i < cloud.size(); ++i) slot.dropped += gaussian_is_drawable(cloud, i) ? 0 : 1;
+        slot.dropped = pack_compact(cloud, slot.sh_degree, instance, records, sh, codecs);
         upload_pages(slot, records.data(), sh.data(), codecs.data());
     } else {
         std::vector<GpuGaussian> gaussians;
@@ -425,7 +423,6 @@ void GpuScene::upload_instances(const std::vector<const SplatComponent*>& compon
     if (!instances.empty()) instances_.upload(0, instances.size() * sizeof(GpuInstance), instances.data());
     for (std::size_t i = 0; i < components.size(); ++i)
         slots_[static_cast<std::size_t>(slot_of[i])].instance = instances[static_cast<std::size_t>(slot_of[i])];
-    assign_frame_slots(nullptr);
 }
 
 }  // namespace splat_lod::gpu

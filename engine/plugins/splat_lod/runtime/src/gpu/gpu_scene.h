@@ -27,8 +27,10 @@ void pack_sh(const SplatCloud& cloud, int degree, std::uint32_t stride, std::vec
 // The compact storage of one cloud (splat_lod/core/compact_gaussians.h) in pages of
 // SPLAT_PROJECT_WORKGROUP_SIZE, the last padded with never-drawn records: kCompactWords words per
 // Gaussian, `sh_words` per Gaussian of SH bands 1..degree, and one codec per page tagged with `instance`.
-void pack_compact(const SplatCloud& cloud, int degree, std::uint32_t instance, std::vector<std::uint32_t>& records,
-                  std::vector<std::uint32_t>& sh, std::vector<GpuPageCodec>& codecs);
+// Returns how many Gaussians are not drawable (stored as zeros, never drawn), as pack_gaussians does.
+std::size_t pack_compact(const SplatCloud& cloud, int degree, std::uint32_t instance,
+                         std::vector<std::uint32_t>& records, std::vector<std::uint32_t>& sh,
+                         std::vector<GpuPageCodec>& codecs);
 
 // The clusters of the project pass's workgroups over the packed Gaussians of `clouds` (concatenated
 // in order, as pack_gaussians packs them): bounding sphere, largest visible extent, smallest
@@ -61,8 +63,8 @@ public:
     // hold what this frame can draw and a splat's slot orders like its Gaussian's index.
     std::uint32_t slot_count() const { return slot_count_; }
     // Numbers the pages of the drawn components, leaving out those whose cluster step 1a surely culls
-    // for `view` (none when null; update() numbers them so). The splat pass calls it every frame.
-    void assign_frame_slots(const FrameUniforms* view);
+    // for `view`. The splat pass calls it every frame, after update(); slot_count() is this frame's.
+    void assign_frame_slots(const FrameUniforms& view);
     const engine::gl::Buffer& cluster_slots() const { return cluster_slots_; }
     std::uint32_t instance_count() const { return static_cast<std::uint32_t>(slots_.size()); }
     std::uint32_t sh_stride() const { return sh_stride_; }            // floats (full) or words (compact) per Gaussian

@@ -39,7 +39,7 @@ void SplatPass::execute(engine::FrameContext& frame) {
     // Step 1 walks the scene's n Gaussian slots; the frame's buffers and steps 2 on hold its splat slots,
     // those of the pages that are drawn and not surely outside this view.
     gpu::FrameUniforms uniforms = frame_uniforms(settings, lod_, frame, raster, scene_, 0);
-    scene_.assign_frame_slots(&uniforms);
+    scene_.assign_frame_slots(uniforms);
     const std::uint32_t slots = scene_.slot_count();
     buffers_.ensure(slots, engine::gl::groups_for(n, SPLAT_PROJECT_WORKGROUP_SIZE), raster.tile_count());
     fetch_in_use_ = texels_.resolve(settings.raster_fetch, slots, buffers_.key_capacity, scene_, fetch_in_use_);
