@@ -6,6 +6,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
+#include "splat_lod/core/chunk_reader.h"
 
 namespace sample_game {
 namespace fs = std::filesystem;
@@ -91,8 +92,8 @@ void ChunkFaults::apply(std::size_t chunk, FaultKind kind, std::size_t donor) {
     } else if (kind == FaultKind::corrupted) {
         bytes = read_bytes(path);
         const splat_lod::world::ChunkEntry& entry = manifest_.chunks[chunk];
-        for (const auto& block : splat_lod::world::record_blocks(entry, 0, entry.prefix_count[0])) {
-            const std::uint64_t at = entry.header_bytes + block.begin * entry.vertex_bytes;
+        for (const auto& block : splat_lod::world::record_block_bytes(path, entry)) {
+            const std::uint64_t at = block.offset;
             if (at >= bytes.size())
                 engine::fail(path.string() + ": shorter than its manifest entry says; cannot corrupt it in place");
             bytes[static_cast<std::size_t>(at)] ^= 1u;

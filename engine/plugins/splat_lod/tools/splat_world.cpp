@@ -100,12 +100,16 @@ struct CommandLine {
     splat_lod::world::WorldOptions options;
     std::string out, seed_text = "1", shard_text;
     // --from: a capture imported instead of the generated world (world/world_import.h).
-    std::string from, up_text = "auto", memory_text = "3G", views_text = "auto";
+    std::string from, up_text = "auto", memory_text = "3G", views_text = "auto", codec_text = "compact";
     std::uint64_t max_chunk_gaussians = 262144;
     std::string cameras;
     bool no_terrain_mesh = false, no_groups = false, count_only = false, merge = false, quadtree = false;
     CLI::Option* shard_option = nullptr;  // given: bake a shard
 };
+
+splat_lod::world::ChunkCodec codec(const CommandLine& c) {
+    return c.codec_text == "ply" ? splat_lod::world::ChunkCodec::ply : splat_lod::world::ChunkCodec::compact;
+}
 
 // What the world is and how its chunks are baked.
 void add_world_options(CLI::App& app, CommandLine& c) {
@@ -134,6 +138,10 @@ void add_world_options(CLI::App& app, CommandLine& c) {
     app.add_option("--group-fill", options.groups.fill,
                    "widens the chunk groups' pooled Gaussians so that neighbours overlap, 1 to 4; 1.5 by default")
         ->check(CLI::Range(1.0, 4.0));
+    app.add_option("--chunk-codec", c.codec_text,
+                   "how chunk files store the Gaussians: compact (compressed, quantised; the default) or ply "
+                   "(lossless, about 5x larger)")
+        ->check(CLI::IsMember({"compact", "ply"}));
 }
 
 // Importing a capture (--from) instead of generating the sample world.
@@ -190,6 +198,7 @@ int run_import(const CommandLine& c) {
     o.bake_width = c.options.bake_width;
     o.bake_height = c.options.bake_height;
     o.groups = !c.no_groups;
+    o.chunk_codec = codec(c);
     o.force = c.options.force;
     o.progress = print_progress;
     const auto shard =
@@ -229,6 +238,7 @@ int run(CommandLine& c) {
     options.output = c.out;
     options.terrain_mesh = !c.no_terrain_mesh;
     options.groups.enabled = !c.no_groups;
+    options.chunk_codec = codec(c);
     options.progress = print_progress;
     if (c.count_only) {
         std::printf("%s", world::format_summary(world::count_world_content(options)).c_str());

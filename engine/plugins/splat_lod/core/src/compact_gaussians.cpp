@@ -209,31 +209,33 @@ void decode_compact_sh(std::span<const std::uint32_t> sh_words, const CompactPag
         }
 }
 
+void decode_compact_into(const CompactRecord& record, std::span<const std::uint32_t> sh_words, const CompactPage& page,
+                         int sh_degree, SplatCloud& out, std::size_t i) {
+    const CompactGaussian g = decode_compact(record, page);
+    out.positions[i] = g.position;
+    out.rotations[i] = g.rotation;
+    out.log_scales[i] = g.log_scale;
+    const double o = std::clamp(double(g.opacity), 1e-30, 1.0 - 1e-7);
+    out.opacity_logits[i] = g.opacity > 0.0f ? static_cast<float>(std::log(o / (1.0 - o))) : -100.0f;
+    out.sh_dc[i] = g.sh_dc;
+    decode_compact_sh(sh_words, page, sh_degree,
+                      std::span(out.sh_rest).subspan(i * out.sh_rest_stride(), out.sh_rest_stride()));
+    out.lod_level[i] = g.level;
+    out.coverage_min[i] = g.coverage_min;
+    out.coverage_max[i] = g.coverage_max;
+}
+
 SplatCloud compact_round_trip(const SplatCloud& cloud, int sh_degree) {
     sh_degree = std::clamp(sh_degree, 0, kMaxShDegree);
     SplatCloud out;
     out.resize(cloud.size());
     out.set_sh_degree(sh_degree);
-    const bool lod = cloud.has_lod_attributes();  // else level 1 and unset bounds, as resize() leaves them
     std::vector<std::uint32_t> sh(compact_sh_words(sh_degree));
     for (std::size_t first = 0; first < cloud.size(); first += kCompactPageSize) {
         const CompactPage page = fit_compact_page(cloud, first, kCompactPageSize, sh_degree);
         for (std::size_t i = first; i < std::min(first + kCompactPageSize, cloud.size()); ++i) {
-            const CompactGaussian g = decode_compact(encode_compact(cloud, i, page), page);
             encode_compact_sh(cloud, i, page, sh_degree, sh);
-            out.positions[i] = g.position;
-            out.rotations[i] = g.rotation;
-            out.log_scales[i] = g.log_scale;
-            const double o = std::clamp(double(g.opacity), 1e-30, 1.0 - 1e-7);
-            out.opacity_logits[i] = g.opacity > 0.0f ? static_cast<float>(std::log(o / (1.0 - o))) : -100.0f;
-            out.sh_dc[i] = g.sh_dc;
-            decode_compact_sh(sh, page, sh_degree,
-                              std::span(out.sh_rest).subspan(i * out.sh_rest_stride(), out.sh_rest_stride()));
-            if (lod) {
-                out.lod_level[i] = g.level;
-                out.coverage_min[i] = g.coverage_min;
-                out.coverage_max[i] = g.coverage_max;
-            }
+            decode_compact_into(encode_compact(cloud, i, page), sh, page, sh_degree, out, i);
         }
     }
     return out;

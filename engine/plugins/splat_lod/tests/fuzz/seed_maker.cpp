@@ -21,8 +21,10 @@
 #include "engine/core/file_io.h"
 #include "splat_fuzz_support.h"
 #include "splat_io_test_helpers.h"
+#include "splat_lod/core/chunk_writer.h"
 #include "splat_lod/core/ply_file.h"
 #include "splat_lod/core/splat_io.h"
+#include "splat_lod/core/stream_levels.h"
 #include "splat_lod/worldgen/world_meshes.h"
 #include "test_support.h"
 
@@ -291,6 +293,23 @@ void world_chunk_seeds(SeedWriter& write) {
     seed("1100_sh0_bad_second_block.bin", {2, 255, 255, 255, 3, 100, 1}, 1100, 0);
 }
 
+// Compressed chunk files as the world generator writes them: a few records, and more than one block
+// over every stream level at SH degree 1.
+void compact_chunk_seeds(SeedWriter& write, const std::filesystem::path& scratch) {
+    using splat_io_test::make_cloud;
+    const auto seed = [&](const char* name, std::size_t n, int sh_degree) {
+        const splat_lod::world::StreamLevelRule rule;
+        splat_lod::SplatCloud cloud = make_cloud(n, sh_degree, 15, true);
+        cloud = cloud.permuted(splat_lod::world::stream_order(cloud, rule));
+        splat_lod::world::write_chunk_file(cloud, scratch, "seed.splatc", {0, 0}, rule,
+                                           splat_lod::world::ChunkCodec::compact);
+        write("compact_chunk", name, engine::read_binary_file(scratch / "seed.splatc"));
+        fs::remove(scratch / "seed.splatc");
+    };
+    seed("40_sh0.splatc", 40, 0);
+    seed("1500_sh1.splatc", 1500, 1);
+}
+
 std::string codebook(float lo, float hi) {
     std::string text = "[";
     for (int i = 0; i < 256; ++i) {
@@ -450,6 +469,7 @@ int main(int argc, char** argv) {
         sog_seeds(write);
         gltf_seeds(write);
         world_chunk_seeds(write);
+        compact_chunk_seeds(write, out);
         const int made = write.written;
         const RealFiles real{shared};
         real_splat_seeds(write, real);

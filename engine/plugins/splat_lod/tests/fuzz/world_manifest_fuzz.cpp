@@ -32,15 +32,19 @@ void check_manifest(const sw::WorldManifest& m) {
         for (int l = 1; l < sw::kLevels; ++l)
             require(c.prefix_count[static_cast<std::size_t>(l)] <= c.prefix_count[static_cast<std::size_t>(l - 1)],
                     "prefix counts do not grow with the level");
-        require(c.vertex_bytes > 0 && c.prefix_bytes(1) == c.file_bytes, "file_bytes = header + count x vertex bytes");
+        if (c.codec == sw::ChunkCodec::compact)
+            require(c.vertex_bytes == 0 && c.file_bytes >= c.header_bytes, "compressed: no record size, a header");
+        else
+            require(c.vertex_bytes > 0 && c.prefix_bytes(1) == c.file_bytes,
+                    "file_bytes = header + count x vertex bytes");
         require(c.record_crc32.size() == sw::record_block_count(c), "one checksum per record block");
         const auto blocks = sw::record_blocks(c, 0, c.prefix_count[0]);
         require(blocks.size() == c.record_crc32.size(), "the blocks of the whole file are every block");
         for (std::size_t b = 0; b < blocks.size(); ++b)
             require(blocks[b].index == b && blocks[b].begin < blocks[b].end &&
-                        blocks[b].end - blocks[b].begin <= sw::kChecksumBlockRecords &&
+                        blocks[b].end - blocks[b].begin <= c.block_records() &&
                         blocks[b].begin == (b == 0 ? 0 : blocks[b - 1].end),
-                    "record blocks are contiguous, in order, and at most kChecksumBlockRecords long");
+                    "record blocks are contiguous, in order, and at most block_records() long");
         total += c.prefix_count[0];
     }
     require(total == m.gaussians, "gaussians is the chunks' sum");

@@ -352,7 +352,7 @@ TEST(OutputSafetyKill, AWorldRunKilledMidWayLeavesThePreviousWorldIntact) {
         // The kill came after files of the new world were written, next to the old ones.
         std::size_t new_chunks = 0;
         for (const std::string& file : files_in(k.world))
-            if (!old.paths.count(file) && file.find(".lod.ply") != std::string::npos) ++new_chunks;
+            if (!old.paths.count(file) && file.find(".splatc") != std::string::npos) ++new_chunks;
         std::cout << "killed " << point.name << ": old world intact, " << new_chunks
                   << " chunk files of the killed run left\n";
         if (point.name == "after some chunks") {

@@ -8,6 +8,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
+#include "splat_lod/core/chunk_reader.h"
 
 namespace splat_lod::world {
 namespace {
@@ -88,11 +89,11 @@ void check_chunk_file(const fs::path& path, const ChunkEntry& entry) {
     const std::span<const std::uint8_t> all(bytes);
     if (checksum(all.first(entry.header_bytes)) != entry.header_crc32)
         engine::fail(path.string() + ": the header's checksum is not the one its shard recorded");
+    const std::vector<BlockBytes> bytes_of = record_block_bytes(path, entry);
     for (const RecordBlock& block : record_blocks(entry, 0, entry.prefix_count[0])) {
-        const std::uint64_t begin = entry.header_bytes + block.begin * entry.vertex_bytes;
-        if (checksum(all.subspan(begin, (block.end - block.begin) * entry.vertex_bytes)) !=
-            entry.record_crc32[block.index])
-            engine::fail(path.string() + ": byte " + std::to_string(begin) + ": records [" +
+        const BlockBytes& at = bytes_of[block.index];
+        if (checksum(all.subspan(at.offset, at.size)) != entry.record_crc32[block.index])
+            engine::fail(path.string() + ": byte " + std::to_string(at.offset) + ": records [" +
                          std::to_string(block.begin) + ", " + std::to_string(block.end) +
                          ") do not match the checksum its shard recorded");
     }

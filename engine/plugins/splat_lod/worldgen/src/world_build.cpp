@@ -13,6 +13,7 @@
 #include "chunk_cameras.h"
 #include "engine/core/error.h"
 #include "splat_lod/bake/bake_cameras.h"
+#include "splat_lod/core/chunk_writer.h"
 #include "splat_lod/core/parallel_for.h"
 #include "splat_lod/core/splat_io.h"
 #include "splat_lod/synth/fine_detail_scene.h"
@@ -58,9 +59,9 @@ ChunkResult build_chunk(const WorldOptions& o, const ContentContext& context, co
     const auto start = Clock::now();
     const SplatCloud fine = make_chunk_content(context, slot.square, &counts);
     const double content_seconds = seconds_since(start);
-    const ChunkBake bake{o.bake, o.bake_width, o.bake_height, stream_level_rule(o)};
+    const ChunkBake bake{o.bake, o.bake_width, o.bake_height, stream_level_rule(o), o.chunk_codec};
     ChunkResult result = bake_chunk(bake, fine, chunk_camera_poses(*context.terrain, slot.square), o.output,
-                                    chunk_file(generation, slot.cell), slot.cell);
+                                    chunk_file(generation, slot.cell, o.chunk_codec), slot.cell);
     result.counts = counts;
     result.stages.insert(result.stages.begin(), StageSeconds{"content", content_seconds});
     return result;
@@ -120,8 +121,7 @@ void write_chunk(const ChunkBake& how, const SplatCloud& baked, const fs::path& 
     const auto start = Clock::now();
     const SplatCloud ordered = baked.permuted(stream_order(baked, how.rule));
     for (const std::uint8_t level : ordered.lod_level) ++result.bake_level_counts[static_cast<std::size_t>(level - 1)];
-    write_inria_ply(output / file, ordered);
-    result.entry = describe_chunk(ordered, output, file, cell, how.rule);
+    result.entry = write_chunk_file(ordered, output, file, cell, how.rule, how.codec);
     result.stages.push_back({"write", seconds_since(start)});
 }
 
@@ -144,8 +144,8 @@ std::vector<ChunkSlot> chunk_slots(const WorldOptions& o) {
     return slots;
 }
 
-fs::path chunk_file(const fs::path& generation, const glm::ivec2& cell) {
-    return generation / "chunks" / (chunk_id(cell) + ".lod.ply");
+fs::path chunk_file(const fs::path& generation, const glm::ivec2& cell, ChunkCodec codec) {
+    return generation / "chunks" / (chunk_id(cell) + chunk_extension(codec));
 }
 
 ContentContext content_context(const WorldOptions& o, const WorldTerrain& terrain, const WorldLayout& layout) {
@@ -212,7 +212,7 @@ void add_groups(const WorldOptions& o, const fs::path& generation, WorldManifest
         if (o.progress) o.progress({"groups", p.done, p.total, 0, seconds_since(start), -1.0});
     };
     m.groups = build_groups(o.output, generation, m.chunks, o.size_m, o.chunk_size_m, o.groups, stream_level_rule(o),
-                            o.threads, progress);
+                            o.chunk_codec, o.threads, progress);
     s.stages.push_back({"chunk groups", seconds_since(stage_start)});
 }
 

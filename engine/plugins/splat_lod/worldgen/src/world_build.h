@@ -13,6 +13,7 @@
 #include "chunk_content.h"
 #include "splat_lod/bake/bake.h"
 #include "splat_lod/core/camera_set.h"
+#include "splat_lod/core/chunk_writer.h"
 #include "splat_lod/core/world_manifest.h"
 #include "splat_lod/worldgen/world_generator.h"
 #include "world_layout.h"
@@ -34,8 +35,8 @@ struct ChunkSlot {
 // the manifest lists them in and the one the shards are dealt from.
 std::vector<ChunkSlot> chunk_slots(const WorldOptions& options);
 
-// "<generation>/chunks/chunk_+003_-002.lod.ply"
-std::filesystem::path chunk_file(const std::filesystem::path& generation, const glm::ivec2& cell);
+// "<generation>/chunks/chunk_+003_-002.splatc" (".lod.ply" for PLY chunks)
+std::filesystem::path chunk_file(const std::filesystem::path& generation, const glm::ivec2& cell, ChunkCodec codec);
 
 // What one worker produced for one chunk.
 struct ChunkResult {
@@ -48,11 +49,12 @@ struct ChunkResult {
     bool from_training_cameras = false;  // an import's chunk baked from the capture's own cameras
 };
 
-// How a chunk is baked: the recipe, the camera image size, the stream-level rule of its file.
+// How a chunk is baked: the recipe, the camera image size, the stream-level rule and codec of its file.
 struct ChunkBake {
     bake::BakeOptions options;
     int width = 512, height = 384;
     StreamLevelRule rule;
+    ChunkCodec codec = ChunkCodec::compact;
 };
 
 // Bakes `fine` (single-threaded) with cameras at `poses`, orders it by stream level, writes it to

@@ -13,6 +13,7 @@
 
 #include "engine/core/error.h"
 #include "splat_lod/core/chunk_reader.h"
+#include "splat_lod/core/chunk_writer.h"
 #include "splat_lod/core/instance_frame.h"
 #include "splat_lod/core/parallel_for.h"
 #include "splat_lod/core/splat_io.h"
@@ -253,8 +254,8 @@ std::vector<GroupTask> group_tasks(const std::vector<ChunkEntry>& chunks, int co
 
 std::vector<ChunkEntry> build_groups(const fs::path& folder, const fs::path& generation,
                                      const std::vector<ChunkEntry>& chunks, float size_m, float chunk_size_m,
-                                     const GroupOptions& options, const StreamLevelRule& rule, int threads,
-                                     const std::function<void(const GroupProgress&)>& progress) {
+                                     const GroupOptions& options, const StreamLevelRule& rule, ChunkCodec codec,
+                                     int threads, const std::function<void(const GroupProgress&)>& progress) {
     if (!options.enabled || chunks.empty()) return {};
     if (const std::string problem = check_group_options(options, chunk_size_m); !problem.empty())
         engine::fail("chunk groups: " + problem);
@@ -281,9 +282,8 @@ std::vector<ChunkEntry> build_groups(const fs::path& folder, const fs::path& gen
                 members.push_back(read_chunk_range(folder / chunks[k].file, chunks[k], 0, chunks[k].prefix_count[0]));
             SplatCloud pooled = pool_group(members, origin, group_cell_size(options, task.depth), options.fill);
             members.clear();
-            const fs::path file = generation / "groups" / (id + ".lod.ply");
-            write_inria_ply(folder / file, pooled);
-            ChunkEntry entry = describe_chunk(pooled, folder, file, task.index, rule);
+            const fs::path file = generation / "groups" / (id + chunk_extension(codec));
+            ChunkEntry entry = write_chunk_file(pooled, folder, file, task.index, rule, codec);
             entry.id = id;
             entry.depth = task.depth;
             entry.cell_m = group_cell_size(options, task.depth);

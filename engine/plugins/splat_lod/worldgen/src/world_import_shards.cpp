@@ -39,7 +39,7 @@ WorldManifest read_import_record(const fs::path& staging, const WorldShard& shar
     if (record.generator != generator) engine::fail(path.string() + ": made by another import than this one");
     for (const ChunkEntry& c : record.chunks) {
         if (!shard_owns(frame, c.cell, shard) || c.id != chunk_id(c.cell) ||
-            c.file != chunk_file(kStagedGeneration, c.cell))
+            c.file != chunk_file(kStagedGeneration, c.cell, c.codec))
             engine::fail(path.string() + ": chunk " + c.id + " is not one of the shard's or not where shards write it");
         check_chunk_file(staging / c.file, c);
     }

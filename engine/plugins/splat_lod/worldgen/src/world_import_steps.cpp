@@ -127,7 +127,7 @@ std::vector<ChunkResult> bake_bins(const ImportOptions& o, const WorldOptions& w
                                    Clock::time_point start) {
     const std::vector<glm::ivec2> cells = bins.cells();
     std::vector<ChunkResult> results(cells.size());
-    const ChunkBake how{w.bake, w.bake_width, w.bake_height, stream_level_rule(w)};
+    const ChunkBake how{w.bake, w.bake_width, w.bake_height, stream_level_rule(w), w.chunk_codec};
     const GroundHeight height = [&](float x, float z) { return ground.height(x, z, plan.frame.size()); };
     std::mutex mutex;
     std::size_t done = 0;
@@ -138,7 +138,8 @@ std::vector<ChunkResult> bake_bins(const ImportOptions& o, const WorldOptions& w
     reference::detail::parallel_for(cells.size(), w.threads, [&](std::size_t k) {
         const glm::ivec2 cell = cells[k];
         try {
-            results[k] = bake_bin(how, w, plan, height, bins.read(cell), chunk_file(generation, cell), cell);
+            results[k] =
+                bake_bin(how, w, plan, height, bins.read(cell), chunk_file(generation, cell, w.chunk_codec), cell);
             bins.remove(cell);
         } catch (const std::exception& e) {
             engine::fail(chunk_id(cell) + ": " + e.what());
@@ -291,6 +292,7 @@ WorldOptions import_world_options(const ImportOptions& o, const CaptureFrame& fr
     w.bake.znear = o.bake.znear * frame.scale();  // the near plane scales with the cameras' distances
     w.bake_width = o.bake_width;
     w.bake_height = o.bake_height;
+    w.chunk_codec = o.chunk_codec;
     w.terrain_mesh = false;
     for (float& reach : w.stream_reach_min) reach *= frame.scale();
     w.groups.enabled = o.groups;

@@ -79,7 +79,8 @@ std::string generator_settings(const WorldOptions& o) {
       << number(b.learning_rate_opacity) << ", clamp " << number(b.logit_clamp)
       << (b.ranges_after_refine ? ", ranges after" : "") << ", seed " << b.seed << "; terrain mesh "
       << (o.terrain_mesh ? "yes" : "no") << "; stream reach " << number(o.stream_reach_min[0]) << "/"
-      << number(o.stream_reach_min[1]) << "/" << number(o.stream_reach_min[2]);
+      << number(o.stream_reach_min[1]) << "/" << number(o.stream_reach_min[2]) << "; chunk files "
+      << (o.chunk_codec == ChunkCodec::compact ? "compact" : "ply");
     return s.str();
 }
 

@@ -39,7 +39,7 @@ std::vector<ChunkEntry> read_shard_record(const WorldOptions& o, const fs::path&
         cells.insert({slots[k].cell.x, slots[k].cell.y});
     for (const ChunkEntry& c : record.chunks) {
         if (!cells.erase({c.cell.x, c.cell.y}) || c.id != chunk_id(c.cell) ||
-            c.file != chunk_file(kStagedGeneration, c.cell))
+            c.file != chunk_file(kStagedGeneration, c.cell, c.codec))
             engine::fail(path.string() + ": chunk " + c.id + " is not one of the shard's or not where shards write it");
         check_chunk_file(staging / c.file, c);
     }
@@ -119,7 +119,7 @@ std::vector<ChunkEntry> pool_groups(const WorldOptions& o, const fs::path& stagi
         if (o.progress) o.progress({"groups", p.done, p.total, 0, seconds_since(start), -1.0});
     };
     return build_groups(staging, kStagedGeneration, chunks, o.size_m, o.chunk_size_m, o.groups, stream_level_rule(o),
-                        o.threads, group_progress);
+                        o.chunk_codec, o.threads, group_progress);
 }
 
 // The world's manifest in `result`, its entries moved from `staged` into a new generation, committed;

@@ -170,6 +170,7 @@ TEST(WorldImport, SparseGroundIsCutIntoFewerLargerChunks) {
     splat_lod::write_inria_ply(dir / "capture.ply", cloud);
     world::ImportOptions options = fast_options(dir / "capture.ply", dir / "world");
     options.quadtree = true;
+    options.chunk_codec = world::ChunkCodec::ply;  // lossless, so that the render below shows the cut alone
     const world::ImportResult result = world::import_world(options);
     const world::WorldManifest& m = result.manifest;
     const int count = world::chunks_per_side(m);

@@ -49,10 +49,11 @@ std::set<std::string> names(const std::map<std::string, std::string>& files) {
 }
 
 // The tiny test world (seed 4) generated afresh in the tests' world_safety folder; its options.
-WorldOptions fresh_world(int threads = 2) {
+WorldOptions fresh_world(int threads = 2, ChunkCodec codec = ChunkCodec::compact) {
     const fs::path dir = engine::test::output_dir("world_safety");
     fs::remove_all(dir);
     WorldOptions options = engine::test::tiny_world_options(dir, 4, threads);
+    options.chunk_codec = codec;
     generate_world(options);
     return options;
 }
@@ -69,14 +70,14 @@ TEST(WorldOutputSafety, AFailedRunLeavesThePreviousWorldByteForByte) {
     WorldOptions options = fresh_world(1);
     const fs::path dir = options.output;
     const auto before = folder_bytes(dir);
-    ASSERT_TRUE(before.count("gen-1/chunks/chunk_+000_+000.lod.ply"));
+    ASSERT_TRUE(before.count("gen-1/chunks/chunk_+000_+000.splatc"));
     options.seed = 8;
 
     // A chunk write that fails after the meshes and four chunks of the run were written: the next
     // run writes into gen-2, and a folder stands where its chunk (0, 0) must go.
     options.progress = [&](const WorldProgress& p) {
         if (p.stage == "meshes")
-            fs::create_directories(dir / "gen-2" / "chunks" / (chunk_id({0, 0}) + ".lod.ply") / "x");
+            fs::create_directories(dir / "gen-2" / "chunks" / (chunk_id({0, 0}) + ".splatc") / "x");
     };
     const std::string message = error_of([&] { generate_world(options); });
     EXPECT_NE(message.find(chunk_id({0, 0})), std::string::npos) << message;
@@ -135,7 +136,8 @@ TEST(WorldOutputSafety, ACachedRunRemovesWhatARunKilledAfterItsCommitLeft) {
 }
 
 TEST(WorldOutputSafety, WorldsOfTheFlatLayoutStillReadAndAreReplaced) {
-    WorldOptions options = fresh_world();
+    // Those worlds had PLY chunks.
+    WorldOptions options = fresh_world(2, ChunkCodec::ply);
     const fs::path dir = options.output;
     // What earlier versions wrote: chunks/ and meshes/ beside world.json, the manifest naming them,
     // and no chunk groups.

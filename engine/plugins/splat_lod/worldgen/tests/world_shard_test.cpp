@@ -60,7 +60,7 @@ TEST(WorldShards, ShardsRunInTurnOrTwoAtOnceMergeToTheUnshardedWorldByteForByte)
     unsharded.threads = 2;
     generate_world(unsharded);
     const auto expected = folder_bytes(unsharded.output);
-    ASSERT_TRUE(expected.count("gen-1/chunks/chunk_+000_+000.lod.ply"));
+    ASSERT_TRUE(expected.count("gen-1/chunks/chunk_+000_+000.splatc"));
 
     const WorldOptions in_turn = fresh_options("in_turn");
     bake_shards(in_turn, 3);
@@ -135,7 +135,7 @@ TEST(WorldShards, AMergeRefusesAChunkThatDoesNotMatchItsRecordAndKeepsTheCurrent
     generate_world(options);  // the world the failed merge must keep
     options.seed = 4;
     bake_shards(options, 3);
-    const fs::path chunk = options.output / staging_folder(options) / "gen/chunks" / (chunk_id({1, 1}) + ".lod.ply");
+    const fs::path chunk = options.output / staging_folder(options) / "gen/chunks" / (chunk_id({1, 1}) + ".splatc");
     {
         std::fstream file(chunk, std::ios::in | std::ios::out | std::ios::binary);
         file.seekp(-3, std::ios::end);

@@ -53,6 +53,13 @@ WorldManifest sample_manifest() {
         c.header_bytes = 700;
         c.vertex_bytes = 77;
         c.file_bytes = c.prefix_bytes(1);
+        if (k == 1) {  // a compressed chunk: its block sizes are in its file
+            c.codec = ChunkCodec::compact;
+            c.file = fs::path("chunks") / (c.id + ".splatc");
+            c.header_bytes = 84;
+            c.vertex_bytes = 0;
+            c.file_bytes = 84 + 77000;
+        }
         c.header_crc32 = 0xdeadbeefu - static_cast<unsigned>(k);
         for (std::uint64_t b = 0; b < record_block_count(c); ++b)
             c.record_crc32.push_back(0xfffffff0u + static_cast<unsigned>(b));
@@ -97,7 +104,9 @@ TEST(WorldManifest, RoundTripKeepsEveryField) {
         EXPECT_EQ(a.file_bytes, b.file_bytes);
         EXPECT_EQ(a.header_crc32, b.header_crc32);
         EXPECT_EQ(a.record_crc32, b.record_crc32);
-        EXPECT_EQ(b.record_crc32.size(), 8u) << "levels 4, 3, 2: one block each; level 1: 4960 records in 5";
+        EXPECT_EQ(a.codec, b.codec);
+        EXPECT_EQ(b.record_crc32.size(), k == 0 ? 8u : 5u)
+            << "levels 4, 3, 2: one block each; level 1: 4960 records in 5 (PLY) or 2 (compressed)";
     }
     ASSERT_EQ(r.props.size(), 1u);
     EXPECT_EQ(r.props[0].mesh, m.props[0].mesh);
@@ -147,6 +156,10 @@ TEST(WorldManifest, EveryBadInputNamesTheFileAndTheKey) {
         {"crc_count", [](json& j) { j["chunks"][0]["record_crc32"].erase(0); }, "chunks[0].record_crc32: holds 7"},
         {"crc_type", [](json& j) { j["chunks"][0]["record_crc32"] = 3; }, "chunks[0].record_crc32"},
         {"old_version", [](json& j) { j["version"] = 2; }, "generate the world again"},
+        {"codec", [](json& j) { j["chunks"][0]["codec"] = "zip"; }, "chunks[0].codec"},
+        {"compact_vertex_bytes", [](json& j) { j["chunks"][1]["vertex_bytes"] = 77; }, "chunks[1].vertex_bytes"},
+        {"compact_file_bytes", [](json& j) { j["chunks"][1]["file_bytes"] = 10; }, "chunks[1].file_bytes"},
+        {"compact_crc_count", [](json& j) { j["chunks"][1]["record_crc32"].erase(0); }, "blocks of up to 4096"},
     };
     for (const Case& c : cases) {
         json document = good;
@@ -165,6 +178,26 @@ TEST(WorldManifest, EveryBadInputNamesTheFileAndTheKey) {
 // An import's quadtree: a chunk of span 1 covers 2 × 2 cells of a 4-cell grid. Its span survives the
 // round trip (a chunk of span 0 writes none), and a span that is misaligned, leaves the grid, overlaps
 // another chunk or is out of range is refused naming the chunk.
+// Worlds of version 4 (every chunk a PLY file, no "codec" key) still read, as PLY chunks, and keep the
+// checksum their cached references are found by when written again as version 5.
+TEST(WorldManifest, Version4ManifestsReadAsPlyChunks) {
+    const fs::path dir = engine::test::output_dir("world");
+    WorldManifest m = sample_manifest();
+    m.chunks.pop_back();  // the compressed one
+    m.gaussians = m.chunks[0].prefix_count[0];
+    write_world_manifest(dir / "v5.json", m);
+    json old = json::parse(engine::read_text_file(dir / "v5.json"));
+    EXPECT_FALSE(old["chunks"][0].contains("codec")) << "PLY chunks are written as version 4 wrote them";
+    old["version"] = 4;
+    engine::write_text_file_atomic(dir / "v4.json", old.dump());
+    const WorldManifest r = read_world_manifest(dir / "v4.json");
+    EXPECT_EQ(r.version, 4);
+    EXPECT_EQ(r.chunks[0].codec, ChunkCodec::ply);
+    EXPECT_EQ(chunks_checksum(r), chunks_checksum(m));
+    write_world_manifest(dir / "again.json", r);
+    EXPECT_EQ(read_world_manifest(dir / "again.json").version, kManifestVersion);
+}
+
 TEST(WorldManifest, ChunksOfSeveralCellsAreAlignedInsideTheGridAndApart) {
     const fs::path dir = engine::test::output_dir("world");
     WorldManifest m = sample_manifest();

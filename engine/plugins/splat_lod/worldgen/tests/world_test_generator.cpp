@@ -75,7 +75,7 @@ TEST(WorldGenerator, SameSeedSameBytesForAnyThreadCountAndAnotherSeedDiffers) {
     EXPECT_EQ(first.size(), 1u + 9u + 4u + 5u);  // manifest, chunks, house/fence/post/terrain meshes, groups
     EXPECT_TRUE(first == same);
     EXPECT_NE(first.at("world.json"), other.at("world.json"));
-    EXPECT_NE(first.at("gen-1/chunks/chunk_+000_+000.lod.ply"), other.at("gen-1/chunks/chunk_+000_+000.lod.ply"));
+    EXPECT_NE(first.at("gen-1/chunks/chunk_+000_+000.splatc"), other.at("gen-1/chunks/chunk_+000_+000.splatc"));
 }
 
 TEST(WorldGenerator, ManifestMatchesTheChunkFilesAndRangesReadExactlyTheirRecords) {
@@ -90,26 +90,36 @@ TEST(WorldGenerator, ManifestMatchesTheChunkFilesAndRangesReadExactlyTheirRecord
         ASSERT_EQ(whole.size(), c.prefix_count[0]);
         EXPECT_EQ(fs::file_size(dir / c.file), c.file_bytes);
         glm::vec3 lo(1e30f), hi(-1e30f);
-        std::array<std::uint64_t, kLevels> counts{};
         std::array<double, kLevels> extent{};
+        // The stream level each record is filed under (its range in the file) and the one its values
+        // give: the same but for records the compressed file moved across a level's boundary when it
+        // quantised them (2.5% of one tiny chunk's, those within a scale step of a boundary), which
+        // must stay rare; the level's bounds still hold for them (below), which is what streaming uses.
         const std::vector<std::uint8_t> stream = stream_levels(whole, m.stream_levels);
-        for (std::size_t i = 0; i < whole.size(); ++i) {
-            lo = glm::min(lo, whole.positions[i]);
-            hi = glm::max(hi, whole.positions[i]);
-            for (int l = 1; l <= stream[i]; ++l) ++counts[static_cast<std::size_t>(l - 1)];
-            if (i > 0) {
-                EXPECT_LE(stream[i], stream[i - 1]) << "stream level 4 first";
+        std::size_t moved = 0;
+        for (int level = kLevels; level >= 1; --level) {
+            const auto [begin, end] = level_range(c, level);
+            for (std::uint64_t i = begin; i < end; ++i) {
+                lo = glm::min(lo, whole.positions[i]);
+                hi = glm::max(hi, whole.positions[i]);
+                moved += stream[i] != level;
+                // Every Gaussian of the coarsest bake level is in stream level 4 (always resident).
+                if (whole.lod_level[i] == kLevels) {
+                    EXPECT_EQ(level, kLevels);
+                }
+                auto& e = extent[static_cast<std::size_t>(level - 1)];
+                e = std::max(e, gaussian_extent(whole.log_scales[i], whole.opacity_logits[i]));
             }
-            // Every Gaussian of the coarsest bake level is in stream level 4 (always resident).
-            if (whole.lod_level[i] == kLevels) {
-                EXPECT_EQ(stream[i], kLevels);
-            }
-            auto& e = extent[static_cast<std::size_t>(stream[i] - 1)];
-            e = std::max(e, gaussian_extent(whole.log_scales[i], whole.opacity_logits[i]));
         }
-        EXPECT_EQ(counts, c.prefix_count);
-        EXPECT_EQ(lo, c.bounds_min);
-        EXPECT_EQ(hi, c.bounds_max);
+        EXPECT_LE(moved, whole.size() / 20) << c.id;
+        // The bounds hold the means as the file gives them back and as they were baked (the compressed
+        // file quantises them by well under a millimetre).
+        for (int a = 0; a < 3; ++a) {
+            EXPECT_GE(lo[a], c.bounds_min[a]);
+            EXPECT_LE(hi[a], c.bounds_max[a]);
+            EXPECT_NEAR(lo[a], c.bounds_min[a], 1e-3f);
+            EXPECT_NEAR(hi[a], c.bounds_max[a], 1e-3f);
+        }
         for (int l = 0; l < kLevels; ++l) EXPECT_GE(c.levels[l].extent_max, extent[l]);
         coarse += static_cast<std::uint64_t>(
             std::count_if(whole.lod_level.begin(), whole.lod_level.end(), [](std::uint8_t l) { return l >= 2; }));
@@ -154,11 +164,14 @@ TEST(WorldGenerator, RangeReadsRefuseMismatchedFiles) {
 }
 
 // A chunk file changed at the same size, so that size, header layout and values all still look
-// right: the checksums must catch it, in the block that changed and only there.
+// right: the checksums must catch it, in the block that changed and only there. PLY chunks (worlds of
+// manifest version 4 and --chunk-codec ply); compact_chunk_test.cpp damages compressed ones.
 TEST(WorldGenerator, RangeReadsRefuseAFileChangedAtTheSameSize) {
     const fs::path dir = engine::test::output_dir("world");
     fs::remove_all(dir);
-    const WorldManifest m = generate_world(tiny_options(dir, 3, 2)).manifest;
+    WorldOptions options = tiny_options(dir, 3, 2);
+    options.chunk_codec = ChunkCodec::ply;
+    const WorldManifest m = generate_world(options).manifest;
     const auto biggest = std::max_element(
         m.chunks.begin(), m.chunks.end(),
         [](const ChunkEntry& a, const ChunkEntry& b) { return a.prefix_count[0] < b.prefix_count[0]; });

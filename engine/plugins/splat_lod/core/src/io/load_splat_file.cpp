@@ -6,6 +6,7 @@
 
 #include "io_util.h"
 #include "splat_lod/core/capture_source.h"
+#include "splat_lod/core/compact_chunk.h"
 #include "splat_lod/core/splat_io.h"
 #include "splat_lod/core/streamed_sog.h"
 
@@ -50,6 +51,7 @@ SplatFileFormat detect_splat_format(const fs::path& path) {
         return SplatFileFormat::ply;
     if (starts_with(head, {0x1f, 0x8b}) || starts_with(head, {'N', 'G', 'S', 'P'})) return SplatFileFormat::spz;
     if (starts_with(head, {'g', 'l', 'T', 'F'})) return SplatFileFormat::gltf;
+    if (starts_with(head, {'S', 'P', 'L', 'A', 'T', 'C', 'Z', '1'})) return SplatFileFormat::compact_chunk;
     const std::string ext = lower_extension(path);
     if (ext == ".ply") return SplatFileFormat::ply;
     if (ext == ".spz") return SplatFileFormat::spz;
@@ -57,7 +59,7 @@ SplatFileFormat detect_splat_format(const fs::path& path) {
     if (ext == ".gltf" || ext == ".glb") return SplatFileFormat::gltf;
     if (ext == ".json") return SplatFileFormat::sog;
     if (ext == ".sog") io::fail_file(path.string(), "zipped SOG bundles are not supported: unzip to a folder first");
-    io::fail_file(path.string(), "unrecognised splat file (not PLY, SPZ, SOG, .splat or glTF)");
+    io::fail_file(path.string(), "unrecognised splat file (not PLY, SPZ, SOG, .splat, glTF or a world chunk)");
 }
 
 SplatCloud load_splat_file(const fs::path& path, LoadReport* report) {
@@ -75,6 +77,8 @@ SplatCloud load_splat_file(const fs::path& path, LoadReport* report) {
         case SplatFileFormat::streamed_sog:
         case SplatFileFormat::tiles:
             return read_capture(path, report);
+        case SplatFileFormat::compact_chunk:
+            return world::read_compact_chunk_file(path, report);
     }
     io::fail_file(path.string(), "unrecognised splat file");
 }

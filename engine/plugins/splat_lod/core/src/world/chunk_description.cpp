@@ -1,5 +1,6 @@
 // describe_chunk(): the manifest entry of a baked chunk (world/world_manifest.h) from the cloud that
-// was written and the header of the file it was written to.
+// was written and the header of the file it was written to; describe_records() and widen_bounds(), the
+// part that comes from the Gaussians, for the compressed chunk writer too.
 #include <algorithm>
 #include <fstream>
 #include <limits>
@@ -10,6 +11,7 @@
 #include "splat_lod/core/gaussian_extent.h"
 #include "splat_lod/core/ply_vertex_layout.h"
 #include "splat_lod/core/world_manifest.h"
+#include "world/chunk_description.h"
 
 namespace splat_lod::world {
 namespace {
@@ -70,10 +72,8 @@ void checksum_file(const std::filesystem::path& path, const io::PlyVertexLayout&
 
 }  // namespace
 
-ChunkEntry describe_chunk(const SplatCloud& baked, const std::filesystem::path& folder,
-                          const std::filesystem::path& file, const glm::ivec2& cell, const StreamLevelRule& rule) {
-    const std::filesystem::path path = folder / file;
-    const std::string name = path.string();
+ChunkEntry describe_records(const SplatCloud& baked, const std::filesystem::path& file, const glm::ivec2& cell,
+                            const StreamLevelRule& rule, const std::string& name, std::vector<std::uint8_t>& stream) {
     baked.check_consistent();
     ChunkEntry entry;
     entry.id = chunk_id(cell);
@@ -82,18 +82,38 @@ ChunkEntry describe_chunk(const SplatCloud& baked, const std::filesystem::path& 
     for (const std::uint8_t level : baked.lod_level)
         if (level < 1 || level > kLevels)
             engine::fail(name + ": a Gaussian has bake level " + std::to_string(level) + ", expected 1..4");
-    const std::vector<std::uint8_t> stream = stream_levels(baked, rule);
+    stream = stream_levels(baked, rule);
     entry.prefix_count = level_prefixes(stream, name);
     entry.levels = level_bounds(baked, stream);
     if (!baked.empty()) {
         entry.bounds_min = glm::vec3(std::numeric_limits<float>::max());
         entry.bounds_max = glm::vec3(std::numeric_limits<float>::lowest());
-        for (const glm::vec3& p : baked.positions) {
-            entry.bounds_min = glm::min(entry.bounds_min, p);
-            entry.bounds_max = glm::max(entry.bounds_max, p);
-        }
     }
+    widen_bounds(entry, baked, stream);
+    return entry;
+}
 
+void widen_bounds(ChunkEntry& entry, const SplatCloud& stored, const std::vector<std::uint8_t>& stream) {
+    const std::array<ChunkLevel, kLevels> levels = level_bounds(stored, stream);
+    for (std::size_t l = 0; l < kLevels; ++l) {
+        ChunkLevel& bound = entry.levels[l];
+        bound.extent_max = std::max(bound.extent_max, levels[l].extent_max);
+        const bool always = bound.extent_per_min_coverage_max < 0.0f || levels[l].extent_per_min_coverage_max < 0.0f;
+        bound.extent_per_min_coverage_max =
+            always ? -1.0f : std::max(bound.extent_per_min_coverage_max, levels[l].extent_per_min_coverage_max);
+    }
+    for (const glm::vec3& p : stored.positions) {
+        entry.bounds_min = glm::min(entry.bounds_min, p);
+        entry.bounds_max = glm::max(entry.bounds_max, p);
+    }
+}
+
+ChunkEntry describe_chunk(const SplatCloud& baked, const std::filesystem::path& folder,
+                          const std::filesystem::path& file, const glm::ivec2& cell, const StreamLevelRule& rule) {
+    const std::filesystem::path path = folder / file;
+    const std::string name = path.string();
+    std::vector<std::uint8_t> stream;
+    ChunkEntry entry = describe_records(baked, file, cell, rule, name, stream);
     const io::PlyVertexLayout layout = io::read_ply_vertex_layout(path);
     if (layout.vertex_count != baked.size() ||
         layout.file_bytes != layout.header_bytes + layout.vertex_count * layout.vertex_bytes)

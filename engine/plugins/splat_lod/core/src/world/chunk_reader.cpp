@@ -1,7 +1,7 @@
-// Reading a range of a chunk's records (world/chunk_reader.h): the header is read and checked
-// against the manifest entry and its checksum, then only the checksum blocks that hold the wanted
-// records, which are checked and decoded by the ordinary PLY reader behind a header rewritten to
-// their count (one decoder for whole files and ranges).
+// Reading a range of a chunk's records (world/chunk_reader.h): for a PLY file the header is read and
+// checked against the manifest entry and its checksum, then only the checksum blocks that hold the
+// wanted records, which are checked and decoded by the ordinary PLY reader behind a header rewritten
+// to their count (one decoder for whole files and ranges). Compressed files: compact_chunk_file.cpp.
 #include "splat_lod/core/chunk_reader.h"
 
 #include <fstream>
@@ -12,6 +12,7 @@
 #include "engine/core/error.h"
 #include "splat_lod/core/ply_vertex_layout.h"
 #include "splat_lod/core/splat_io.h"
+#include "world/chunk_description.h"
 
 namespace splat_lod::world {
 namespace {
@@ -49,6 +50,7 @@ SplatCloud read_chunk_range(const std::filesystem::path& file, const ChunkEntry&
     if (entry.record_crc32.size() != record_block_count(entry))
         fail(file, "the manifest entry has " + std::to_string(entry.record_crc32.size()) +
                        " record checksums, expected " + std::to_string(record_block_count(entry)));
+    if (entry.codec == ChunkCodec::compact) return read_compact_chunk_range(file, entry, begin, end);
     const io::PlyVertexLayout layout = io::read_ply_vertex_layout(file);
     check_layout(file, entry, layout);
     if (checksum(std::span(reinterpret_cast<const std::uint8_t*>(layout.header.data()), layout.header.size())) !=

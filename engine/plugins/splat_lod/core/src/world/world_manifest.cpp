@@ -1,11 +1,12 @@
 // world.json: reading with a check of every value, and the atomic writer (world/world_manifest.h).
-//   { "version": 4, "seed": 7, "size_m": 1024, "chunk_size_m": 64, "up": [0, 1, 0],
+//   { "version": 5, "seed": 7, "size_m": 1024, "chunk_size_m": 64, "up": [0, 1, 0],
 //     "gaussians": 10400000, "density": 1, "generator": "…",
 //     "stream_levels": { "size_threshold_px": 2, "rel_min": 0.5, "reach_min": [0.4, 0.12, 0.04] },
 //     "chunks": [ { "id": "chunk_-008_-008", "file": "gen-1/chunks/chunk_-008_-008.lod.ply", "cell": [-8, -8],
 //                   "bounds_min": [x, y, z], "bounds_max": [x, y, z], "prefix_count": [n1, n2, n3, n4],
 //                   "levels": [ { "extent_max": e, "extent_per_min_coverage_max": r } × 4 ],
-//                   "header_bytes": h, "vertex_bytes": v, "file_bytes": f,
+//                   "codec": "compact" (left out for "ply"), "header_bytes": h, "vertex_bytes": v,
+//                   "file_bytes": f,
 //                   "header_crc32": c, "record_crc32": [c0, c1, …] } … ],
 //     "props": [ { "mesh": "gen-1/meshes/house.glb", "translation": [x, y, z], "rotation_euler_deg": [0, yaw, 0],
 //                  "scale": [1, 1, 1] } … ],
@@ -166,6 +167,12 @@ void ManifestReader::check_chunk_counts(const ChunkEntry& c, const std::string& 
             error(join(key, "prefix_count"),
                   "counts must not increase with the stream level (Gaussians with stream level >= " +
                       std::to_string(l + 1) + " are a prefix of those with stream level >= " + std::to_string(l) + ")");
+    if (c.codec == ChunkCodec::compact) {
+        // The block sizes are in the file's header: the reader checks they add up to file_bytes.
+        if (c.vertex_bytes != 0) error(join(key, "vertex_bytes"), "must be 0 for a compressed chunk");
+        if (c.file_bytes < c.header_bytes) error(join(key, "file_bytes"), "is less than header_bytes");
+        return;
+    }
     if (c.vertex_bytes == 0) error(join(key, "vertex_bytes"), "must be positive");
     // file_bytes = header_bytes + prefix_count[0] · vertex_bytes, checked without overflow.
     std::uint64_t records = 0, total = 0;
@@ -179,12 +186,12 @@ void ManifestReader::check_chunk_counts(const ChunkEntry& c, const std::string& 
 ChunkEntry ManifestReader::chunk(const json& object, const std::string& key, bool group) const {
     if (group)
         only_keys(object, key,
-                  {"id", "file", "cell", "bounds_min", "bounds_max", "prefix_count", "levels", "header_bytes",
+                  {"id", "file", "cell", "bounds_min", "bounds_max", "prefix_count", "levels", "codec", "header_bytes",
                    "vertex_bytes", "file_bytes", "header_crc32", "record_crc32", "depth", "cell_m"});
     else
         only_keys(object, key,
-                  {"id", "file", "cell", "span", "bounds_min", "bounds_max", "prefix_count", "levels", "header_bytes",
-                   "vertex_bytes", "file_bytes", "header_crc32", "record_crc32"});
+                  {"id", "file", "cell", "span", "bounds_min", "bounds_max", "prefix_count", "levels", "codec",
+                   "header_bytes", "vertex_bytes", "file_bytes", "header_crc32", "record_crc32"});
     ChunkEntry c;
     if (!group && object.contains("span")) {
         const std::uint64_t span = whole(object["span"], join(key, "span"));
@@ -217,6 +224,12 @@ ChunkEntry ManifestReader::chunk(const json& object, const std::string& key, boo
         c.prefix_count[l] = whole(counts[l], index(join(key, "prefix_count"), l));
         c.levels[l] = level(levels[l], index(join(key, "levels"), l));
     }
+    if (object.contains("codec")) {
+        const std::string codec = text(object["codec"], join(key, "codec"));
+        if (codec != "ply" && codec != "compact")
+            error(join(key, "codec"), "expected \"ply\" or \"compact\", got \"" + codec + "\"");
+        c.codec = codec == "compact" ? ChunkCodec::compact : ChunkCodec::ply;
+    }
     c.header_bytes = whole(member(object, key, "header_bytes"), join(key, "header_bytes"));
     c.vertex_bytes = whole(member(object, key, "vertex_bytes"), join(key, "vertex_bytes"));
     c.file_bytes = whole(member(object, key, "file_bytes"), join(key, "file_bytes"));
@@ -228,7 +241,7 @@ ChunkEntry ManifestReader::chunk(const json& object, const std::string& key, boo
     const std::uint64_t expected = record_block_count(c);
     if (blocks.size() != expected)
         error(blocks_key, "holds " + std::to_string(blocks.size()) + " checksums, the prefix counts make " +
-                              std::to_string(expected) + " blocks of up to " + std::to_string(kChecksumBlockRecords) +
+                              std::to_string(expected) + " blocks of up to " + std::to_string(c.block_records()) +
                               " records");
     c.record_crc32.reserve(blocks.size());
     for (std::size_t b = 0; b < blocks.size(); ++b) c.record_crc32.push_back(crc32(blocks[b], index(blocks_key, b)));
@@ -405,6 +418,7 @@ json chunk_json(const ChunkEntry& c) {
                   {"header_crc32", c.header_crc32},
                   {"record_crc32", c.record_crc32}};
     if (c.span > 0) entry["span"] = c.span;  // absent for one cell: generated worlds keep their bytes
+    if (c.codec == ChunkCodec::compact) entry["codec"] = "compact";  // absent for PLY chunks, likewise
     return entry;
 }
 
@@ -452,8 +466,8 @@ std::array<std::uint64_t, kLevels + 1> level_starts(const ChunkEntry& entry) {
     return starts;
 }
 
-std::uint64_t blocks_of(std::uint64_t records) {
-    return records / kChecksumBlockRecords + (records % kChecksumBlockRecords != 0 ? 1 : 0);
+std::uint64_t blocks_of(std::uint64_t records, std::uint64_t block) {
+    return records / block + (records % block != 0 ? 1 : 0);
 }
 
 }  // namespace
@@ -467,7 +481,7 @@ std::uint64_t record_block_count(const ChunkEntry& entry) {
     std::uint64_t count = 0;
     for (int k = 0; k < kLevels; ++k) {
         const std::uint64_t begin = starts[static_cast<std::size_t>(k)], end = starts[static_cast<std::size_t>(k + 1)];
-        if (end > begin) count += blocks_of(end - begin);
+        if (end > begin) count += blocks_of(end - begin, entry.block_records());
     }
     return count;
 }
@@ -480,17 +494,17 @@ std::vector<RecordBlock> record_blocks(const ChunkEntry& entry, std::uint64_t be
                      " records or its prefix counts grow with the level");
     std::vector<RecordBlock> blocks;
     std::uint64_t index = 0;
+    const std::uint64_t size = entry.block_records();
     for (int k = 0; k < kLevels && begin < end; ++k) {
         const std::uint64_t first = starts[static_cast<std::size_t>(k)], last = starts[static_cast<std::size_t>(k + 1)];
         if (last > first && begin < last && end > first) {
-            const std::uint64_t from = (std::max(begin, first) - first) / kChecksumBlockRecords;
-            const std::uint64_t to = (std::min(end, last) - first - 1) / kChecksumBlockRecords;
+            const std::uint64_t from = (std::max(begin, first) - first) / size;
+            const std::uint64_t to = (std::min(end, last) - first - 1) / size;
             for (std::uint64_t b = from; b <= to; ++b)
-                blocks.push_back({first + b * kChecksumBlockRecords,
-                                  std::min(last, first + (b + 1) * kChecksumBlockRecords),
-                                  static_cast<std::size_t>(index + b)});
+                blocks.push_back(
+                    {first + b * size, std::min(last, first + (b + 1) * size), static_cast<std::size_t>(index + b)});
         }
-        if (last > first) index += blocks_of(last - first);
+        if (last > first) index += blocks_of(last - first, size);
     }
     return blocks;
 }
@@ -528,7 +542,8 @@ void write_world_manifest(const std::filesystem::path& path, const WorldManifest
         engine::fail(path.string() + ": version: this program writes version " + std::to_string(kManifestVersion) +
                      " (and reads " + std::to_string(kOldestManifestVersion) + " to " +
                      std::to_string(kManifestVersion) + ")");
-    // A version-3 manifest is a version-4 one without groups: always written as the newest.
+    // A version-3 manifest is a version-4 one without groups, a version-4 one a version-5 one whose
+    // chunks are all PLY files: always written as the newest.
     json document = manifest_json(manifest);
     document["version"] = kManifestVersion;
     // The reader's rules, applied before anything is written: a manifest this writer accepts

@@ -10,6 +10,7 @@
 #include "engine/core/error.h"
 #include "engine/core/log.h"
 #include "splat_lod/core/chunk_reader.h"
+#include "splat_lod/core/gaussian_extent.h"
 #include "splat_lod/msgs/lod_settings.h"
 #include "stream_state.h"
 
@@ -23,14 +24,34 @@ std::string part_label(std::uint32_t part, std::size_t count) {
     return count > 1 ? "part " + std::to_string(part + 1) + "/" + std::to_string(count) : std::string();
 }
 
-// Every Gaussian of a level's range must have that stream level under the manifest's rule: the
-// manifest and the file agree (a file replaced by another one of the same size fails here).
+// A compressed chunk's Gaussians come back quantised, so one near a stream level's boundary may reach
+// a level further or nearer than the one it was filed under. What the streaming decisions rely on is
+// that the level's bounds in the manifest hold for each of them (world_manifest.h), which the writer
+// makes sure of (chunk_writer.h): checked here instead of the stream level.
+std::string check_bounds(const SplatCloud& cloud, const ReadRequest& request) {
+    const ChunkLevel& bound = request.entry->levels[static_cast<std::size_t>(request.level - 1)];
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        const double extent = gaussian_extent(cloud.log_scales[i], cloud.opacity_logits[i]);
+        const float coverage_min = cloud.coverage_min[i];
+        const bool per_coverage_holds =
+            bound.extent_per_min_coverage_max < 0.0f ||
+            (coverage_min > 0.0f && extent / coverage_min <= bound.extent_per_min_coverage_max);
+        if (extent > bound.extent_max || !per_coverage_holds)
+            return "record " + std::to_string(request.begin + i) +
+                   " is outside the bounds the manifest gives stream level " + std::to_string(request.level);
+    }
+    return {};
+}
+
+// Every Gaussian of a level's range must have that stream level under the manifest's rule (within
+// its bounds for a compressed chunk): the manifest and the file agree.
 std::string check_part(const SplatCloud& cloud, const ReadRequest& request, const StreamLevelRule& rule) {
     const std::uint64_t expected = request.end - request.begin;
     if (cloud.size() != expected)
         return "records [" + std::to_string(request.begin) + ", " + std::to_string(request.end) + ") decoded to " +
                std::to_string(cloud.size()) + " Gaussians, expected " + std::to_string(expected);
     if (cloud.lod_level.size() != cloud.size()) return "the decoded Gaussians have no lod_level values";
+    if (request.entry->codec == ChunkCodec::compact) return check_bounds(cloud, request);
     for (std::size_t i = 0; i < cloud.size(); ++i) {
         const int level = stream_level(gaussian_reach(cloud, i, rule), rule);
         if (level != request.level)
@@ -243,7 +264,7 @@ void ChunkStreamer::State::collect_reads() {
         part.bytes = gpu_bytes(result.gaussians->size(), settings.gpu_sh_degree, settings.gpu_pages);
         part.gaussians = std::move(result.gaussians);
         const ChunkEntry& entry = *chunks[request.chunk].entry;
-        emit({entry.id, StreamEventType::loaded, request.level, part.count * entry.vertex_bytes,
+        emit({entry.id, StreamEventType::loaded, request.level, entry.disk_bytes(part.count),
               part_label(request.part, s.parts.size())});
     }
 }
@@ -316,7 +337,7 @@ void ChunkStreamer::State::request_reads() {
             part.phase = PartPhase::requested;
             ++in_flight;
             ++stats.reads_requested;
-            emit({slot.entry->id, StreamEventType::requested, p.level, part.count * slot.entry->vertex_bytes,
+            emit({slot.entry->id, StreamEventType::requested, p.level, slot.entry->disk_bytes(part.count),
                   part_label(i, s.parts.size())});
         }
     }

@@ -38,11 +38,16 @@ std::string check_chunk_entry(const ChunkEntry& chunk) {
                    std::to_string(l + 1) + ": " + std::to_string(counts[static_cast<std::size_t>(l)]) +
                    ", with level >= " + std::to_string(l) + ": " +
                    std::to_string(counts[static_cast<std::size_t>(l - 1)]) + ")";
-    if (counts[0] > 0 && chunk.vertex_bytes == 0) return "manifest gives 0 bytes per Gaussian record";
+    if (chunk.codec == ChunkCodec::compact) {
+        // The block sizes are in the file's header, which the reader checks against file_bytes.
+        if (chunk.file_bytes < chunk.header_bytes) return "manifest says fewer file bytes than header bytes";
+    } else if (counts[0] > 0 && chunk.vertex_bytes == 0) {
+        return "manifest gives 0 bytes per Gaussian record";
+    }
     if (chunk.vertex_bytes > 0 &&
         counts[0] > (std::numeric_limits<std::uint64_t>::max() - chunk.header_bytes) / chunk.vertex_bytes)
         return "manifest record count overflows a 64-bit byte count";
-    if (chunk.prefix_bytes(1) != chunk.file_bytes)
+    if (chunk.codec == ChunkCodec::ply && chunk.prefix_bytes(1) != chunk.file_bytes)
         return "manifest says " + std::to_string(chunk.file_bytes) + " file bytes but " + std::to_string(counts[0]) +
                " records of " + std::to_string(chunk.vertex_bytes) + " bytes after a " +
                std::to_string(chunk.header_bytes) + "-byte header make " + std::to_string(chunk.prefix_bytes(1));

@@ -78,6 +78,11 @@ CompactGaussian decode_compact(const CompactRecord& record, const CompactPage& p
 void decode_compact_sh(std::span<const std::uint32_t> sh_words, const CompactPage& page, int sh_degree,
                        std::span<float> rest);
 
+// Decodes a record and its SH words into Gaussian i of `out` (sized, with SH degree `sh_degree`): the
+// opacity as a logit (−100 for an opacity of 0, below every threshold), level and coverage bounds set.
+void decode_compact_into(const CompactRecord& record, std::span<const std::uint32_t> sh_words, const CompactPage& page,
+                         int sh_degree, SplatCloud& out, std::size_t i);
+
 // The cloud the GPU scene draws when it stores `cloud` compact with SH up to `sh_degree`: every
 // Gaussian encoded in pages of kCompactPageSize from index 0 and decoded again (drawable ones; the
 // others get an opacity logit of −100, below every threshold).

@@ -22,9 +22,10 @@ enum class SplatFileFormat {
     gltf,              // glTF 2.0 (.gltf, .glb) with KHR_gaussian_splatting primitives
     streamed_sog,      // PlayCanvas streamed SOG: lod-meta.json (or its folder), "#L" for level L
     tiles,             // several splat files read as one capture: a folder of them or a .txt list
+    compact_chunk,     // a streamed world's compressed chunk file (compact_chunk.h), ".splatc"
 };
 
-// Decides by content first (PLY magic, gzip, NGSP, glTF magic, folder/meta.json or lod-meta.json, a
+// Decides by content first (PLY magic, gzip, NGSP, glTF magic, SPLATCZ1, folder/meta.json or lod-meta.json, a
 // folder of tiles), then by extension (.splat, .gltf, .glb, .txt). Streamed SOGs and tiles are read
 // through capture_source.h.
 SplatFileFormat detect_splat_format(const std::filesystem::path& path);

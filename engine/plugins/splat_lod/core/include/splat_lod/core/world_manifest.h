@@ -19,7 +19,8 @@
 // when its size, header and values still look right (a copy of another world's chunk, bit flips).
 // Blocks never straddle a stream level: each stream level's records [prefix_count[l],
 // prefix_count[l − 1]) are cut into blocks of kChecksumBlockRecords from its first record, the last
-// block shorter; record_crc32 lists them in file order (stream level 4 first). A read of one stream
+// block shorter (kCompactBlockRecords for compressed chunk files); record_crc32 lists them in file
+// order (stream level 4 first). A read of one stream
 // level or of a prefix therefore checks exactly the records it reads; any other range is widened to
 // whole blocks (at most 2 · (kChecksumBlockRecords − 1) records more).
 //
@@ -43,12 +44,20 @@
 
 namespace splat_lod::world {
 
-// Version 4 adds chunk groups (world_groups.h); version 3 manifests (no groups) still read.
-inline constexpr int kManifestVersion = 4;
+// Version 4 adds chunk groups (world_groups.h), version 5 a chunk's codec; versions 3 (no groups) and
+// 4 (every chunk a PLY file) still read.
+inline constexpr int kManifestVersion = 5;
 inline constexpr int kOldestManifestVersion = 3;
 inline constexpr int kLevels = 4;
 inline constexpr const char* kManifestFileName = "world.json";
 inline constexpr std::uint64_t kChecksumBlockRecords = 1024;
+inline constexpr std::uint64_t kCompactBlockRecords = 4096;
+
+// How a chunk file stores its records. `ply`: a binary INRIA PLY, fixed-size records after its header
+// (header_bytes + count · vertex_bytes), checksum blocks of kChecksumBlockRecords records. `compact`:
+// compressed blocks of kCompactBlockRecords records after its header (compact_chunk.h); vertex_bytes
+// is 0, the block sizes are in the header, and the record checksums are those of the compressed blocks.
+enum class ChunkCodec { ply, compact };
 
 struct ChunkLevel {
     // Largest extent sqrt(2·ln(255·o))·min(σ_max, √2·σ_mid) over the stream level's Gaussians
@@ -69,8 +78,9 @@ struct ChunkEntry {
     glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};       // of the Gaussians' means, world space
     std::array<std::uint64_t, kLevels> prefix_count{};  // [l − 1]: Gaussians with stream level ≥ l
     std::array<ChunkLevel, kLevels> levels{};           // [l − 1]
+    ChunkCodec codec = ChunkCodec::ply;
     std::uint64_t header_bytes = 0;
-    std::uint64_t vertex_bytes = 0;           // bytes per Gaussian record in the file
+    std::uint64_t vertex_bytes = 0;           // bytes per Gaussian record in the file (ply; 0: compact)
     std::uint64_t file_bytes = 0;             // the whole file (checked before use)
     std::uint32_t header_crc32 = 0;           // CRC-32 of the header_bytes header bytes
     std::vector<std::uint32_t> record_crc32;  // one per record block (record_block_count), file order
@@ -80,7 +90,17 @@ struct ChunkEntry {
     int depth = 0;
     float cell_m = 0.0f;
 
+    // The PLY file's bytes down to `level` (codec ply only).
     std::uint64_t prefix_bytes(int level) const { return header_bytes + prefix_count[level - 1] * vertex_bytes; }
+    // Records per checksum block: kChecksumBlockRecords (ply) or kCompactBlockRecords (compact).
+    std::uint64_t block_records() const {
+        return codec == ChunkCodec::compact ? kCompactBlockRecords : kChecksumBlockRecords;
+    }
+    // The bytes `count` records take on disk: exact for ply, the file's mean for compact.
+    std::uint64_t disk_bytes(std::uint64_t count) const {
+        if (codec == ChunkCodec::ply || prefix_count[0] == 0) return count * vertex_bytes;
+        return (file_bytes - header_bytes) * count / prefix_count[0];
+    }
 };
 
 struct Prop {

@@ -93,7 +93,11 @@ struct WorldOptions {
     // Smallest reach (metres per pixel of focal length) of stream levels 4, 3, 2 (stream_levels.h);
     // the reaches are computed with the bake's S_T and S_rel_min.
     std::array<float, 3> stream_reach_min = StreamLevelRule{}.reach_min;
-    GroupOptions groups;           // the chunk groups pooled from the chunks (world_groups.h)
+    GroupOptions groups;  // the chunk groups pooled from the chunks (world_groups.h)
+    // How chunk and group files store their Gaussians (world_manifest.h): compressed compact records
+    // (about 15.5 bytes a Gaussian at SH 0, quantised as the GPU's compact storage quantises) or the
+    // lossless PLY files of manifest version 4 (77 bytes at SH 0).
+    ChunkCodec chunk_codec = ChunkCodec::compact;
     std::filesystem::path output;  // the world's folder (created)
     bool force = false;            // regenerate even when the cached world matches
     std::function<void(const WorldProgress&)> progress;

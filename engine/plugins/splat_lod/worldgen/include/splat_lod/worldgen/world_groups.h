@@ -86,13 +86,13 @@ struct GroupProgress {
 
 // Builds every group of a world whose chunks (`chunks`, files relative to `folder`) are on disk:
 // reads each member's file (checked against its entry), pools, writes
-// `folder / generation / groups / <id>.lod.ply` and returns the groups' manifest entries (files
+// `folder / generation / groups / <id>` with chunk_extension(codec) and returns the groups' manifest entries (files
 // relative to `folder`), depth 1 first, each depth in index order. `threads` groups are pooled at
 // once. Throws engine::Error naming the group and the file on any failure.
 std::vector<ChunkEntry> build_groups(const std::filesystem::path& folder, const std::filesystem::path& generation,
                                      const std::vector<ChunkEntry>& chunks, float size_m, float chunk_size_m,
-                                     const GroupOptions& options, const StreamLevelRule& rule, int threads,
-                                     const std::function<void(const GroupProgress&)>& progress = {});
+                                     const GroupOptions& options, const StreamLevelRule& rule, ChunkCodec codec,
+                                     int threads, const std::function<void(const GroupProgress&)>& progress = {});
 
 // The manifest's `group_generator` string for these options ("" when groups are off): a cached
 // world's groups are rebuilt when it differs.

@@ -75,6 +75,7 @@ struct ImportOptions {
     bake::BakeOptions bake = default_world_bake_options();
     int bake_width = 512, bake_height = 384;
     bool groups = true;
+    ChunkCodec chunk_codec = ChunkCodec::compact;  // as WorldOptions::chunk_codec
     // Merge sparse cells into chunks of several cells (step 1, "the quadtree"). Off by default: a merged
     // chunk streams its finer levels over its whole square once the camera is near any of it, which cost
     // the re-imported default world up to 1.0 dB on its ground and canopy frames (docs/results.md).
