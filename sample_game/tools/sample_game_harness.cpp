@@ -31,7 +31,7 @@ struct CommandLine : sample_game::cli::GameCommandLine {
     bool profile = false, soak = false, no_faults = false, reference = false, force = false;
     int supersample = sample_game::kDefaultReferenceSupersample;
     int laps = 10;
-    std::string out = "out/game";
+    std::string out = "out/game", reference_world;
     int frames_png = 0, baseline_every = 10, baseline_overview_every = 1;
     bool no_baseline = false, no_preload = false;
 };
@@ -52,6 +52,9 @@ void add_run_options(CLI::App& app, CommandLine& c) {
                    "factor's reference)")
         ->check(CLI::Range(3, 8))
         ->capture_default_str();
+    app.add_option("--reference-world", c.reference_world,
+                   "Profile: score against this world's cached reference instead of --world's (the same world "
+                   "stored another way, e.g. splat_world --chunk-codec ply, to measure what the storage costs)");
     app.add_option("--laps", c.laps, "Soak: laps of the path (default 10)")->check(CLI::Range(2, 100000));
     app.add_flag("--no-faults", c.no_faults, "Soak: leave the chunk files alone (stream the world itself)");
 }
@@ -104,6 +107,7 @@ int run_profile(const CommandLine& c) {
     o.baseline_overview_every = c.baseline_overview_every;
     o.preload = !c.no_preload;
     o.reference_supersample = c.supersample;
+    o.reference_world = c.reference_world;
     sample_game::validate(o);  // before making a GL context: option errors come first
     const auto context = headless_context();
     const sample_game::ProfileOutcome outcome = sample_game::run_profile(o, stderr);

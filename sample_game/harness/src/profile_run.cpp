@@ -348,12 +348,15 @@ std::vector<std::string> listed_outputs(const ProfileOptions& options,
 
 std::string reference_note(const ProfileOptions& options, const std::optional<CachedReference>& reference,
                            const ReferenceKey& key) {
-    return reference ? formatted("found, %s (%zu frames, %dx supersampled)", reference->folder.string().c_str(),
-                                 reference->frames.size(), key.supersample)
-                     : formatted(
-                           "none cached for this run (%s); `sample_game_harness --reference` with the same --world, "
-                           "--width, --height, --frames and --fov-y makes it",
-                           reference_folder(options.world, key).string().c_str());
+    return reference
+               ? formatted("found, %s (%zu frames, %dx supersampled)", reference->folder.string().c_str(),
+                           reference->frames.size(), key.supersample)
+               : formatted(
+                     "none cached for this run (%s); `sample_game_harness --reference` with the same --world, "
+                     "--width, --height, --frames and --fov-y makes it",
+                     reference_folder(options.reference_world.empty() ? options.world : options.reference_world, key)
+                         .string()
+                         .c_str());
 }
 
 }  // namespace
@@ -394,9 +397,10 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
     const std::vector<PathPose> poses = world.path(options.frames);
     world.warm_up(options.width, options.height);
 
-    const ReferenceKey key = reference_key(options.world, options.width, options.height, poses,
-                                           options.settings.fov_y_deg, options.reference_supersample);
-    const std::optional<CachedReference> reference = read_reference(options.world, key);  // throws when broken
+    const std::filesystem::path& truth = options.reference_world.empty() ? options.world : options.reference_world;
+    const ReferenceKey key = reference_key(truth, options.width, options.height, poses, options.settings.fov_y_deg,
+                                           options.reference_supersample);
+    const std::optional<CachedReference> reference = read_reference(truth, key);  // throws when broken
 
     Run run{options,  engine,
             world,    poses,

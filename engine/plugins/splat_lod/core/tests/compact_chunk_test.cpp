@@ -4,8 +4,8 @@
 // the file while the rest of the file still reads.
 #include <filesystem>
 #include <fstream>
-#include <numeric>
 #include <functional>
+#include <numeric>
 #include <random>
 #include <tuple>
 
@@ -61,7 +61,8 @@ SplatCloud expected_records(const SplatCloud& cloud, const sw::ChunkEntry& entry
         const auto page = splat_lod::fit_compact_page(cloud, block.begin, block.end - block.begin, cloud.sh_degree);
         for (std::size_t i = block.begin; i < block.end; ++i) {
             splat_lod::encode_compact_sh(cloud, i, page, cloud.sh_degree, sh);
-            splat_lod::decode_compact_into(splat_lod::encode_compact(cloud, i, page), sh, page, cloud.sh_degree, out, i);
+            splat_lod::decode_compact_into(splat_lod::encode_compact(cloud, i, page), sh, page, cloud.sh_degree, out,
+                                           i);
         }
     }
     return out;

@@ -44,6 +44,9 @@ struct ProfileOptions {
     // for this world, size, frame count and field of view, its frames are drawn in the baseline too
     // and both CSVs get psnr_vs_reference, ssim_vs_reference and (LOD rows) seam_ratio.
     int reference_supersample = 3;
+    // Whose reference: empty for `world`'s own; another world's folder to score this one against it
+    // (the same world stored another way: its path must be the same, which the reference's key checks).
+    std::filesystem::path reference_world;
 };
 
 struct ProfileOutcome {

@@ -7,9 +7,9 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 #include "engine/core/error.h"
-#include "io/decompress.h"
 #include "splat_lod/core/compact_gaussians.h"
 #include "splat_lod/core/world_manifest.h"
 
@@ -38,10 +38,10 @@ T get(std::span<const std::uint8_t> bytes, std::size_t at) {
 }
 
 std::array<float, kPageFloats> page_floats(const CompactPage& p) {
-    return {p.position_lo.x,  p.position_lo.y,   p.position_lo.z,   p.position_step.x, p.position_step.y,
-            p.position_step.z, p.log_scale_lo,   p.log_scale_step,  p.colour_lo.x,     p.colour_lo.y,
-            p.colour_lo.z,    p.colour_step.x,   p.colour_step.y,   p.colour_step.z,   p.coverage_lo,
-            p.coverage_step,  p.sh_step.x,       p.sh_step.y,       p.sh_step.z};
+    return {p.position_lo.x,   p.position_lo.y, p.position_lo.z,  p.position_step.x, p.position_step.y,
+            p.position_step.z, p.log_scale_lo,  p.log_scale_step, p.colour_lo.x,     p.colour_lo.y,
+            p.colour_lo.z,     p.colour_step.x, p.colour_step.y,  p.colour_step.z,   p.coverage_lo,
+            p.coverage_step,   p.sh_step.x,     p.sh_step.y,      p.sh_step.z};
 }
 
 CompactPage page_of(const std::array<float, kPageFloats>& f) {
@@ -96,24 +96,49 @@ std::uint32_t mask(std::uint32_t bits) {
 }
 
 // The field's value in record k of `words` (records of `stride` words), transformed.
-std::uint32_t stored_value(const std::vector<std::uint32_t>& words, std::size_t stride, std::size_t k,
-                           const Field* f) {
-    const auto value = [&](std::size_t r, const Field& g) { return words[r * stride + g.word] >> g.offset & mask(g.bits); };
+std::uint32_t stored_value(const std::vector<std::uint32_t>& words, std::size_t stride, std::size_t k, const Field* f) {
+    const auto value = [&](std::size_t r, const Field& g) {
+        return words[r * stride + g.word] >> g.offset & mask(g.bits);
+    };
     std::uint32_t v = value(k, *f);
     if (f->transform == Transform::delta && k > 0) v -= value(k - 1, *f);
     if (f->transform == Transform::after_previous) v -= value(k, f[-1]);
     return v & mask(f->bits);
 }
 
-// Finite ranges can still decode to an infinity (a huge lo plus a step, 2 to a large power): what a
-// writer never makes, checked on every record so that a reader's promise of finite values holds.
-bool decoded_finite(const SplatCloud& cloud, std::size_t i) {
-    const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+// Finite ranges can still decode to an infinity (a huge lo plus a step, 2 to a large power), and three
+// rotation components to more than a unit quaternion: what a writer never makes, checked on every
+// record so that a reader's promises (finite values, unit quaternions) hold.
+bool decoded_valid(const SplatCloud& cloud, std::size_t i) {
+    const Rotation& r = cloud.rotations[i];
+    const float norm = r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z;
+    if (!(std::abs(norm - 1.0f) < 1e-3f)) return false;
+    const auto finite = [](const glm::vec3& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
     if (!finite(cloud.positions[i]) || !finite(cloud.log_scales[i]) || !finite(cloud.sh_dc[i]) ||
         !std::isfinite(cloud.coverage_min[i]) || !std::isfinite(cloud.coverage_max[i]))
         return false;
-    const std::span<const float> rest = std::span(cloud.sh_rest).subspan(i * cloud.sh_rest_stride(), cloud.sh_rest_stride());
+    const std::span<const float> rest =
+        std::span(cloud.sh_rest).subspan(i * cloud.sh_rest_stride(), cloud.sh_rest_stride());
     return std::all_of(rest.begin(), rest.end(), [](float v) { return std::isfinite(v); });
+}
+
+// One plane's zstd frame into `out` (its size the block's record count): exactly one frame that
+// expands to exactly that many bytes, or an error naming the file.
+void unpack_plane(ZSTD_DCtx* context, std::span<const std::uint8_t> frame, std::vector<std::uint8_t>& out,
+                  const std::string& name) {
+    const std::size_t frame_bytes = ZSTD_findFrameCompressedSize(frame.data(), frame.size());
+    if (ZSTD_isError(frame_bytes) || frame_bytes != frame.size())
+        fail(name, "a plane is not one zstd frame (" +
+                       std::string(ZSTD_isError(frame_bytes) ? ZSTD_getErrorName(frame_bytes) : "bytes after it") +
+                       ")");
+    if (ZSTD_getFrameContentSize(frame.data(), frame.size()) != out.size())
+        fail(name, "a plane's zstd frame does not say it holds the block's " + std::to_string(out.size()) + " bytes");
+    const std::size_t size = ZSTD_decompressDCtx(context, out.data(), out.size(), frame.data(), frame.size());
+    if (ZSTD_isError(size) || size != out.size())
+        fail(name, "a plane's zstd frame is corrupt (" +
+                       std::string(ZSTD_isError(size) ? ZSTD_getErrorName(size) : "too short") + ")");
 }
 
 }  // namespace
@@ -132,8 +157,8 @@ std::vector<std::uint8_t> encode_compact_chunk_header(const CompactChunkHeader& 
 
 std::uint32_t compact_chunk_block_count(std::span<const std::uint8_t> fixed, const std::string& name) {
     if (fixed.size() < kCompactChunkFixedHeaderBytes)
-        fail(name, "is shorter than a compressed chunk's " + std::to_string(kCompactChunkFixedHeaderBytes) +
-                       "-byte header");
+        fail(name,
+             "is shorter than a compressed chunk's " + std::to_string(kCompactChunkFixedHeaderBytes) + "-byte header");
     if (!std::equal(kMagic.begin(), kMagic.end(), fixed.begin()))
         fail(name, "is not a compressed chunk file (its first bytes are not \"SPLATCZ1\")");
     const auto version = get<std::uint32_t>(fixed, 8);
@@ -186,14 +211,16 @@ std::vector<std::uint8_t> encode_compact_chunk_block(const SplatCloud& cloud, st
     for (const float f : page_floats(page)) put<float>(out, f);
     std::vector<std::vector<std::uint8_t>> planes;
     const std::vector<Field> table = fields(degree);
+    const std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> context(ZSTD_createCCtx(), &ZSTD_freeCCtx);
+    if (!context) engine::fail("splat_lod::world::encode_compact_chunk_block(): cannot initialise zstd");
     for (const Field& f : table)
         for (std::uint32_t byte = 0; byte < f.bits; byte += 8) {
             std::vector<std::uint8_t> plane(count);
             for (std::size_t k = 0; k < count; ++k)
                 plane[k] = static_cast<std::uint8_t>(stored_value(words, stride, k, &f) >> byte);
             std::vector<std::uint8_t> packed(ZSTD_compressBound(count));
-            const std::size_t size =
-                ZSTD_compress(packed.data(), packed.size(), plane.data(), plane.size(), kCompactChunkZstdLevel);
+            const std::size_t size = ZSTD_compressCCtx(context.get(), packed.data(), packed.size(), plane.data(),
+                                                       plane.size(), kCompactChunkZstdLevel);
             if (ZSTD_isError(size))
                 engine::fail(std::string("splat_lod::world::encode_compact_chunk_block(): zstd: ") +
                              ZSTD_getErrorName(size));
@@ -205,8 +232,8 @@ std::vector<std::uint8_t> encode_compact_chunk_block(const SplatCloud& cloud, st
     return out;
 }
 
-void decode_compact_chunk_block(std::span<const std::uint8_t> block, std::size_t count, int sh_degree,
-                                SplatCloud& out, std::size_t at, const std::string& name) {
+void decode_compact_chunk_block(std::span<const std::uint8_t> block, std::size_t count, int sh_degree, SplatCloud& out,
+                                std::size_t at, const std::string& name) {
     const std::vector<Field> table = fields(sh_degree);
     std::size_t plane_count = 0;
     for (const Field& f : table) plane_count += (f.bits + 7) / 8;
@@ -221,13 +248,16 @@ void decode_compact_chunk_block(std::span<const std::uint8_t> block, std::size_t
     const std::size_t stride = kCompactWords + compact_sh_words(sh_degree);
     std::vector<std::uint32_t> words(stride * count, 0u);
     std::size_t plane = 0, offset = sizes_at + 4 * plane_count;
+    const std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> context(ZSTD_createDCtx(), &ZSTD_freeDCtx);
+    if (!context) fail(name, "cannot initialise zstd");
+    std::vector<std::uint8_t> bytes(count);
     for (const Field& f : table) {
         // The stored values, then the transform undone in record order.
         std::vector<std::uint32_t> values(count, 0u);
         for (std::uint32_t byte = 0; byte < f.bits; byte += 8, ++plane) {
             const std::uint64_t size = get<std::uint32_t>(block, sizes_at + 4 * plane);
             if (size > block.size() - offset) fail(name, "a block's plane " + std::to_string(plane) + " runs past it");
-            const std::vector<std::uint8_t> bytes = io::unzstd(block.subspan(offset, size), count, offset, name);
+            unpack_plane(context.get(), block.subspan(offset, static_cast<std::size_t>(size)), bytes, name);
             for (std::size_t k = 0; k < count; ++k) values[k] |= std::uint32_t{bytes[k]} << byte;
             offset += size;
         }
@@ -239,14 +269,17 @@ void decode_compact_chunk_block(std::span<const std::uint8_t> block, std::size_t
             words[k * stride + f.word] |= (v & mask(f.bits)) << f.offset;
         }
     }
-    if (offset != block.size()) fail(name, "a block has " + std::to_string(block.size() - offset) + " bytes after its planes");
+    if (offset != block.size())
+        fail(name, "a block has " + std::to_string(block.size() - offset) + " bytes after its planes");
     for (std::size_t k = 0; k < count; ++k) {
         CompactRecord record{};
         std::copy_n(words.begin() + static_cast<std::ptrdiff_t>(k * stride), kCompactWords, record.begin());
         decode_compact_into(record, std::span(words).subspan(k * stride + kCompactWords, stride - kCompactWords), page,
                             sh_degree, out, at + k);
-        if (!decoded_finite(out, at + k))
-            fail(name, "a block's ranges decode record " + std::to_string(k) + " to values that are not finite");
+        if (!decoded_valid(out, at + k))
+            fail(name, "record " + std::to_string(k) +
+                           " of a block decodes to values that are not finite or to a "
+                           "rotation that is not a unit quaternion");
     }
 }
 

@@ -30,7 +30,8 @@ CompactChunkHeader read_checked_header(std::ifstream& in, const std::filesystem:
     if (checksum(bytes) != entry.header_crc32)
         fail(file, "header does not match the manifest's checksum (the file changed since the world was generated)");
     const CompactChunkHeader header = parse_compact_chunk_header(bytes, file.string());
-    const std::uint64_t blocks = std::accumulate(header.block_bytes.begin(), header.block_bytes.end(), std::uint64_t{0});
+    const std::uint64_t blocks =
+        std::accumulate(header.block_bytes.begin(), header.block_bytes.end(), std::uint64_t{0});
     if (header.prefix_count != entry.prefix_count || header.block_bytes.size() != entry.record_crc32.size() ||
         header.header_bytes() + blocks != entry.file_bytes)
         fail(file, "header describes " + std::to_string(header.count) + " records in " +
@@ -86,7 +87,8 @@ SplatCloud read_compact_chunk_range(const std::filesystem::path& file, const Chu
     cloud.resize(static_cast<std::size_t>(last - first));
     for (const RecordBlock& block : blocks) {
         const BlockBytes& at = extents[block.index];
-        const std::span<const std::uint8_t> data(bytes.data() + (at.offset - offset), static_cast<std::size_t>(at.size));
+        const std::span<const std::uint8_t> data(bytes.data() + (at.offset - offset),
+                                                 static_cast<std::size_t>(at.size));
         if (checksum(data) != entry.record_crc32[block.index])
             fail(file, range_text(block.begin, block.end) +
                            " do not match the manifest's checksum (the file changed since the world was generated)");
@@ -124,7 +126,8 @@ SplatCloud read_compact_chunk_file(const std::filesystem::path& path, LoadReport
         const BlockBytes& at = extents[block.index];
         decode_compact_chunk_block(std::span(bytes).subspan(static_cast<std::size_t>(at.offset), at.size),
                                    static_cast<std::size_t>(block.end - block.begin), header.sh_degree, cloud,
-                                   static_cast<std::size_t>(block.begin), name + ": " + range_text(block.begin, block.end));
+                                   static_cast<std::size_t>(block.begin),
+                                   name + ": " + range_text(block.begin, block.end));
     }
     if (report) {
         *report = LoadReport{};
@@ -141,7 +144,8 @@ std::vector<BlockBytes> record_block_bytes(const std::filesystem::path& file, co
     }
     std::vector<BlockBytes> out;
     for (const RecordBlock& block : record_blocks(entry, 0, entry.prefix_count[0]))
-        out.push_back({entry.header_bytes + block.begin * entry.vertex_bytes, (block.end - block.begin) * entry.vertex_bytes});
+        out.push_back(
+            {entry.header_bytes + block.begin * entry.vertex_bytes, (block.end - block.begin) * entry.vertex_bytes});
     return out;
 }
 

@@ -15,9 +15,9 @@
 //   then B × 4   each block's compressed bytes, file order
 //   then the B blocks, back to back.
 // The file describes itself (load_splat_file() reads one whole, without its world); the manifest's
-// entry repeats the counts and adds the checksums. The blocks are the manifest's record blocks (world_manifest.h: one per kCompactBlockRecords records
-// of a stream level, never straddling two), so the manifest's record_crc32 are the CRC-32s of these
-// compressed blocks and a stream level reads whole blocks only.
+// entry repeats the counts and adds the checksums. The blocks are the manifest's record blocks (world_manifest.h: one
+// per kCompactBlockRecords records of a stream level, never straddling two), so the manifest's record_crc32 are the
+// CRC-32s of these compressed blocks and a stream level reads whole blocks only.
 //
 // A block of n records is the CompactPage its records are quantised against (19 floats,
 // compact_gaussians.h), a table of P 32-bit plane sizes, then P zstd frames, one per plane. A plane holds
@@ -30,8 +30,8 @@
 // frame of the whole block is 17 (docs/gpu_storage.md).
 #include <array>
 #include <cstddef>
-#include <filesystem>
 #include <cstdint>
+#include <filesystem>
 #include <span>
 #include <string>
 #include <vector>
@@ -42,13 +42,13 @@ namespace splat_lod::world {
 
 inline constexpr std::uint32_t kCompactChunkVersion = 1;
 inline constexpr std::size_t kCompactChunkFixedHeaderBytes = 64;
-inline constexpr int kCompactChunkZstdLevel = 9;
+inline constexpr int kCompactChunkZstdLevel = 3;
 
 struct CompactChunkHeader {
     int sh_degree = 0;
     std::uint64_t count = 0;
     std::array<std::uint64_t, 4> prefix_count{};  // as ChunkEntry::prefix_count
-    std::vector<std::uint32_t> block_bytes;        // compressed size of each block, file order
+    std::vector<std::uint32_t> block_bytes;       // compressed size of each block, file order
 
     std::uint64_t header_bytes() const { return kCompactChunkFixedHeaderBytes + 4 * block_bytes.size(); }
 };
@@ -63,15 +63,15 @@ std::uint32_t compact_chunk_block_count(std::span<const std::uint8_t> fixed, con
 CompactChunkHeader parse_compact_chunk_header(std::span<const std::uint8_t> bytes, const std::string& name);
 
 // Records [first, first + count) of `cloud` (with its lod attributes, SH up to its degree) as one
-// block, quantised against ranges fitted to them (fit_compact_page). Every Gaussian must be drawable (compact_gaussians.h: gaussian_is_drawable);
-// engine::Error otherwise.
+// block, quantised against ranges fitted to them (fit_compact_page). Every Gaussian must be drawable
+// (compact_gaussians.h: gaussian_is_drawable); engine::Error otherwise.
 std::vector<std::uint8_t> encode_compact_chunk_block(const SplatCloud& cloud, std::size_t first, std::size_t count);
 
 // Decodes a block of `count` records with SH degree `sh_degree` into out[at, at + count) (out sized
 // and with lod attributes). Throws engine::Error naming `name` when the block does not decompress to
 // exactly the expected bytes, its plane table does not add up to its size, or its ranges are not finite.
-void decode_compact_chunk_block(std::span<const std::uint8_t> block, std::size_t count, int sh_degree,
-                                SplatCloud& out, std::size_t at, const std::string& name);
+void decode_compact_chunk_block(std::span<const std::uint8_t> block, std::size_t count, int sh_degree, SplatCloud& out,
+                                std::size_t at, const std::string& name);
 
 // A compressed chunk file read whole on its own (no manifest, so no checksums: the blocks must decode
 // and add up to the file's size). Throws engine::Error naming the file.
