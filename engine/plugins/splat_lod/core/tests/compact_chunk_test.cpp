@@ -4,7 +4,6 @@
 // the file while the rest of the file still reads.
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <numeric>
 #include <random>
 #include <tuple>
@@ -15,6 +14,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_io.h"
+#include "splat_io_test_helpers.h"
 #include "splat_lod/core/chunk_reader.h"
 #include "splat_lod/core/chunk_writer.h"
 #include "splat_lod/core/compact_chunk.h"
@@ -25,6 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 namespace sw = splat_lod::world;
+using splat_io_test::error_of;
 using splat_lod::SplatCloud;
 
 // A chunk-like cloud: `n` Gaussians over a 64 m square, every bake level, in stream order.
@@ -84,15 +85,6 @@ void expect_same(const SplatCloud& a, const SplatCloud& b, std::size_t offset = 
         for (std::size_t k = 0; k < a.sh_rest_stride(); ++k)
             ASSERT_EQ(a.sh_rest[i * a.sh_rest_stride() + k], b.sh_rest[j * b.sh_rest_stride() + k]) << i;
     }
-}
-
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const engine::Error& e) {
-        return e.what();
-    }
-    return "";
 }
 
 class CompactChunkTest : public ::testing::Test {
