@@ -66,6 +66,37 @@ TEST(ChunkStreamer, MissingTruncatedAndCorruptChunksAreReportedOnceAndSkipped) {
     EXPECT_TRUE(h.sink.violations.empty()) << h.sink.violations.front();
 }
 
+// Compressed chunks give their Gaussians back quantised, so one may land in another stream level than
+// the one it is filed under: accepted while the level's manifest bounds hold for it (what the streaming
+// decisions use), reported like any failed read when they do not.
+TEST(ChunkStreamer, CompressedChunksAreCheckedAgainstTheirLevelBounds) {
+    engine::MessageBus bus;
+    std::vector<StreamEvent> failures;
+    const auto sub = bus.subscribe<StreamEvent>([&](const StreamEvent& e) {
+        if (e.event == StreamEventType::failed) failures.push_back(e);
+    });
+    sw::WorldManifest world = make_world();
+    for (sw::ChunkEntry& c : world.chunks) {
+        c.codec = sw::ChunkCodec::compact;
+        c.vertex_bytes = 0;
+        // Bounds that hold for every fake Gaussian (extents up to 1.18, coverage_min 100), so that every
+        // level is needed near the camera and records of another stream level pass.
+        for (sw::ChunkLevel& level : c.levels) level = {1.25f, 0.0125f};
+        if (c.id == "chunk_2_2") c.levels[3].extent_max = 0.05f;  // below its stream level 4 Gaussians
+    }
+    Harness h(sync_settings(), &bus, world);
+    h.source.wrong_level_from["chunk_3_3.ply"] = 12;  // stream level 3 records that decode as stream level 1
+    h.steps({20.0f, 1.0f, 20.0f}, 30);
+
+    ASSERT_EQ(failures.size(), 1u);
+    EXPECT_EQ(failures[0].chunk_id, "chunk_2_2");
+    EXPECT_EQ(failures[0].level, 4);
+    EXPECT_NE(failures[0].message.find("outside the bounds the manifest gives stream level 4"), std::string::npos)
+        << failures[0].message;
+    EXPECT_EQ(h.status("chunk_3_3").finest_resident_level, 1) << "within its level's bounds: drawn";
+    EXPECT_TRUE(h.status("chunk_2_2").failed);
+}
+
 TEST(ChunkStreamer, AFailedChunkIsRetriedAfterTheConfiguredFrames) {
     sw::StreamerSettings settings = sync_settings();
     settings.retry_failed_after_frames = 10;
