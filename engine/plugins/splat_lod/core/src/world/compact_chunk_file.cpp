@@ -64,6 +64,23 @@ std::vector<BlockBytes> block_extents(const CompactChunkHeader& header) {
     return out;
 }
 
+// Every block of a whole file's bytes (its header parsed, the entry's prefix counts set).
+SplatCloud decode_whole(std::span<const std::uint8_t> bytes, const CompactChunkHeader& header, const ChunkEntry& entry,
+                        const std::string& name) {
+    SplatCloud cloud;
+    cloud.set_sh_degree(header.sh_degree);
+    cloud.resize(static_cast<std::size_t>(header.count));
+    const std::vector<BlockBytes> extents = block_extents(header);
+    for (const RecordBlock& block : record_blocks(entry, 0, header.count)) {
+        const BlockBytes& at = extents[block.index];
+        decode_compact_chunk_block(bytes.subspan(static_cast<std::size_t>(at.offset), at.size),
+                                   static_cast<std::size_t>(block.end - block.begin), header.sh_degree, cloud,
+                                   static_cast<std::size_t>(block.begin),
+                                   name + ": " + range_text(block.begin, block.end));
+    }
+    return cloud;
+}
+
 }  // namespace
 
 SplatCloud read_compact_chunk_range(const std::filesystem::path& file, const ChunkEntry& entry, std::uint64_t begin,
@@ -118,17 +135,7 @@ SplatCloud read_compact_chunk_file(const std::filesystem::path& path, LoadReport
         fail(path, "header describes " + std::to_string(blocks) + " blocks of " + std::to_string(header_bytes + body) +
                        " bytes in all; the file is " + std::to_string(bytes.size()) + " bytes and its counts make " +
                        std::to_string(record_block_count(entry)) + " blocks");
-    SplatCloud cloud;
-    cloud.set_sh_degree(header.sh_degree);
-    cloud.resize(static_cast<std::size_t>(header.count));
-    const std::vector<BlockBytes> extents = block_extents(header);
-    for (const RecordBlock& block : record_blocks(entry, 0, header.count)) {
-        const BlockBytes& at = extents[block.index];
-        decode_compact_chunk_block(std::span(bytes).subspan(static_cast<std::size_t>(at.offset), at.size),
-                                   static_cast<std::size_t>(block.end - block.begin), header.sh_degree, cloud,
-                                   static_cast<std::size_t>(block.begin),
-                                   name + ": " + range_text(block.begin, block.end));
-    }
+    SplatCloud cloud = decode_whole(bytes, header, entry, name);
     if (report) {
         *report = LoadReport{};
         report->format = "compressed world chunk";
@@ -192,7 +199,7 @@ ChunkEntry write_chunk_file(const SplatCloud& ordered, const std::filesystem::pa
     entry.header_crc32 = checksum(all.first(static_cast<std::size_t>(entry.header_bytes)));
     for (const BlockBytes& at : block_extents(header))
         entry.record_crc32.push_back(checksum(all.subspan(static_cast<std::size_t>(at.offset), at.size)));
-    widen_bounds(entry, read_compact_chunk_range(path, entry, 0, entry.prefix_count[0]), stream);
+    widen_bounds(entry, decode_whole(all, header, entry, path.string()), stream);
     return entry;
 }
 
