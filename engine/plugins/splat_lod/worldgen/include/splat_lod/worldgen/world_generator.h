@@ -95,7 +95,7 @@ struct WorldOptions {
     std::array<float, 3> stream_reach_min = StreamLevelRule{}.reach_min;
     GroupOptions groups;  // the chunk groups pooled from the chunks (world_groups.h)
     // How chunk and group files store their Gaussians (world_manifest.h): compressed compact records
-    // (about 15.5 bytes a Gaussian at SH 0, quantised as the GPU's compact storage quantises) or the
+    // (about 15.7 bytes a Gaussian at SH 0, quantised as the GPU's compact storage quantises) or the
     // lossless PLY files of manifest version 4 (77 bytes at SH 0).
     ChunkCodec chunk_codec = ChunkCodec::compact;
     std::filesystem::path output;  // the world's folder (created)
