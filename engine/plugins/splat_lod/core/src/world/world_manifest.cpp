@@ -139,6 +139,8 @@ public:
 
 private:
     ChunkEntry chunk(const json& object, const std::string& key, bool group) const;
+    // The entry's file: codec, byte counts and checksums (after its prefix counts).
+    void chunk_file(const json& object, const std::string& key, ChunkEntry& c) const;
     void chunks(const json& list, WorldManifest& m) const;
     void groups(const json& list, WorldManifest& m) const;
     ChunkLevel level(const json& object, const std::string& key) const;
@@ -223,6 +225,11 @@ ChunkEntry ManifestReader::chunk(const json& object, const std::string& key, boo
         c.prefix_count[l] = whole(counts[l], index(join(key, "prefix_count"), l));
         c.levels[l] = level(levels[l], index(join(key, "levels"), l));
     }
+    chunk_file(object, key, c);
+    return c;
+}
+
+void ManifestReader::chunk_file(const json& object, const std::string& key, ChunkEntry& c) const {
     if (object.contains("codec")) {
         const std::string codec = text(object["codec"], join(key, "codec"));
         if (codec != "ply" && codec != "compact")
@@ -244,7 +251,6 @@ ChunkEntry ManifestReader::chunk(const json& object, const std::string& key, boo
                               " records");
     c.record_crc32.reserve(blocks.size());
     for (std::size_t b = 0; b < blocks.size(); ++b) c.record_crc32.push_back(crc32(blocks[b], index(blocks_key, b)));
-    return c;
 }
 
 Prop ManifestReader::prop(const json& object, const std::string& key) const {
