@@ -30,7 +30,7 @@ expect_failure missing_world "$dir/nowhere/world.json: not found" "$harness" --p
 expect_failure missing_world_window "splat_world --out" "$game" --world "$dir/nowhere"
 expect_failure too_few_frames "--frames must be at least 10" "$harness" --profile --world "$dir/nowhere" --frames 5
 expect_failure rel_min_above_rel_max "lod_settings.rel_min" "$harness" --profile --world "$dir/nowhere" --lod-rel-min 3
-expect_failure upload_below_a_page "upload_budget_bytes_per_frame" "$harness" --profile --world "$dir/nowhere" --upload-budget-mib 0.01 --sh-degree 3
+expect_failure upload_below_a_page "upload_budget_bytes_per_frame" "$harness" --profile --world "$dir/nowhere" --upload-budget-mib 0.01 --sh-degree 3 --gpu-storage full
 expect_failure fade_frames_out_of_range "--fade-frames" "$harness" --profile --world "$dir/nowhere" --fade-frames 2000
 expect_failure unknown_upscaler "upscaler" "$harness" --profile --upscaler sharpest
 expect_failure unknown_option "--teleport" "$harness" --profile --teleport

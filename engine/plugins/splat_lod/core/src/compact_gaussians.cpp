@@ -135,7 +135,7 @@ CompactPage fit_compact_page(const SplatCloud& cloud, std::size_t first, std::si
     for (int a = 0; a < 3; ++a) {
         fit_range(p_lo[a], p_hi[a], 65535, page.position_lo[a], page.position_step[a]);
         fit_range(c_lo[a], c_hi[a], 255, page.colour_lo[a], page.colour_step[a]);
-        page.sh_step[a] = sh_max[a] > 0.0 ? static_cast<float>(sh_max[a] / 127.0 * (1.0 + 1e-7)) : 0.0f;
+        page.sh_max[a] = static_cast<float>(sh_max[a]);
     }
     fit_range(s_lo, s_hi, 255, page.log_scale_lo, page.log_scale_step);
     fit_range(cov_lo, cov_hi, kCompactCoverageCodes - 2, page.coverage_lo, page.coverage_step);
@@ -165,22 +165,6 @@ CompactRecord encode_compact(const SplatCloud& cloud, std::size_t i, const Compa
     return r;
 }
 
-void encode_compact_sh(const SplatCloud& cloud, std::size_t i, const CompactPage& page, int sh_degree,
-                       std::span<std::uint32_t> sh_words) {
-    std::fill(sh_words.begin(), sh_words.end(), 0u);
-    const bool drawable = gaussian_is_drawable(cloud, i);
-    const int stored = std::min(sh_degree, cloud.sh_degree);
-    for (int k = 1; k <= sh_rest_coeffs(sh_degree); ++k)
-        for (int c = 0; c < 3; ++c) {
-            const float step = page.sh_step[band_of(k) - 1];
-            const float v = drawable && k <= sh_rest_coeffs(stored) ? cloud.sh_rest_at(i, k, c) : 0.0f;
-            const auto q = static_cast<std::uint32_t>(
-                128 + std::lround(step > 0.0f ? std::clamp(v / step, -127.0f, 127.0f) : 0.0f));
-            const std::size_t byte = std::size_t(k - 1) * 3 + c;
-            sh_words[byte / 4] |= q << (8 * (byte % 4));
-        }
-}
-
 CompactGaussian decode_compact(const CompactRecord& r, const CompactPage& page) {
     CompactGaussian g;
     const std::array<std::uint32_t, 3> p = {bits(r[0], 0, 16), bits(r[0], 16, 16), bits(r[1], 0, 16)};
@@ -197,16 +181,6 @@ CompactGaussian decode_compact(const CompactRecord& r, const CompactPage& page) 
     g.coverage_min = decode_coverage(bits(r[4], 10, 11), page);
     g.coverage_max = decode_coverage(bits(r[4], 21, 11), page);
     return g;
-}
-
-void decode_compact_sh(std::span<const std::uint32_t> sh_words, const CompactPage& page, int sh_degree,
-                       std::span<float> rest) {
-    for (int k = 1; k <= sh_rest_coeffs(sh_degree); ++k)
-        for (int c = 0; c < 3; ++c) {
-            const std::size_t byte = std::size_t(k - 1) * 3 + c;
-            const auto q = static_cast<int>(bits(sh_words[byte / 4], int(8 * (byte % 4)), 8));
-            rest[byte] = float(q - 128) * page.sh_step[band_of(k) - 1];
-        }
 }
 
 void decode_compact_into(const CompactRecord& record, std::span<const std::uint32_t> sh_words, const CompactPage& page,

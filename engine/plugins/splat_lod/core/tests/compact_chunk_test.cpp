@@ -20,6 +20,7 @@
 #include "splat_lod/core/compact_chunk.h"
 #include "splat_lod/core/compact_gaussians.h"
 #include "splat_lod/core/stream_levels.h"
+#include "test_support.h"
 
 namespace {
 
@@ -272,9 +273,15 @@ TEST_F(CompactChunkTest, HeaderRejectsOtherVersionsAndBlockSizes) {
     const sw::CompactChunkHeader back = sw::parse_compact_chunk_header(bytes, "h");
     EXPECT_EQ(back.count, 5000u);
     EXPECT_EQ(back.block_bytes, h.block_bytes);
+    EXPECT_EQ(back.version, sw::kCompactChunkVersion);
     std::vector<std::uint8_t> version = bytes;
-    version[8] = 2;
-    EXPECT_NE(error_of([&] { sw::parse_compact_chunk_header(version, "h"); }).find("version 2"), std::string::npos);
+    version[8] = 1;  // the first version is still read
+    EXPECT_EQ(sw::parse_compact_chunk_header(version, "h").version, 1u);
+    for (const std::uint8_t v : {0, 3}) {
+        version[8] = v;
+        EXPECT_NE(error_of([&] { sw::parse_compact_chunk_header(version, "h"); }).find("version " + std::to_string(v)),
+                  std::string::npos);
+    }
     std::vector<std::uint8_t> block = bytes;
     block[24] = 7;
     EXPECT_NE(error_of([&] { sw::parse_compact_chunk_header(block, "h"); }).find("records per block"),
@@ -304,3 +311,34 @@ TEST_F(CompactChunkTest, PlyAndCompactFilesOfOneCloudDrawTheSameLevels) {
 }
 
 }  // namespace
+
+// A version-1 file (a byte per higher SH coefficient), kept in tests/data as the generator wrote it:
+// 1500 Gaussians at SH degree 1 over several blocks (splat_io_test::make_cloud(1500, 1, 15, true) in
+// stream order). It still reads, each coefficient within half of version 1's step (its block's
+// largest magnitude of the band / 127), which version 2's decoding of the same bytes would not give.
+TEST(CompactChunkVersion1, StillReads) {
+    ENGINE_REQUIRE_DATA("worlds/compact_chunk_v1_1500_sh1.splatc");
+    const fs::path file = engine::test::data_file("worlds/compact_chunk_v1_1500_sh1.splatc");
+    const std::vector<std::uint8_t> bytes = engine::read_binary_file(file);
+    ASSERT_EQ(sw::parse_compact_chunk_header(std::span(bytes).first(sw::kCompactChunkFixedHeaderBytes +
+                                                                    4 * sw::compact_chunk_block_count(bytes, "v1")),
+                                             "v1")
+                  .version,
+              1u);
+    const sw::StreamLevelRule rule;
+    SplatCloud expected = splat_io_test::make_cloud(1500, 1, 15, true);
+    expected = expected.permuted(sw::stream_order(expected, rule));
+    const SplatCloud back = sw::read_compact_chunk_file(file);
+    ASSERT_EQ(back.size(), expected.size());
+    ASSERT_EQ(back.sh_degree, 1);
+    float band_max = 0.0f;
+    for (const float v : expected.sh_rest) band_max = std::max(band_max, std::abs(v));
+    for (std::size_t i = 0; i < back.size(); ++i) {
+        EXPECT_NEAR(back.positions[i].x, expected.positions[i].x, 1e-3f) << i;
+        for (int k = 1; k <= 3; ++k)
+            for (int c = 0; c < 3; ++c)
+                ASSERT_LE(std::abs(back.sh_rest_at(i, k, c) - expected.sh_rest_at(i, k, c)),
+                          0.5f * band_max / 127.0f * 1.001f)
+                    << "Gaussian " << i << " coefficient " << k;
+    }
+}

@@ -30,8 +30,8 @@ using plugin_msgs::StreamEvent;
 using plugin_msgs::StreamEventType;
 
 TEST(StreamPolicy, GpuBytesDistancesAndLoadDistances) {
-    // Compact slots: the 20-byte record and the higher SH bands a byte a coefficient, in words.
-    EXPECT_EQ(sw::gpu_bytes(1, 3), 20u + 48u);
+    // Compact slots: the 20-byte record and the higher SH bands, 4 words at degree 3.
+    EXPECT_EQ(sw::gpu_bytes(1, 3), 20u + 16u);
     EXPECT_EQ(sw::gpu_bytes(10, 0), 200u);
     EXPECT_EQ(sw::gpu_bytes(1, 3, kFullSlots), 256u);
     EXPECT_EQ(sw::gpu_bytes(10, 0, kFullSlots), 760u);

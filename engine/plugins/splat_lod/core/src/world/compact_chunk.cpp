@@ -41,7 +41,7 @@ std::array<float, kPageFloats> page_floats(const CompactPage& p) {
     return {p.position_lo.x,   p.position_lo.y, p.position_lo.z,  p.position_step.x, p.position_step.y,
             p.position_step.z, p.log_scale_lo,  p.log_scale_step, p.colour_lo.x,     p.colour_lo.y,
             p.colour_lo.z,     p.colour_step.x, p.colour_step.y,  p.colour_step.z,   p.coverage_lo,
-            p.coverage_step,   p.sh_step.x,     p.sh_step.y,      p.sh_step.z};
+            p.coverage_step,   p.sh_max.x,      p.sh_max.y,       p.sh_max.z};
 }
 
 CompactPage page_of(const std::array<float, kPageFloats>& f) {
@@ -54,7 +54,7 @@ CompactPage page_of(const std::array<float, kPageFloats>& f) {
     p.colour_step = {f[11], f[12], f[13]};
     p.coverage_lo = f[14];
     p.coverage_step = f[15];
-    p.sh_step = {f[16], f[17], f[18]};
+    p.sh_max = {f[16], f[17], f[18]};  // version 1: the bands' steps
     return p;
 }
 
@@ -68,7 +68,24 @@ struct Field {
     Transform transform = Transform::none;
 };
 
-std::vector<Field> fields(int sh_degree) {
+// SH words per record: version 1 stored a byte per coefficient, four to a word.
+std::uint32_t sh_words(int sh_degree, std::uint32_t version) {
+    return version == 1 ? static_cast<std::uint32_t>((3 * sh_rest_coeffs(sh_degree) + 3) / 4)
+                        : compact_sh_words(sh_degree);
+}
+
+// Version 1's higher SH bands: byte (k − 1)·3 + c of the words is coefficient k, channel c, as
+// (byte − 128)·step with the band's step in the page's last three floats.
+void decode_version1_sh(std::span<const std::uint32_t> words, const CompactPage& page, SplatCloud& out, std::size_t i) {
+    for (int k = 1; k <= sh_rest_coeffs(out.sh_degree); ++k)
+        for (int c = 0; c < 3; ++c) {
+            const std::size_t byte = std::size_t(k - 1) * 3 + c;
+            const auto q = static_cast<int>(words[byte / 4] >> (8 * (byte % 4)) & 0xffu);
+            out.sh_rest_at(i, k, c) = float(q - 128) * page.sh_max[k < 4 ? 0 : (k < 9 ? 1 : 2)];
+        }
+}
+
+std::vector<Field> fields(int sh_degree, std::uint32_t version) {
     std::vector<Field> out{{0, 0, 16, Transform::delta},
                            {0, 16, 16, Transform::delta},
                            {1, 0, 16, Transform::delta},
@@ -86,7 +103,7 @@ std::vector<Field> fields(int sh_degree) {
                            {4, 8, 2},
                            {4, 10, 11},
                            {4, 21, 11, Transform::after_previous}};
-    for (std::uint32_t w = 0; w < compact_sh_words(sh_degree); ++w)
+    for (std::uint32_t w = 0; w < sh_words(sh_degree, version); ++w)
         for (std::uint32_t b = 0; b < 4; ++b) out.push_back({static_cast<std::uint32_t>(kCompactWords) + w, 8 * b, 8});
     return out;
 }
@@ -162,15 +179,16 @@ std::uint32_t compact_chunk_block_count(std::span<const std::uint8_t> fixed, con
     if (!std::equal(kMagic.begin(), kMagic.end(), fixed.begin()))
         fail(name, "is not a compressed chunk file (its first bytes are not \"SPLATCZ1\")");
     const auto version = get<std::uint32_t>(fixed, 8);
-    if (version != kCompactChunkVersion)
-        fail(name, "compressed chunk format version " + std::to_string(version) + " is not supported (this reads " +
-                       std::to_string(kCompactChunkVersion) + ")");
+    if (version < 1 || version > kCompactChunkVersion)
+        fail(name, "compressed chunk format version " + std::to_string(version) +
+                       " is not supported (this reads 1 to " + std::to_string(kCompactChunkVersion) + ")");
     return get<std::uint32_t>(fixed, 28);
 }
 
 CompactChunkHeader parse_compact_chunk_header(std::span<const std::uint8_t> bytes, const std::string& name) {
     const std::uint32_t blocks = compact_chunk_block_count(bytes, name);
     CompactChunkHeader header;
+    header.version = get<std::uint32_t>(bytes, 8);
     header.sh_degree = static_cast<int>(get<std::uint32_t>(bytes, 12));
     header.count = get<std::uint64_t>(bytes, 16);
     if (get<std::uint32_t>(bytes, 12) > static_cast<std::uint32_t>(kMaxShDegree))
@@ -210,7 +228,7 @@ std::vector<std::uint8_t> encode_compact_chunk_block(const SplatCloud& cloud, st
     std::vector<std::uint8_t> out;
     for (const float f : page_floats(page)) put<float>(out, f);
     std::vector<std::vector<std::uint8_t>> planes;
-    const std::vector<Field> table = fields(degree);
+    const std::vector<Field> table = fields(degree, kCompactChunkVersion);
     const std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> context(ZSTD_createCCtx(), &ZSTD_freeCCtx);
     if (!context) engine::fail("splat_lod::world::encode_compact_chunk_block(): cannot initialise zstd");
     for (const Field& f : table)
@@ -232,9 +250,11 @@ std::vector<std::uint8_t> encode_compact_chunk_block(const SplatCloud& cloud, st
     return out;
 }
 
-void decode_compact_chunk_block(std::span<const std::uint8_t> block, std::size_t count, int sh_degree, SplatCloud& out,
-                                std::size_t at, const std::string& name) {
-    const std::vector<Field> table = fields(sh_degree);
+void decode_compact_chunk_block(std::span<const std::uint8_t> block, std::size_t count,
+                                const CompactChunkHeader& header, SplatCloud& out, std::size_t at,
+                                const std::string& name) {
+    const int sh_degree = header.sh_degree;
+    const std::vector<Field> table = fields(sh_degree, header.version);
     std::size_t plane_count = 0;
     for (const Field& f : table) plane_count += (f.bits + 7) / 8;
     const std::size_t sizes_at = 4 * kPageFloats;
@@ -245,7 +265,7 @@ void decode_compact_chunk_block(std::span<const std::uint8_t> block, std::size_t
         if (!std::isfinite(floats[f])) fail(name, "a block's quantisation ranges are not finite");
     }
     const CompactPage page = page_of(floats);
-    const std::size_t stride = kCompactWords + compact_sh_words(sh_degree);
+    const std::size_t stride = kCompactWords + sh_words(sh_degree, header.version);
     std::vector<std::uint32_t> words(stride * count, 0u);
     std::size_t plane = 0, offset = sizes_at + 4 * plane_count;
     const std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> context(ZSTD_createDCtx(), &ZSTD_freeDCtx);
@@ -274,8 +294,10 @@ void decode_compact_chunk_block(std::span<const std::uint8_t> block, std::size_t
     for (std::size_t k = 0; k < count; ++k) {
         CompactRecord record{};
         std::copy_n(words.begin() + static_cast<std::ptrdiff_t>(k * stride), kCompactWords, record.begin());
-        decode_compact_into(record, std::span(words).subspan(k * stride + kCompactWords, stride - kCompactWords), page,
-                            sh_degree, out, at + k);
+        const auto sh =
+            std::span<const std::uint32_t>(words).subspan(k * stride + kCompactWords, stride - kCompactWords);
+        decode_compact_into(record, sh, page, header.version == 1 ? 0 : sh_degree, out, at + k);
+        if (header.version == 1) decode_version1_sh(sh, page, out, at + k);
         if (!decoded_valid(out, at + k))
             fail(name, "record " + std::to_string(k) +
                            " of a block decodes to values that are not finite or to a "

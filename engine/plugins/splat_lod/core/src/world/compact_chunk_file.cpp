@@ -74,7 +74,7 @@ SplatCloud decode_whole(std::span<const std::uint8_t> bytes, const CompactChunkH
     for (const RecordBlock& block : record_blocks(entry, 0, header.count)) {
         const BlockBytes& at = extents[block.index];
         decode_compact_chunk_block(bytes.subspan(static_cast<std::size_t>(at.offset), at.size),
-                                   static_cast<std::size_t>(block.end - block.begin), header.sh_degree, cloud,
+                                   static_cast<std::size_t>(block.end - block.begin), header, cloud,
                                    static_cast<std::size_t>(block.begin),
                                    name + ": " + range_text(block.begin, block.end));
     }
@@ -109,7 +109,7 @@ SplatCloud read_compact_chunk_range(const std::filesystem::path& file, const Chu
         if (checksum(data) != entry.record_crc32[block.index])
             fail(file, range_text(block.begin, block.end) +
                            " do not match the manifest's checksum (the file changed since the world was generated)");
-        decode_compact_chunk_block(data, static_cast<std::size_t>(block.end - block.begin), header.sh_degree, cloud,
+        decode_compact_chunk_block(data, static_cast<std::size_t>(block.end - block.begin), header, cloud,
                                    static_cast<std::size_t>(block.begin - first),
                                    file.string() + ": " + range_text(block.begin, block.end));
     }

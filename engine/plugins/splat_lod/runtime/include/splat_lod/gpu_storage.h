@@ -11,15 +11,15 @@
 
 namespace splat_lod {
 
-// How the GPU scene stores Gaussians (docs/gpu_storage.md). compact: 20 bytes a Gaussian plus a byte
-// per higher SH coefficient, quantised per page, decoded in the project pass; full: float records
+// How the GPU scene stores Gaussians (docs/gpu_storage.md). compact: 20 bytes a Gaussian plus 8 or 16
+// bytes of higher SH bands, quantised per page, decoded in the project pass; full: float records
 // (GpuGaussian, 64 bytes, the covariance precomputed in double) and float SH, for a user who needs
 // the trained values to the last bit (comparing against another renderer, say).
 enum class GpuStorage : std::uint8_t { compact, full };
 
 // Bytes the GPU scene stores per Gaussian slot. Full: one GpuGaussian (64 bytes) plus 3·(d + 1)²
 // floats of SH, i.e. 76 at degree 0 and 256 at degree 3. Compact: the 20-byte record plus the higher
-// bands' bytes in whole words, 20, 32, 44 and 68 at degree 0..3.
+// bands' words, 20, 28, 36 and 36 at degree 0..3.
 constexpr std::uint64_t gpu_bytes_per_gaussian(int sh_degree, GpuStorage storage = GpuStorage::compact) {
     if (storage == GpuStorage::compact) return 4 * (kCompactWords + compact_sh_words(sh_degree));
     const auto coefficients = static_cast<std::uint64_t>((sh_degree + 1) * (sh_degree + 1));
@@ -56,7 +56,7 @@ constexpr std::uint64_t max_gaussians_within(std::uint64_t budget, int sh_degree
 }
 
 static_assert(gpu_bytes_per_gaussian(0, GpuStorage::full) == 76 && gpu_bytes_per_gaussian(3, GpuStorage::full) == 256);
-static_assert(gpu_bytes_per_gaussian(0) == 20 && gpu_bytes_per_gaussian(3) == 68);
+static_assert(gpu_bytes_per_gaussian(0) == 20 && gpu_bytes_per_gaussian(1) == 28 && gpu_bytes_per_gaussian(3) == 36);
 static_assert(PageLayout{}.page_gaussians == 256 && PageLayout{}.page_overhead_bytes == 128);
 
 }  // namespace splat_lod

@@ -73,7 +73,7 @@ struct SplatPassSettings {
     bool compact_sort_keys = true;
     RasterFetch raster_fetch = RasterFetch::automatic;
     // How the scene's Gaussians are stored on the GPU (docs/gpu_storage.md): compact, 20 bytes a
-    // Gaussian plus a byte per higher SH coefficient, or full floats where every trained bit must
+    // Gaussian plus 8 or 16 bytes of higher SH bands, or full floats where every trained bit must
     // reach the screen. A change re-uploads the scene.
     GpuStorage gpu_storage = GpuStorage::compact;
 };

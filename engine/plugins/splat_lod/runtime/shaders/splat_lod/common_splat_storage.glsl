@@ -3,7 +3,7 @@
 //   vec4 load_lod(uint index)                coverage_min, coverage_max, level (GpuGaussian::lod)
 //   vec3 sh_coefficient(uint index, uint k)  SH coefficient k (0 is DC) of the three channels
 // Full storage reads GpuGaussian records and float SH; compact storage (SPLAT_COMPACT_STORAGE) decodes
-// 20-byte records and SH bytes against their page's GpuPageCodec, bit for bit as decode_compact in
+// 20-byte records and SH words against their page's GpuPageCodec, bit for bit as decode_compact in
 // splat_lod/core/compact_gaussians.h does. With SPLAT_INPUT_TEXELS the same words are read through
 // buffer textures (one gather on CPU drivers instead of a loop over the SIMD lanes).
 
@@ -28,7 +28,21 @@ vec4 codec_vec4(uint page, int k) { return codec_words[page * 5u + uint(k)]; }
 #define CODEC_POSITION_STEP 1
 #define CODEC_COLOUR_LO 2
 #define CODEC_COLOUR_STEP 3
-#define CODEC_SH_STEP 4
+#define CODEC_SH_MAX 4
+
+// compact_sh_band(): per stored degree and band, the levels L, the first bit and the bits per
+// coefficient (0: trits, the first 20 the base-3 digits of word 3, the 21st at bits 93–94).
+uvec3 sh_band_code(uint degree, uint band) {
+    uint exponents = 4u * degree;
+    if (degree == 1u) return uvec3(31u, exponents, 6u);
+    if (degree == 2u) return band == 1u ? uvec3(31u, exponents, 6u) : uvec3(7u, exponents + 54u, 4u);
+    if (band == 1u) return uvec3(7u, exponents, 4u);
+    if (band == 2u) return uvec3(3u, exponents + 36u, 3u);
+    return uvec3(1u, 0u, 0u);
+}
+const uint SH_POWERS_OF_3[20] = uint[](1u, 3u, 9u, 27u, 81u, 243u, 729u, 2187u, 6561u, 19683u, 59049u, 177147u,
+                                       531441u, 1594323u, 4782969u, 14348907u, 43046721u, 129140163u, 387420489u,
+                                       1162261467u);
 
 uint page_of(uint index) { return index / uint(SPLAT_PROJECT_WORKGROUP_SIZE); }
 
@@ -81,7 +95,7 @@ GpuGaussian load_gaussian(uint index) {
     m[2] *= s.z;
     mat3 sigma = m * transpose(m);
     float opacity = float(bitfieldExtract(w1, 16, 8)) / 255.0;
-    float instance = codec_vec4(page, CODEC_SH_STEP).w;
+    float instance = codec_vec4(page, CODEC_SH_MAX).w;
     return GpuGaussian(vec4(position, opacity), vec4(sigma[0][0], sigma[0][1], sigma[0][2], sigma[1][1]),
                        vec4(sigma[1][2], sigma[2][2], 0.0, instance), load_lod(index));
 }
@@ -94,13 +108,27 @@ vec3 sh_coefficient(uint index, uint k) {
         vec3 colour = codec_vec4(page, CODEC_COLOUR_LO).xyz + vec3(c) * codec_vec4(page, CODEC_COLOUR_STEP).xyz;
         return (colour - 0.5) / 0.28209479177387814;  // the DC basis value, SH_C0
     }
-    uint band = k < 4u ? 0u : (k < 9u ? 1u : 2u);
-    float step = codec_vec4(page, CODEC_SH_STEP)[band];
-    uint base = index * frame.sh_stride * 4u + (k - 1u) * 3u;  // the coefficient's first byte
+    // The higher bands as compact_sh_band() lays them out for the stored degree: q·M·2^(−e/2)/L.
+    uint band = k < 4u ? 1u : (k < 9u ? 2u : 3u), degree = frame.sh_storage_degree;
+    uint base = index * frame.sh_stride;
+    uint e = bitfieldExtract(sh_word(base), int(4u * (band - 1u)), 4);
+    float s = codec_vec4(page, CODEC_SH_MAX)[band - 1u] * exp2(-0.5 * float(e));
+    uvec3 code = sh_band_code(degree, band);  // levels, first bit, bits (0: trits)
+    uint j0 = (k - band * band) * 3u;
     vec3 v;
     for (uint c = 0u; c < 3u; ++c) {
-        uint byte = base + c;
-        v[c] = float(int(bitfieldExtract(sh_word(byte / 4u), int(8u * (byte % 4u)), 8)) - 128) * step;
+        uint j = j0 + c;
+        int q;
+        if (code.z == 0u) {
+            uint t = j < 20u ? (sh_word(base + 3u) / SH_POWERS_OF_3[j]) % 3u : bitfieldExtract(sh_word(base + 2u), 29, 2);
+            q = t == 1u ? 1 : (t == 2u ? -1 : 0);
+        } else {
+            uint bit = code.y + j * code.z, word = bit / 32u, shift = bit % 32u;
+            uint field = sh_word(base + word) >> shift;
+            if (shift + code.z > 32u) field |= sh_word(base + word + 1u) << (32u - shift);
+            q = bitfieldExtract(int(field), 0, int(code.z));  // sign-extended
+        }
+        v[c] = s * (float(q) / float(code.x));
     }
     return v;
 }

@@ -38,7 +38,7 @@ using mat4 = glm::mat4;
 // Shader storage bindings.
 // The scene's Gaussians and SH in one of two storages (GpuStorage, splat_lod/gpu_storage.h): full,
 // GpuGaussian[N] and float[N * sh_stride]; compact (SPLAT_COMPACT_STORAGE), uint[N * 5], 20-byte records,
-// and uint[N * sh_stride], the higher SH bands at a byte per coefficient, decoded against the
+// and uint[N * sh_stride], the higher SH bands in 2 or 4 words, decoded against the
 // GpuPageCodec of their page (splat_lod/core/compact_gaussians.h). Static per cloud.
 #define SPLAT_BINDING_GAUSSIANS 0
 #define SPLAT_BINDING_SH 1
@@ -142,7 +142,7 @@ SPLAT_LOD_STRUCT(GpuPageCodec) {
     vec4 position_step;  // xyz, w: the log-scales' step
     vec4 colour_lo;      // rgb (the DC term as colour), w: lo of log2 of the coverage bounds
     vec4 colour_step;    // rgb, w: the coverage bounds' step
-    vec4 sh_step;        // xyz: bands 1, 2, 3; w: the page's instance index as float bits
+    vec4 sh_max;         // xyz: bands 1, 2, 3, the largest |coefficient|; w: the page's instance index as float bits
 };
 
 // One splat component this frame.
@@ -216,7 +216,8 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     uint exact_tiles;            // 1: a splat's keys are the tiles its ellipse touches, 0: its bounding box
     uint key_depth_bits;         // D > 0: one-word sort keys (tile << D | depth_q), 0: (depth bits, tile)
     uint slot_count;             // S: the frame's splat slots (SPLAT_BINDING_CLUSTER_SLOTS), a multiple of 256
-    uint pad0, pad1, pad2;
+    uint sh_storage_degree;      // SH degree the scene stores (compact: how its SH words are laid out)
+    uint pad1, pad2;
 };
 
 // Written by the GPU each frame and read back asynchronously by the CPU.

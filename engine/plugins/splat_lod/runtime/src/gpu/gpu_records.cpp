@@ -75,7 +75,7 @@ std::size_t pack_compact(const SplatCloud& cloud, int degree, std::uint32_t inst
         codecs[page] =
             GpuPageCodec{glm::vec4(p.position_lo, p.log_scale_lo), glm::vec4(p.position_step, p.log_scale_step),
                          glm::vec4(p.colour_lo, p.coverage_lo), glm::vec4(p.colour_step, p.coverage_step),
-                         glm::vec4(p.sh_step, std::bit_cast<float>(instance))};
+                         glm::vec4(p.sh_max, std::bit_cast<float>(instance))};
         for (std::size_t i = page * size; i < std::min((page + 1) * size, cloud.size()); ++i) {
             if (!gaussian_is_drawable(cloud, i)) {  // its record and SH stay zero: opacity 0
                 ++dropped;

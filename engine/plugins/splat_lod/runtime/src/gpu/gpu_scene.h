@@ -3,6 +3,7 @@
 // pages (GpuScene below), a cloud uploaded when its component arrives and its pages freed when it
 // leaves; instance transforms and visibility are refreshed every frame. Only what the scene needs is
 // resident: the SH stride is that of the highest degree actually drawn.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -67,6 +68,7 @@ public:
     void assign_frame_slots(const FrameUniforms& view);
     const engine::gl::Buffer& cluster_slots() const { return cluster_slots_; }
     std::uint32_t instance_count() const { return static_cast<std::uint32_t>(slots_.size()); }
+    int sh_degree() const { return std::max(sh_degree_, 0); }         // the SH degree the buffers store
     std::uint32_t sh_stride() const { return sh_stride_; }            // floats (full) or words (compact) per Gaussian
     std::uint32_t coarsest_level() const { return coarsest_level_; }  // highest LOD level present
     std::size_t dropped() const { return dropped_; }                  // not drawable (NaN/Inf, zero rotation)

@@ -58,6 +58,7 @@ gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const plugi
     u.frustum_culling = settings.frustum_culling ? 1u : 0u;
     u.gaussian_count = scene.gaussian_count();
     u.sh_stride = scene.sh_stride();
+    u.sh_storage_degree = static_cast<std::uint32_t>(scene.sh_degree());
     u.key_capacity = key_capacity;
     u.instance_count = scene.instance_count();
     u.tiles = glm::uvec2(raster.tiles_x, raster.tiles_y);

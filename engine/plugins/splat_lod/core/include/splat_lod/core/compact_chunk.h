@@ -41,11 +41,15 @@
 
 namespace splat_lod::world {
 
-inline constexpr std::uint32_t kCompactChunkVersion = 1;
+// Version 2 stores the higher SH bands as compact_gaussians.h does now; version 1 (still read) stored
+// a byte per coefficient, (byte − 128)·step, with each band's step where version 2 keeps its largest
+// magnitude. Both are the same at SH degree 0.
+inline constexpr std::uint32_t kCompactChunkVersion = 2;
 inline constexpr std::size_t kCompactChunkFixedHeaderBytes = 64;
 inline constexpr int kCompactChunkZstdLevel = 3;
 
 struct CompactChunkHeader {
+    std::uint32_t version = kCompactChunkVersion;  // what is read; the writer writes kCompactChunkVersion
     int sh_degree = 0;
     std::uint64_t count = 0;
     std::array<std::uint64_t, 4> prefix_count{};  // as ChunkEntry::prefix_count
@@ -68,11 +72,13 @@ CompactChunkHeader parse_compact_chunk_header(std::span<const std::uint8_t> byte
 // (compact_gaussians.h: gaussian_is_drawable); engine::Error otherwise.
 std::vector<std::uint8_t> encode_compact_chunk_block(const SplatCloud& cloud, std::size_t first, std::size_t count);
 
-// Decodes a block of `count` records with SH degree `sh_degree` into out[at, at + count) (out sized
-// and with lod attributes). Throws engine::Error naming `name` when the block does not decompress to
-// exactly the expected bytes, its plane table does not add up to its size, or its ranges are not finite.
-void decode_compact_chunk_block(std::span<const std::uint8_t> block, std::size_t count, int sh_degree, SplatCloud& out,
-                                std::size_t at, const std::string& name);
+// Decodes a block of `count` records of a file with `header` (its version and SH degree) into
+// out[at, at + count) (out sized, with lod attributes and the header's SH degree). Throws engine::Error naming `name`
+// when the block does not decompress to exactly the expected bytes, its plane table does not add up to its size, or its
+// ranges are not finite.
+void decode_compact_chunk_block(std::span<const std::uint8_t> block, std::size_t count,
+                                const CompactChunkHeader& header, SplatCloud& out, std::size_t at,
+                                const std::string& name);
 
 // A compressed chunk file read whole on its own (no manifest, so no checksums: the blocks must decode
 // and add up to the file's size). Throws engine::Error naming the file.

@@ -1,6 +1,6 @@
 #pragma once
 // The compact resident format of the GPU scene (docs/gpu_storage.md): each Gaussian in 20 bytes plus
-// its higher SH bands at 8 bits per coefficient, quantised against ranges fitted to its page (the 256
+// its higher SH bands in 8 or 16 bytes, quantised against ranges fitted to its page (the 256
 // Gaussians one project workgroup reads). The GPU scene encodes with these functions, the project pass
 // decodes the same bits (common_splat_storage.glsl), and compact_round_trip() gives the CPU reference
 // exactly what the GPU draws, as a cloud.
@@ -16,8 +16,19 @@
 // activated opacity q/255. Log-scales: lo + q·step over the page's range of all three (255 steps).
 // Colour: the DC term as colour, kShC0·dc + 0.5, lo + q·step per channel over the page's range.
 // Coverage bounds: code 0 is unset (−1), 1 is 0, 2..2047 are 2^(lo + (q − 2)·step) over the page's
-// range of log2 of the positive bounds. Higher SH bands: one signed byte per coefficient, (q − 128)·step
-// with one step per band and page (the band's largest magnitude / 127), four to a word.
+// range of log2 of the positive bounds.
+//
+// The higher SH bands (1..degree) take 2, 4 and 4 words at degrees 1, 2 and 3, read as one bit string
+// (bit b is bit b mod 32 of word b / 32). Each band b has a 4-bit exponent e_b at bits 4·(b − 1), and its
+// coefficients, in SplatCloud::sh_rest order (coefficient-major, channel-minor), are q·s/L with
+// s = M_b·2^(−e_b/2), M_b the page's largest |coefficient| of the band, and q a signed integer in [−L, L]:
+//   degree 1  band 1: 6-bit fields (L = 31) from bit 4
+//   degree 2  band 1: 6-bit fields (L = 31) from bit 8; band 2: 4-bit fields (L = 7) from bit 62
+//   degree 3  band 1: 4-bit fields (L = 7) from bit 12; band 2: 3-bit fields (L = 3) from bit 48;
+//             band 3: trits (L = 1), the first 20 as the base-3 digits of word 3 (digit j the j-th
+//             coefficient), the 21st in bits 93–94
+// A field holds q in two's complement, a trit 0, 1 or 2 for q = 0, 1 or −1, so that zero words decode to
+// zero. The encoder picks each band's exponent by the least squared error of its coefficients.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -33,11 +44,18 @@ inline constexpr std::size_t kCompactWords = 5;       // 32-bit words of one rec
 inline constexpr std::size_t kCompactPageSize = 256;  // Gaussians one page's ranges cover
 inline constexpr std::uint32_t kCompactCoverageCodes = 2047;
 
-// 32-bit words of SH bands 1..degree per Gaussian: 3·((d + 1)² − 1) bytes, rounded up to words
-// (0, 3, 6 and 12 for degree 0..3).
+// 32-bit words of SH bands 1..degree per Gaussian: 0, 2, 4 and 4 for degree 0..3.
 constexpr std::uint32_t compact_sh_words(int sh_degree) {
-    return static_cast<std::uint32_t>((3 * sh_rest_coeffs(sh_degree) + 3) / 4);
+    return sh_degree <= 0 ? 0u : (sh_degree == 1 ? 2u : 4u);
 }
+
+// How band `band` (1..degree) of a Gaussian stored with SH degree `sh_degree` is coded: q in [−levels,
+// levels] per coefficient, `bits`-bit fields from bit `offset` (bits 0: trits, see above).
+struct CompactShBand {
+    int levels = 0, offset = 0, bits = 0;
+};
+CompactShBand compact_sh_band(int sh_degree, int band);
+inline constexpr int kCompactShExponents = 16;  // e_b in 0..15: scales M_b down to M_b·2^−7.5
 
 // The ranges one page's records are quantised against (GpuPageCodec on the GPU).
 struct CompactPage {
@@ -45,7 +63,7 @@ struct CompactPage {
     float log_scale_lo = 0.0f, log_scale_step = 0.0f;
     glm::vec3 colour_lo{0.0f}, colour_step{0.0f};
     float coverage_lo = 0.0f, coverage_step = 0.0f;  // log2 of the bounds
-    glm::vec3 sh_step{0.0f};                         // bands 1, 2, 3
+    glm::vec3 sh_max{0.0f};                          // bands 1, 2, 3: the largest |coefficient|
 };
 
 using CompactRecord = std::array<std::uint32_t, kCompactWords>;
