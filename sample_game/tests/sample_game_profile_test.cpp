@@ -81,6 +81,12 @@ TEST_F(SampleGameTest, ProfileWalksThePathWithinItsBudgetsAndWritesEveryOutput) 
         segments.insert(lod.rows[r][lod.column("segment")]);
         EXPECT_LE(lod.number(r, "resident_bytes"), static_cast<double>(o.settings.memory_budget_bytes));
         EXPECT_EQ(lod.number(r, "gpu_page_bytes"), lod.number(r, "resident_bytes") + lod.number(r, "props_gpu_bytes"));
+        // The splat pass's total is its scene buffers and its frame buffers (frames with statistics).
+        if (lod.number(r, "gpu_total_bytes") > 0.0) {
+            EXPECT_EQ(lod.number(r, "gpu_total_bytes"),
+                      lod.number(r, "gpu_scene_bytes") + lod.number(r, "gpu_frame_bytes"));
+            EXPECT_GE(lod.number(r, "gpu_scene_bytes"), lod.number(r, "gpu_page_bytes"));
+        }
         EXPECT_LE(lod.number(r, "upload_bytes"), static_cast<double>(o.settings.upload_budget_bytes));
         EXPECT_EQ(lod.number(r, "failures_total"), 0.0);
         EXPECT_GT(lod.number(r, "frame_ms"), 0.0);

@@ -75,7 +75,10 @@ void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::Ca
         record.drawn_per_level = s->per_level;
         record.gpu_total_bytes = s->resident_bytes;
     }
-    record.gpu_page_bytes = std::uint64_t(pass.memory().pages_in_use) * pass.memory().page_bytes;
+    const splat_lod::SplatMemory memory = pass.memory();
+    record.gpu_page_bytes = std::uint64_t(memory.pages_in_use) * memory.page_bytes;
+    record.gpu_scene_bytes = memory.scene_bytes;
+    record.gpu_frame_bytes = memory.frame_bytes;
     record_streaming(world, record);
 }
 

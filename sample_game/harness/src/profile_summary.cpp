@@ -44,7 +44,11 @@ void segment_times(const std::vector<FrameRecord>& lod, const std::vector<FrameR
 void budget_checks(const std::vector<FrameRecord>& lod, ProfileSummary& s) {
     for (const auto& r : lod) {
         s.peak_resident_bytes = std::max(s.peak_resident_bytes, r.resident_bytes);
-        s.peak_gpu_total_bytes = std::max(s.peak_gpu_total_bytes, r.gpu_total_bytes);
+        if (r.gpu_total_bytes > s.peak_gpu_total_bytes) {
+            s.peak_gpu_total_bytes = r.gpu_total_bytes;
+            s.peak_scene_bytes = r.gpu_scene_bytes;
+            s.peak_frame_bytes = r.gpu_frame_bytes;
+        }
         s.max_upload_bytes = std::max(s.max_upload_bytes, r.stream_upload_bytes);
         s.max_gpu_upload_bytes = std::max(s.max_gpu_upload_bytes, r.gpu_upload_bytes);
         s.total_upload_bytes += r.stream_upload_bytes;
@@ -384,9 +388,10 @@ std::string format_summary(const ProfileSummary& s, const SummaryContext& contex
     if (!context.reference.empty()) out += "\nreference: " + context.reference + "\n";
     out += reference_table(s);
     out += formatted(
-        "\nstreaming: %.1f MiB uploaded in all, peak GPU memory of the splat pass %.1f MiB (scene + frame buffers), "
-        "%llu chunk failures\n",
-        mib(s.total_upload_bytes), mib(s.peak_gpu_total_bytes), static_cast<unsigned long long>(s.failures));
+        "\nstreaming: %.1f MiB uploaded in all, peak GPU memory of the splat pass %.1f MiB (scene buffers %.1f + frame "
+        "buffers %.1f), %llu chunk failures\n",
+        mib(s.total_upload_bytes), mib(s.peak_gpu_total_bytes), mib(s.peak_scene_bytes), mib(s.peak_frame_bytes),
+        static_cast<unsigned long long>(s.failures));
     out += "\nchecks (computed from the measurements)\n";
     out += "  " + verdict(s.memory) + "  " + verdict(s.upload) + "  " + verdict(s.overview);
     out += "  " + verdict(s.reference_loss) + "  " + verdict(s.reference_overview) + "  " + verdict(s.reference_seams);

@@ -45,7 +45,8 @@ std::uint32_t read_bits(std::span<const std::uint32_t> words, int offset, int bi
 void write_bits(std::span<std::uint32_t> words, int offset, int bits, std::uint32_t value) {
     const std::uint64_t v = std::uint64_t{value & ((1u << bits) - 1u)} << (offset % 32);
     words[static_cast<std::size_t>(offset / 32)] |= static_cast<std::uint32_t>(v);
-    if (offset % 32 + bits > 32) words[static_cast<std::size_t>(offset / 32) + 1] |= static_cast<std::uint32_t>(v >> 32);
+    if (offset % 32 + bits > 32)
+        words[static_cast<std::size_t>(offset / 32) + 1] |= static_cast<std::uint32_t>(v >> 32);
 }
 
 // q of coefficient j (0-based over the band's channels) of `band`.
@@ -117,12 +118,14 @@ void encode_compact_sh(const SplatCloud& cloud, std::size_t i, const CompactPage
     for (int band = 1; band <= stored; ++band) {
         const CompactShBand code = compact_sh_band(sh_degree, band);
         const int n = 3 * band_coefficients(band);
-        for (int j = 0; j < n; ++j) values[static_cast<std::size_t>(j)] = cloud.sh_rest_at(i, first_coefficient(band) + j / 3, j % 3);
+        for (int j = 0; j < n; ++j)
+            values[static_cast<std::size_t>(j)] = cloud.sh_rest_at(i, first_coefficient(band) + j / 3, j % 3);
         const float band_max = page.sh_max[band - 1];
         const int e = best_exponent(std::span(values).first(static_cast<std::size_t>(n)), band_max, code.levels);
         write_bits(sh_words, kExponentBits * (band - 1), kExponentBits, static_cast<std::uint32_t>(e));
         for (int j = 0; j < n; ++j)
-            write_q(sh_words, code, j, quantise_coefficient(values[static_cast<std::size_t>(j)], band_scale(band_max, e), code.levels));
+            write_q(sh_words, code, j,
+                    quantise_coefficient(values[static_cast<std::size_t>(j)], band_scale(band_max, e), code.levels));
     }
 }
 

@@ -26,7 +26,8 @@ SplatCloud sh_cloud(std::size_t n, int degree, std::uint32_t seed) {
     for (std::size_t i = 0; i < n; ++i) {
         c.rotations[i] = {1, 0, 0, 0};
         const float magnitude = 0.5f * std::pow(10.0f, -5.0f * r(rng));
-        for (float& v : std::span(c.sh_rest).subspan(i * c.sh_rest_stride(), c.sh_rest_stride())) v = magnitude * u(rng);
+        for (float& v : std::span(c.sh_rest).subspan(i * c.sh_rest_stride(), c.sh_rest_stride()))
+            v = magnitude * u(rng);
     }
     return c;
 }
@@ -95,8 +96,8 @@ TEST(CompactSh, HardCasesDecodeAsStated) {
     SplatCloud c = sh_cloud(6, 3, 3);
     for (int k = 1; k <= 15; ++k)
         for (int ch = 0; ch < 3; ++ch) {
-            c.sh_rest_at(0, k, ch) = 0.0f;             // a Gaussian without view dependence
-            c.sh_rest_at(1, k, ch) = k == 15 ? 1e4f : 1e-6f;  // one huge coefficient beside tiny ones
+            c.sh_rest_at(0, k, ch) = 0.0f;                     // a Gaussian without view dependence
+            c.sh_rest_at(1, k, ch) = k == 15 ? 1e4f : 1e-6f;   // one huge coefficient beside tiny ones
             c.sh_rest_at(2, k, ch) = -c.sh_rest_at(3, k, ch);  // the same values with the other sign
         }
     const CompactPage page = splat_lod::fit_compact_page(c, 0, 6, 3);
@@ -143,8 +144,8 @@ TEST(CompactSh, SizesAreTwoOrFourWords) {
         for (int band = 1; band <= degree; ++band) {
             const splat_lod::CompactShBand code = splat_lod::compact_sh_band(degree, band);
             if (code.bits == 0) continue;
-            EXPECT_LE(code.offset + 3 * (2 * band + 1) * code.bits, 32 * int(splat_lod::compact_sh_words(degree)) -
-                                                                        (degree == 3 ? 32 + 3 : 0))
+            EXPECT_LE(code.offset + 3 * (2 * band + 1) * code.bits,
+                      32 * int(splat_lod::compact_sh_words(degree)) - (degree == 3 ? 32 + 3 : 0))
                 << degree << " " << band;
             EXPECT_EQ(code.levels, (1 << (code.bits - 1)) - 1);
         }

@@ -42,6 +42,8 @@ struct FrameRecord {
     std::uint64_t props_gpu_bytes = 0;  // the splats of the world's props (an import's far layer), always resident
     std::uint64_t gpu_page_bytes = 0;   // the GPU scene's pages in use × bytes per page (must equal the two above)
     std::uint64_t gpu_total_bytes = 0;  // everything the splat pass holds: scene buffers' capacity + frame buffers
+    std::uint64_t gpu_scene_bytes = 0;  // of which the scene buffers' capacity (SplatMemory::scene_bytes)
+    std::uint64_t gpu_frame_bytes = 0;  // and the per-frame buffers (SplatMemory::frame_bytes)
     std::uint64_t stream_upload_bytes =
         0;                               // bytes the streamer handed to the GPU side this frame (the budgeted amount)
     std::uint64_t gpu_upload_bytes = 0;  // bytes the GPU scene sent this frame (+48 per freed page's cluster record)

@@ -90,6 +90,7 @@ struct ProfileSummary {
     std::array<SegmentTimes, kSegmentCount> segments{};
     std::uint64_t memory_budget_bytes = 0, upload_budget_bytes = 0;
     std::uint64_t peak_resident_bytes = 0, peak_gpu_total_bytes = 0;
+    std::uint64_t peak_scene_bytes = 0, peak_frame_bytes = 0;  // the two parts of the peak frame's total
     std::uint64_t max_upload_bytes = 0, max_gpu_upload_bytes = 0, total_upload_bytes = 0;
     int frames_over_memory = 0, frames_over_upload = 0, frames_pages_differ = 0;
     std::uint64_t failures = 0;

@@ -84,9 +84,14 @@ struct SplatMemory {
     std::uint32_t gaussian_count = 0;  // slots in use by the resident instances
     std::uint32_t pages_in_use = 0;
     std::uint32_t free_pages = 0;
-    std::uint64_t page_bytes = 0;              // bytes of one page (Gaussians, SH, cluster records)
-    std::uint64_t last_upload_bytes = 0;       // bytes the latest frame uploaded
-    std::uint32_t sh_stride = 0;               // SH stored per Gaussian: floats (full) or 32-bit words (compact)
+    std::uint64_t page_bytes = 0;         // bytes of one page (Gaussians, SH, cluster records)
+    std::uint64_t last_upload_bytes = 0;  // bytes the latest frame uploaded
+    std::uint32_t sh_stride = 0;          // SH stored per Gaussian: floats (full) or 32-bit words (compact)
+    // What the splat pass holds on the GPU: the scene's buffers (their capacity, pages in use or not),
+    // and the per-frame buffers sized by the latest frame's view (projected splats, tile counts, the
+    // key_capacity() sort keys, tile ranges) with the low-resolution images.
+    std::uint64_t scene_bytes = 0;
+    std::uint64_t frame_bytes = 0;
     GpuStorage storage = GpuStorage::compact;  // how the scene is stored (docs/gpu_storage.md)
 };
 

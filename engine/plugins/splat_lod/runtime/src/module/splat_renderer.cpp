@@ -60,6 +60,8 @@ SplatMemory SplatRenderer::memory() const {
     m.last_upload_bytes = scene.last_upload_bytes();
     m.sh_stride = scene.sh_stride();
     m.storage = scene.storage();
+    m.scene_bytes = scene.resident_bytes();
+    m.frame_bytes = pass_->frame_bytes();
     return m;
 }
 

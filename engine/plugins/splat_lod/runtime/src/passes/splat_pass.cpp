@@ -61,7 +61,7 @@ void SplatPass::execute(engine::FrameContext& frame) {
     facts.considered = scene_.live_gaussians();
     facts.splat_budget = lod_.splat_budget;
     facts.size_threshold_px = lod_.rule.size_threshold_px;
-    facts.resident_bytes = scene_.resident_bytes() + buffers_.bytes() + low_.bytes();
+    facts.resident_bytes = scene_.resident_bytes() + frame_bytes();
     statistics_.record(facts, buffers_, frame.bus);
 }
 

@@ -43,6 +43,8 @@ public:
     // Blocks until the statistics of every frame drawn so far are read; for tools and tests.
     void wait_for_statistics(engine::MessageBus& bus);
     std::uint32_t key_capacity() const { return buffers_.key_capacity; }
+    // GPU bytes of the per-frame buffers and the low-resolution images.
+    std::uint64_t frame_bytes() const { return buffers_.bytes() + low_.bytes(); }
     RasterFetch raster_fetch_in_use() const { return fetch_in_use_; }
     // The resident Gaussians (which clouds, where, what the last frame uploaded); for tools and tests.
     const gpu::GpuScene& scene() const { return scene_; }
