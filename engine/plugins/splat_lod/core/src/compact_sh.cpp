@@ -20,15 +20,21 @@ constexpr int band_coefficients(int band) {
     return 2 * band + 1;
 }
 
+// 2^(−e/2) for e = 0..15, as common_splat_storage.glsl has them (the same literals).
+constexpr std::array<float, kCompactShExponents> kHalfOctaves = {
+    1.0f,      0.70710678118654752f,  0.5f,       0.35355339059327376f,  0.25f,    0.17677669529663688f,
+    0.125f,    0.08838834764831844f,  0.0625f,    0.04419417382415922f,  0.03125f, 0.02209708691207961f,
+    0.015625f, 0.011048543456039805f, 0.0078125f, 0.0055242717280199025f};
+
 // The band's scale for exponent e: M·2^(−e/2).
 float band_scale(float band_max, int e) {
-    return band_max * std::exp2(-0.5f * float(e));
+    return band_max * kHalfOctaves[static_cast<std::size_t>(e)];
 }
 
 // q in [−levels, levels] for v against scale s; s = 0 gives 0.
 int quantise_coefficient(float v, float s, int levels) {
     if (!(s > 0.0f)) return 0;
-    return static_cast<int>(std::clamp(std::round(double(v) / s * levels), double(-levels), double(levels)));
+    return static_cast<int>(std::clamp(std::nearbyint(v / s * float(levels)), float(-levels), float(levels)));
 }
 
 float dequantise_coefficient(int q, float s, int levels) {
@@ -49,45 +55,55 @@ void write_bits(std::span<std::uint32_t> words, int offset, int bits, std::uint3
         words[static_cast<std::size_t>(offset / 32) + 1] |= static_cast<std::uint32_t>(v >> 32);
 }
 
-// q of coefficient j (0-based over the band's channels) of `band`.
-int read_q(std::span<const std::uint32_t> words, const CompactShBand& code, int j) {
-    if (code.bits == 0) {  // trits: 0, 1, 2 for q = 0, 1, −1
-        std::uint32_t t = 0;
-        if (j < kTritsInWord) {
-            t = words[3];
-            for (int d = 0; d < j; ++d) t /= 3;
-            t %= 3;
-        } else {
-            t = read_bits(words, kLastTritOffset, 2);
-        }
-        return t == 1 ? 1 : (t == 2 ? -1 : 0);  // a damaged last trit of 3 reads as 0
-    }
-    const std::uint32_t field = read_bits(words, code.offset + j * code.bits, code.bits);
-    const std::uint32_t sign = 1u << (code.bits - 1);
-    return static_cast<int>(field ^ sign) - static_cast<int>(sign);  // two's complement of `bits` bits
-}
-
-void write_q(std::span<std::uint32_t> words, const CompactShBand& code, int j, int q) {
-    if (code.bits == 0) {
-        const std::uint32_t t = q < 0 ? 2u : static_cast<std::uint32_t>(q);
-        if (j >= kTritsInWord) return write_bits(words, kLastTritOffset, 2, t);
-        std::uint32_t power = 1;
-        for (int d = 0; d < j; ++d) power *= 3;
-        words[3] += t * power;
+// The q of a band's n coefficients (0-based over its channels) into `q`.
+void read_band(std::span<const std::uint32_t> words, const CompactShBand& code, int n, std::span<int> q) {
+    if (code.bits == 0) {  // trits 0, 1, 2 for q = 0, 1, −1; a damaged last trit of 3 reads as 0
+        const auto trit = [](std::uint32_t t) { return t == 1 ? 1 : (t == 2 ? -1 : 0); };
+        std::uint32_t digits = words[3];
+        for (int j = 0; j < std::min(n, kTritsInWord); ++j, digits /= 3)
+            q[static_cast<std::size_t>(j)] = trit(digits % 3);
+        if (n > kTritsInWord) q[kTritsInWord] = trit(read_bits(words, kLastTritOffset, 2));
         return;
     }
-    write_bits(words, code.offset + j * code.bits, code.bits, static_cast<std::uint32_t>(q));
+    const std::uint32_t sign = 1u << (code.bits - 1);
+    for (int j = 0; j < n; ++j) {
+        const std::uint32_t field = read_bits(words, code.offset + j * code.bits, code.bits);
+        q[static_cast<std::size_t>(j)] = static_cast<int>(field ^ sign) - static_cast<int>(sign);  // two's complement
+    }
 }
 
-// The exponent of the least squared error of `values` at `levels` (the first, largest scale, on ties).
+void write_band(std::span<std::uint32_t> words, const CompactShBand& code, std::span<const int> q) {
+    const int n = static_cast<int>(q.size());
+    if (code.bits == 0) {
+        const auto trit = [](int v) { return v < 0 ? 2u : static_cast<std::uint32_t>(v); };
+        std::uint32_t digits = 0;
+        for (int j = std::min(n, kTritsInWord) - 1; j >= 0; --j)
+            digits = digits * 3 + trit(q[static_cast<std::size_t>(j)]);
+        words[3] |= digits;
+        if (n > kTritsInWord) write_bits(words, kLastTritOffset, 2, trit(q[kTritsInWord]));
+        return;
+    }
+    for (int j = 0; j < n; ++j)
+        write_bits(words, code.offset + j * code.bits, code.bits,
+                   static_cast<std::uint32_t>(q[static_cast<std::size_t>(j)]));
+}
+
+// The exponent of the least squared error of `values` at `levels` (the largest scale on ties), among
+// those from the smallest scale that covers the values (never worse than the closed-form bound) to
+// one octave of clipping, two for trits, where clipping pays most.
 int best_exponent(std::span<const float> values, float band_max, int levels) {
-    int best = 0;
-    double best_error = INFINITY;
-    for (int e = 0; e < kCompactShExponents; ++e) {
+    float m = 0.0f;
+    for (const float v : values) m = std::max(m, std::abs(v));
+    int first = 0;
+    while (first + 1 < kCompactShExponents && band_scale(band_max, first + 1) >= m) ++first;
+    const int last = std::min(first + (levels == 1 ? 4 : 2), kCompactShExponents - 1);
+    int best = first;
+    float best_error = INFINITY;
+    for (int e = first; e <= last; ++e) {
         const float s = band_scale(band_max, e);
-        double error = 0.0;
+        float error = 0.0f;
         for (const float v : values) {
-            const double d = double(v) - dequantise_coefficient(quantise_coefficient(v, s, levels), s, levels);
+            const float d = v - dequantise_coefficient(quantise_coefficient(v, s, levels), s, levels);
             error += d * d;
         }
         if (error < best_error) {
@@ -115,29 +131,33 @@ void encode_compact_sh(const SplatCloud& cloud, std::size_t i, const CompactPage
     if (!gaussian_is_drawable(cloud, i)) return;
     const int stored = std::min(sh_degree, cloud.sh_degree);
     std::array<float, 3 * 7> values{};
+    std::array<int, 3 * 7> q{};
     for (int band = 1; band <= stored; ++band) {
         const CompactShBand code = compact_sh_band(sh_degree, band);
-        const int n = 3 * band_coefficients(band);
-        for (int j = 0; j < n; ++j)
-            values[static_cast<std::size_t>(j)] = cloud.sh_rest_at(i, first_coefficient(band) + j / 3, j % 3);
+        const auto n = static_cast<std::size_t>(3 * band_coefficients(band));
+        for (std::size_t j = 0; j < n; ++j)
+            values[j] = cloud.sh_rest_at(i, first_coefficient(band) + int(j / 3), int(j % 3));
         const float band_max = page.sh_max[band - 1];
-        const int e = best_exponent(std::span(values).first(static_cast<std::size_t>(n)), band_max, code.levels);
+        const int e = best_exponent(std::span(values).first(n), band_max, code.levels);
         write_bits(sh_words, kExponentBits * (band - 1), kExponentBits, static_cast<std::uint32_t>(e));
-        for (int j = 0; j < n; ++j)
-            write_q(sh_words, code, j,
-                    quantise_coefficient(values[static_cast<std::size_t>(j)], band_scale(band_max, e), code.levels));
+        for (std::size_t j = 0; j < n; ++j)
+            q[j] = quantise_coefficient(values[j], band_scale(band_max, e), code.levels);
+        write_band(sh_words, code, std::span(q).first(n));
     }
 }
 
 void decode_compact_sh(std::span<const std::uint32_t> sh_words, const CompactPage& page, int sh_degree,
                        std::span<float> rest) {
+    std::array<int, 3 * 7> q{};
     for (int band = 1; band <= sh_degree; ++band) {
         const CompactShBand code = compact_sh_band(sh_degree, band);
+        const int n = 3 * band_coefficients(band);
         const auto e = static_cast<int>(read_bits(sh_words, kExponentBits * (band - 1), kExponentBits));
         const float s = band_scale(page.sh_max[band - 1], e);
-        for (int j = 0; j < 3 * band_coefficients(band); ++j)
+        read_band(sh_words, code, n, q);
+        for (int j = 0; j < n; ++j)
             rest[static_cast<std::size_t>(3 * (first_coefficient(band) - 1) + j)] =
-                dequantise_coefficient(read_q(sh_words, code, j), s, code.levels);
+                dequantise_coefficient(q[static_cast<std::size_t>(j)], s, code.levels);
     }
 }
 

@@ -40,6 +40,11 @@ uvec3 sh_band_code(uint degree, uint band) {
     if (band == 2u) return uvec3(3u, exponents + 36u, 3u);
     return uvec3(1u, 0u, 0u);
 }
+// 2^(−e/2), the same literals as compact_sh.cpp.
+const float SH_HALF_OCTAVES[16] = float[](1.0, 0.70710678118654752, 0.5, 0.35355339059327376, 0.25, 0.17677669529663688,
+                                          0.125, 0.08838834764831844, 0.0625, 0.04419417382415922, 0.03125,
+                                          0.02209708691207961, 0.015625, 0.011048543456039805, 0.0078125,
+                                          0.0055242717280199025);
 const uint SH_POWERS_OF_3[20] = uint[](1u, 3u, 9u, 27u, 81u, 243u, 729u, 2187u, 6561u, 19683u, 59049u, 177147u,
                                        531441u, 1594323u, 4782969u, 14348907u, 43046721u, 129140163u, 387420489u,
                                        1162261467u);
@@ -112,7 +117,7 @@ vec3 sh_coefficient(uint index, uint k) {
     uint band = k < 4u ? 1u : (k < 9u ? 2u : 3u), degree = frame.sh_storage_degree;
     uint base = index * frame.sh_stride;
     uint e = bitfieldExtract(sh_word(base), int(4u * (band - 1u)), 4);
-    float s = codec_vec4(page, CODEC_SH_MAX)[band - 1u] * exp2(-0.5 * float(e));
+    float s = codec_vec4(page, CODEC_SH_MAX)[band - 1u] * SH_HALF_OCTAVES[e];
     uvec3 code = sh_band_code(degree, band);  // levels, first bit, bits (0: trits)
     uint j0 = (k - band * band) * 3u;
     vec3 v;

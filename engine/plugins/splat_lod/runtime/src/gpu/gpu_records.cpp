@@ -1,7 +1,8 @@
 // What the GPU scene stores per Gaussian (gpu_scene.h): full GpuGaussian records with float SH, or the
-// compact records with SH bytes and one codec per page (splat_lod/core/compact_gaussians.h).
+// compact records with SH words and one codec per page (splat_lod/core/compact_gaussians.h).
 #include <algorithm>
 #include <bit>
+#include <numeric>
 #include <span>
 
 #include <glm/gtc/quaternion.hpp>
@@ -9,8 +10,14 @@
 #include "gpu/gpu_scene.h"
 #include "splat_lod/core/compact_gaussians.h"
 #include "splat_lod/core/gaussian_extent.h"
+#include "splat_lod/core/parallel_for.h"
 
 namespace splat_lod::gpu {
+namespace {
+
+constexpr std::size_t kPagesPerThread = 64;  // below this an upload is encoded on the calling thread
+
+}  // namespace
 
 std::size_t pack_gaussians(const SplatCloud& cloud, std::uint32_t instance, std::vector<GpuGaussian>& out) {
     out.reserve(out.size() + cloud.size());
@@ -69,8 +76,11 @@ std::size_t pack_compact(const SplatCloud& cloud, int degree, std::uint32_t inst
     records.assign(pages * size * kCompactWords, 0u);  // padding: opacity 0, never drawn
     sh.assign(pages * size * sh_words, 0u);
     codecs.assign(pages, GpuPageCodec{});
-    std::size_t dropped = 0;
-    for (std::size_t page = 0; page < pages; ++page) {
+    // Pages are encoded on their own, so a large upload spreads them over the cores (a page's SH search
+    // costs a few microseconds a Gaussian at degree 3).
+    std::vector<std::size_t> dropped(pages, 0);
+    const int threads = pages >= kPagesPerThread ? 0 : 1;
+    reference::detail::parallel_for(pages, threads, [&](std::size_t page) {
         const CompactPage p = fit_compact_page(cloud, page * size, size, degree);
         codecs[page] =
             GpuPageCodec{glm::vec4(p.position_lo, p.log_scale_lo), glm::vec4(p.position_step, p.log_scale_step),
@@ -78,15 +88,15 @@ std::size_t pack_compact(const SplatCloud& cloud, int degree, std::uint32_t inst
                          glm::vec4(p.sh_max, std::bit_cast<float>(instance))};
         for (std::size_t i = page * size; i < std::min((page + 1) * size, cloud.size()); ++i) {
             if (!gaussian_is_drawable(cloud, i)) {  // its record and SH stay zero: opacity 0
-                ++dropped;
+                ++dropped[page];
                 continue;
             }
             const CompactRecord r = encode_compact(cloud, i, p);
             std::copy(r.begin(), r.end(), records.begin() + static_cast<std::ptrdiff_t>(i * kCompactWords));
             encode_compact_sh(cloud, i, p, degree, std::span(sh).subspan(i * sh_words, sh_words));
         }
-    }
-    return dropped;
+    });
+    return std::accumulate(dropped.begin(), dropped.end(), std::size_t{0});
 }
 
 }  // namespace splat_lod::gpu
