@@ -24,19 +24,10 @@ protected:
     }
 };
 
-// 300 Gaussians around the origin whose higher bands are strong (0.35, 0.25 and 0.18 per band) and
+// 300 swirled Gaussians whose higher bands are strong (0.35, 0.25 and 0.18 per band) and
 // differ per Gaussian, coefficient and channel.
 splat_lod::SplatCloud view_dependent_cloud(int degree) {
-    std::vector<engine::test::GaussianSpec> specs;
-    for (int i = 0; i < 300; ++i) {
-        const float t = static_cast<float>(i);
-        specs.push_back({{std::sin(t * 1.7f), std::cos(t * 2.3f), std::sin(t * 0.37f) * 0.8f},
-                         {-2.6f + 0.6f * std::sin(t), -2.4f + 0.5f * std::cos(t * 1.3f), -3.0f},
-                         glm::normalize(glm::vec4(1.0f, std::sin(t), std::cos(t * 0.7f), 0.3f)),
-                         std::sin(t * 0.91f) * 3.0f,
-                         {0.5f + 0.3f * std::sin(t), 0.5f + 0.3f * std::cos(t), 0.6f}});
-    }
-    splat_lod::SplatCloud cloud = engine::test::make_cloud(specs);
+    splat_lod::SplatCloud cloud = engine::test::make_cloud(engine::test::swirl_specs(300, 0.3f, 0.6f));
     cloud.set_sh_degree(degree);
     for (std::size_t i = 0; i < cloud.size(); ++i)
         for (int k = 1; k <= splat_lod::sh_rest_coeffs(degree); ++k)

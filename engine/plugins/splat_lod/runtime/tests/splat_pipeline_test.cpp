@@ -70,16 +70,7 @@ TEST_F(SplatPipelineTest, RealScenesMatchTheReference) {
 }
 
 TEST_F(SplatPipelineTest, SyntheticSceneMatchesTheReferenceClosely) {
-    std::vector<GaussianSpec> specs;
-    for (int i = 0; i < 300; ++i) {
-        const float t = static_cast<float>(i);
-        specs.push_back({{std::sin(t * 1.7f), std::cos(t * 2.3f), std::sin(t * 0.37f) * 0.8f},
-                         {-2.6f + 0.6f * std::sin(t), -2.4f + 0.5f * std::cos(t * 1.3f), -3.0f},
-                         glm::normalize(glm::vec4(1.0f, std::sin(t), std::cos(t * 0.7f), 0.3f)),
-                         std::sin(t * 0.91f) * 3.0f,
-                         {0.5f + 0.5f * std::sin(t), 0.5f + 0.5f * std::cos(t), 0.8f}});
-    }
-    const auto cloud = shared(engine::test::make_cloud(specs));
+    const auto cloud = shared(engine::test::make_cloud(engine::test::swirl_specs(300, 0.5f, 0.8f)));
     const auto camera = engine::make_look_at_camera({0.5f, 0.8f, 4.0f}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 160,
                                                     120, 0.1f, 100.0f);
     const auto d = engine::compare_images(harness.render({cloud}, camera, {0.1f, 0.2f, 0.3f}),

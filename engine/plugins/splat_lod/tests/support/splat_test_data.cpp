@@ -47,6 +47,19 @@ std::vector<CameraView> orbit_cameras(const splat_lod::SplatCloud& cloud, const 
     return cameras;
 }
 
+std::vector<GaussianSpec> swirl_specs(int n, float colour_amplitude, float blue) {
+    std::vector<GaussianSpec> specs;
+    for (int i = 0; i < n; ++i) {
+        const float t = static_cast<float>(i);
+        specs.push_back({{std::sin(t * 1.7f), std::cos(t * 2.3f), std::sin(t * 0.37f) * 0.8f},
+                         {-2.6f + 0.6f * std::sin(t), -2.4f + 0.5f * std::cos(t * 1.3f), -3.0f},
+                         glm::normalize(glm::vec4(1.0f, std::sin(t), std::cos(t * 0.7f), 0.3f)),
+                         std::sin(t * 0.91f) * 3.0f,
+                         {0.5f + colour_amplitude * std::sin(t), 0.5f + colour_amplitude * std::cos(t), blue}});
+    }
+    return specs;
+}
+
 splat_lod::SplatCloud make_cloud(const std::vector<GaussianSpec>& specs) {
     splat_lod::SplatCloud cloud;
     cloud.resize(specs.size());

@@ -32,6 +32,10 @@ struct GaussianSpec {
 };
 splat_lod::SplatCloud make_cloud(const std::vector<GaussianSpec>& specs);
 
+// `n` Gaussians swirled through the unit ball, sizes, rotations and opacities varying, colours
+// 0.5 ± `colour_amplitude` in red and green: a scene for GPU-against-reference comparisons.
+std::vector<GaussianSpec> swirl_specs(int n, float colour_amplitude, float blue);
+
 // n³ small Gaussians on a lattice filling the unit cube around the origin, colours varying: a bake of
 // it adds coarse levels in well under a second (the drop-in LOD and cache tests).
 splat_lod::SplatCloud lattice_cloud(int n = 12);
