@@ -88,10 +88,10 @@ void write_band(std::span<std::uint32_t> words, const CompactShBand& code, std::
                    static_cast<std::uint32_t>(q[static_cast<std::size_t>(j)]));
 }
 
-// The exponent of the least squared error of `values` at `levels` (the largest scale on ties), among
-// those from the smallest scale that covers the values (never worse than the closed-form bound) to
-// one octave of clipping, two for trits, where clipping pays most.
-int best_exponent(std::span<const float> values, float band_max, int levels) {
+// The exponent of the least squared error of `values` at `levels` (the largest scale on ties), with
+// its q in `best_q`, among the exponents from the smallest scale that covers the values (never worse
+// than the closed-form bound) to one octave of clipping, two for trits, where clipping pays most.
+int best_exponent(std::span<const float> values, float band_max, int levels, std::span<int> best_q) {
     float m = 0.0f;
     for (const float v : values) m = std::max(m, std::abs(v));
     int first = 0;
@@ -99,16 +99,19 @@ int best_exponent(std::span<const float> values, float band_max, int levels) {
     const int last = std::min(first + (levels == 1 ? 4 : 2), kCompactShExponents - 1);
     int best = first;
     float best_error = INFINITY;
+    std::array<int, 3 * 7> q{};
     for (int e = first; e <= last; ++e) {
         const float s = band_scale(band_max, e);
         float error = 0.0f;
-        for (const float v : values) {
-            const float d = v - dequantise_coefficient(quantise_coefficient(v, s, levels), s, levels);
+        for (std::size_t j = 0; j < values.size(); ++j) {
+            q[j] = quantise_coefficient(values[j], s, levels);
+            const float d = values[j] - dequantise_coefficient(q[j], s, levels);
             error += d * d;
         }
         if (error < best_error) {
             best_error = error;
             best = e;
+            std::copy_n(q.begin(), values.size(), best_q.begin());
         }
     }
     return best;
@@ -137,11 +140,8 @@ void encode_compact_sh(const SplatCloud& cloud, std::size_t i, const CompactPage
         const auto n = static_cast<std::size_t>(3 * band_coefficients(band));
         for (std::size_t j = 0; j < n; ++j)
             values[j] = cloud.sh_rest_at(i, first_coefficient(band) + int(j / 3), int(j % 3));
-        const float band_max = page.sh_max[band - 1];
-        const int e = best_exponent(std::span(values).first(n), band_max, code.levels);
+        const int e = best_exponent(std::span(values).first(n), page.sh_max[band - 1], code.levels, q);
         write_bits(sh_words, kExponentBits * (band - 1), kExponentBits, static_cast<std::uint32_t>(e));
-        for (std::size_t j = 0; j < n; ++j)
-            q[j] = quantise_coefficient(values[j], band_scale(band_max, e), code.levels);
         write_band(sh_words, code, std::span(q).first(n));
     }
 }

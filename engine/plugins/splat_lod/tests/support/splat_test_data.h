@@ -33,7 +33,8 @@ struct GaussianSpec {
 splat_lod::SplatCloud make_cloud(const std::vector<GaussianSpec>& specs);
 
 // `n` Gaussians swirled through the unit ball, sizes, rotations and opacities varying, colours
-// 0.5 ± `colour_amplitude` in red and green: a scene for GPU-against-reference comparisons.
+// 0.5 ± `colour_amplitude` in red and green, `blue` in blue: a scene for GPU-against-reference
+// comparisons.
 std::vector<GaussianSpec> swirl_specs(int n, float colour_amplitude, float blue);
 
 // n³ small Gaussians on a lattice filling the unit cube around the origin, colours varying: a bake of

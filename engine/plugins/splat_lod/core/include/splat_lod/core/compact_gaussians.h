@@ -28,7 +28,8 @@
 //             band 3: trits (L = 1), the first 20 as the base-3 digits of word 3 (digit j the j-th
 //             coefficient), the 21st in bits 93–94
 // A field holds q in two's complement, a trit 0, 1 or 2 for q = 0, 1 or −1, so that zero words decode to
-// zero. The encoder picks each band's exponent by the least squared error of its coefficients.
+// zero. The encoder picks each band's exponent by the least squared error of its coefficients, among
+// the smallest scale at or above their largest magnitude and the next two (four for trits).
 #include <array>
 #include <cstddef>
 #include <cstdint>
