@@ -94,13 +94,23 @@ void RadixSort::record(const SortJob& job, GpuTimers* timers) {
     glMemoryBarrier(results_visible);
 }
 
-// Internal buffers follow the largest capacity seen; ensure_size grows them, never shrinks.
+// Internal buffers follow the job's capacity: made anew at its size when smaller than it or more than
+// four times larger.
 void RadixSort::prepare_buffers(std::uint32_t max_count) {
     max_count_ = max_count;
+    const auto fit = [](Buffer& buffer, std::size_t bytes, const char* label) {
+        if (buffer && buffer.size() >= bytes && buffer.size() / 4 <= bytes) return;
+        buffer = Buffer(NoCreate);
+        buffer.ensure_size(bytes, label);
+    };
     params_.ensure_size(sizeof(SortParams), "radix_sort params");
-    histogram_.ensure_size(std::size_t{SORT_RADIX_SIZE} * tiles_for(max_count) * 4, "radix_sort histogram");
-    keys_swap_.ensure_size(std::size_t{max_count} * 8, "radix_sort keys swap");
-    values_swap_.ensure_size(std::size_t{max_count} * 4, "radix_sort values swap");
+    fit(histogram_, std::size_t{SORT_RADIX_SIZE} * tiles_for(max_count) * 4, "radix_sort histogram");
+    fit(keys_swap_, std::size_t{max_count} * 8, "radix_sort keys swap");
+    fit(values_swap_, std::size_t{max_count} * 4, "radix_sort values swap");
+}
+
+std::uint64_t RadixSort::bytes() const {
+    return params_.size() + histogram_.size() + keys_swap_.size() + values_swap_.size() + scan_.bytes();
 }
 
 void RadixSort::record_arguments(const SortJob& job) {

@@ -34,6 +34,8 @@ public:
 
     // The largest max_count: indirect dispatches are limited to 65535 workgroups per dimension.
     static std::uint32_t max_scan_count();
+    // GPU bytes of its own buffers (the levels and the block sums of the largest max_count so far).
+    std::uint64_t bytes() const { return levels_.size() + block_sums_.size(); }
 
 private:
     struct Level {

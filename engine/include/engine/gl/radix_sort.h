@@ -42,6 +42,9 @@ public:
 
     // The largest max_count: indirect dispatches are limited to 65535 workgroups per dimension.
     static std::uint32_t max_sort_count();
+    // GPU bytes of its own buffers (the ping-pong partners, histograms, its scan's), which follow the
+    // latest job's max_count: made anew when smaller or more than four times larger.
+    std::uint64_t bytes() const;
     // Digit passes for `hi_bits`: all 32 low bits plus hi_bits, SORT_RADIX_BITS at a time.
     static std::uint32_t pass_count(std::uint32_t hi_bits);
 

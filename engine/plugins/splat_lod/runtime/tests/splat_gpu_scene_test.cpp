@@ -47,6 +47,9 @@ protected:
     const splat_lod::gpu::GpuScene& scene() {
         return splat_lod::find_splat_pass(incremental.engine().renderer())->scene();
     }
+    splat_lod::FrameCounts counts() {
+        return splat_lod::find_splat_pass(incremental.engine().renderer())->last_frame_counts();
+    }
     // The same clouds rendered by a pass that never saw another set: the reference frame.
     engine::Image from_scratch(const std::vector<std::shared_ptr<const splat_lod::SplatCloud>>& clouds) {
         engine::test::SplatRenderHarness fresh;
@@ -146,9 +149,9 @@ TEST_F(SplatGpuSceneTest, CloudsSpreadOverScatteredPagesAndReservedBuffersDoNotG
     EXPECT_EQ(bytes(), reserved_bytes) << "the Gaussian, SH, cluster and codec buffers never grew";
 }
 
-// A resident component that is hidden keeps its pages but takes no frame slots: the per-frame buffers
-// follow what can be drawn, and the frame is the one without it.
-TEST_F(SplatGpuSceneTest, HiddenComponentsKeepTheirPagesButTakeNoFrameSlots) {
+// A resident component that is hidden keeps its pages but projects nothing: the frame's buffers follow
+// what is drawn, and the frame is the one without it.
+TEST_F(SplatGpuSceneTest, HiddenComponentsKeepTheirPagesButNotTheirFrameBuffers) {
     const auto a = slab(700, -1.2f, 1), b = slab(6000, 0.0f, 2);
     engine::Scene s;
     s.background = glm::vec3(0.0f);  // as the harness draws
@@ -160,34 +163,41 @@ TEST_F(SplatGpuSceneTest, HiddenComponentsKeepTheirPagesButTakeNoFrameSlots) {
         s.root().add_child("splats " + std::to_string(i)).attach(std::move(component));
     }
     engine::RenderTarget target(camera.width, camera.height);
-    const std::uint64_t both_bytes = splat_lod::render_complete(incremental.engine(), s, camera, target).resident_bytes;
-    EXPECT_EQ(scene().slot_count(), 27u * 256u) << "a's 3 pages and b's 24";
+    const auto both = splat_lod::render_complete(incremental.engine(), s, camera, target);
+    EXPECT_EQ(counts().splats, both.visible) << "without a budget every projected splat is drawn";
+    EXPECT_GT(both.visible, 5000u);
+    EXPECT_EQ(counts().pairs, both.tile_splat_pairs);
 
     shown[1]->visible = false;
-    const std::uint64_t a_bytes = splat_lod::render_complete(incremental.engine(), s, camera, target).resident_bytes;
+    splat_lod::render_complete(incremental.engine(), s, camera, target);
+    // A frame starts with the dense array the last one needed: the second frame without b has it smaller.
+    const auto hidden = splat_lod::render_complete(incremental.engine(), s, camera, target);
     EXPECT_EQ(scene().pages_in_use(), 27u) << "b stays resident";
-    EXPECT_EQ(scene().slot_count(), 3u * 256u);
+    EXPECT_EQ(counts().splats, hidden.visible);
+    EXPECT_LE(hidden.visible, 700u);
     EXPECT_EQ(max_difference(target.read_color(), from_scratch({a})), 0);
-    // Nine times fewer slots: the projected splats and tile counts are made anew at the smaller size.
-    EXPECT_LT(a_bytes, both_bytes) << "the frame's buffers shrank with the slots";
+    // Nine times fewer splats: the dense splats and the keys are made anew at the smaller size.
+    EXPECT_LT(hidden.resident_bytes, both.resident_bytes) << "the frame's buffers shrank with what it draws";
 
     shown[1]->visible = true;
     splat_lod::render_complete(incremental.engine(), s, camera, target);
-    EXPECT_EQ(scene().slot_count(), 27u * 256u);
+    EXPECT_EQ(counts().splats, both.visible);
     EXPECT_EQ(max_difference(target.read_color(), from_scratch({a, b})), 0);
 }
 
-// Pages whose cluster step 1a surely culls for the view take no frame slots either; the frame is the
-// one drawn without frustum culling, where every drawn page has its slots.
-TEST_F(SplatGpuSceneTest, PagesOutsideTheViewTakeNoFrameSlots) {
+// Pages that step 1a culls for the view project nothing, and culling them changes no pixel.
+TEST_F(SplatGpuSceneTest, PagesOutsideTheViewChangeNothing) {
     const auto inside = slab(700, -1.2f, 1), behind = slab(600, 0.0f, 2);
     const std::vector<glm::mat4> models{glm::mat4(1.0f), glm::translate(glm::mat4(1.0f), {0.0f, 0.0f, 10.0f})};
     const auto culled = incremental.render({inside, behind}, camera, glm::vec3(0.0f), models);
     EXPECT_EQ(scene().pages_in_use(), 6u);
-    EXPECT_EQ(scene().slot_count(), 3u * 256u) << "the three pages behind the camera have none";
+    const splat_lod::FrameCounts with_culling = counts();
+    EXPECT_GT(with_culling.splats, 0u);
+    EXPECT_LE(with_culling.splats, 700u) << "nothing behind the camera";
     splat_lod::SplatRenderer pass(incremental.engine().renderer());
     pass.settings().frustum_culling = false;
     const auto whole = incremental.render({inside, behind}, camera, glm::vec3(0.0f), models);
-    EXPECT_EQ(scene().slot_count(), 6u * 256u);
+    EXPECT_EQ(counts().splats, with_culling.splats);
+    EXPECT_EQ(counts().pairs, with_culling.pairs);
     EXPECT_EQ(max_difference(culled, whole), 0);
 }

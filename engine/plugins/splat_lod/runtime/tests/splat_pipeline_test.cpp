@@ -179,43 +179,45 @@ TEST_F(SplatPipelineTest, TinyHugeAndEmptyTargets) {
     EXPECT_EQ(empty.pixel(3, 3)[1], 102);
 }
 
-// The key buffer starts small: a frame that needs more is flagged, never written out of bounds,
-// and the next frame has room.
-TEST_F(SplatPipelineTest, KeyBufferGrowsAfterAnOverflowedFrame) {
+// The frame's buffers start small and are sized by what the frame reads back after its scan: a first
+// frame projecting more splats than the dense array holds runs steps 1–2 again with room, and no frame
+// drops a pair. It draws what the next frame draws, and what the reference draws.
+TEST_F(SplatPipelineTest, FirstFrameLargerThanItsBuffersDrawsEverything) {
     std::vector<GaussianSpec> specs;
-    for (int i = 0; i < 400; ++i)
-        specs.push_back({{0.01f * (i % 20), 0.01f * (i / 20), -0.001f * i},
-                         glm::vec3(0.0f),
+    for (int i = 0; i < 6000; ++i)
+        specs.push_back({{0.012f * (i % 100) - 0.6f, 0.02f * (i / 100) - 0.6f, -0.0001f * i},
+                         glm::vec3(-4.0f),
                          {1, 0, 0, 0},
-                         -3.0f,
-                         {0.5f, 0.5f, 0.5f}});
+                         -1.0f,
+                         {0.5f + 0.4f * std::sin(0.1f * i), 0.5f, 0.5f + 0.4f * std::cos(0.07f * i)}});
     const auto cloud = shared(engine::test::make_cloud(specs));
     const auto camera =
-        engine::make_look_at_camera({0, 0, 3}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), 512, 512, 0.1f, 100.0f);
+        engine::make_look_at_camera({0, 0, 2}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), 192, 192, 0.1f, 100.0f);
     engine::Scene scene;
     scene.background = glm::vec3(0.0f);
     auto component = std::make_unique<splat_lod::SplatComponent>();
     component->cloud = cloud;
     scene.root().add_child("s").attach(std::move(component));
-    engine::RenderTarget target(512, 512);
+    engine::RenderTarget target(camera.width, camera.height);
     auto& engine = harness.engine();
     splat_lod::SplatRenderer pass(engine.renderer());
-    engine.renderer().render(scene, camera, target);
-    pass.wait_for_statistics(engine.bus());
-    const auto first = *pass.latest_statistics();
-    ASSERT_TRUE(first.overflowed) << first.tile_splat_pairs << " pairs, capacity " << first.key_capacity;
-    engine.renderer().render(scene, camera, target);
-    pass.wait_for_statistics(engine.bus());
-    EXPECT_FALSE(pass.latest_statistics()->overflowed);
-    EXPECT_GE(pass.key_capacity(), first.tile_splat_pairs);
+    const auto first = splat_lod::render_complete(engine, scene, camera, target);
     const auto gpu = target.read_color();
+    ASSERT_GT(first.visible, 4096u) << "more than the dense array's first capacity";
+    EXPECT_FALSE(first.overflowed);
+    EXPECT_GE(pass.key_capacity(), first.tile_splat_pairs);
+    EXPECT_LE(pass.memory().frame_bytes, 4u * (first.visible * 48u + first.tile_splat_pairs * 24u) + (1u << 20))
+        << "sized by the frame, not by the scene";
+    splat_lod::render_complete(engine, scene, camera, target);
+    EXPECT_EQ(engine::compare_images(target.read_color(), gpu).max_channel_difference, 0)
+        << "the next frame, with room";
     const auto cpu = reference(*cloud, camera);
     const auto d = engine::compare_images(gpu, cpu);
     if (d.psnr_db < 40.0) {
         const auto out = engine::test::output_dir("splat_pipeline");
-        engine::write_png(out / "overflow.gpu.png", gpu);
-        engine::write_png(out / "overflow.reference.png", cpu);
-        engine::write_png(out / "overflow.diff.png", d.visual);
+        engine::write_png(out / "first_frame.gpu.png", gpu);
+        engine::write_png(out / "first_frame.reference.png", cpu);
+        engine::write_png(out / "first_frame.diff.png", d.visual);
     }
     EXPECT_GE(d.psnr_db, 40.0);
 }

@@ -1,14 +1,14 @@
 // Which raster tiles a projected splat touches (docs/algorithms.md §1, "Tile footprint"). Step 1b
-// counts them, the budget trim recounts them after it scales an opacity, step 3 writes one key per
-// tile: all three call these functions on the same stored values (mean, conic, opacity), so the
-// counts and the keys agree. Needs `frame` (FrameUniforms).
+// counts them, the budget trim recounts them after it scales an opacity, step 3 counts them again and
+// writes one key per tile: all three call these functions on the same stored values (mean, conic,
+// opacity), so the counts and the keys agree. Needs `frame` (FrameUniforms).
 //
 // A pixel takes part in the splat's blend when o·exp(−½ dᵀQd) ≥ 1/255 at its centre, i.e. when
 // dᵀQd ≤ L = 2 ln(255·o), Q the conic (the inverse of the dilated 2D covariance Σ). With
-// frame.exact_tiles == 0 steps 1b and 3 take every tile of the bounding box of step 1b's extent
-// instead (splat_project.comp.glsl). Otherwise the footprint is, row of tiles by row of tiles, the
-// tiles between the ellipse's leftmost and rightmost points over that row's pixel centres: a tile is
-// left out only when no pixel centre in it can pass the test.
+// frame.exact_tiles == 0 they take every tile of the footprint's bounding box instead. Otherwise
+// the footprint is, row of tiles by row of tiles, the tiles between the ellipse's leftmost and
+// rightmost points over that row's pixel centres: a tile is left out only when no pixel centre in it
+// can pass the test.
 // The level set is widened by a relative 1e-3 and the spans by 1e-3 px, so that rounding can only
 // add a pair, never drop one the raster would draw.
 
@@ -77,4 +77,11 @@ uint tile_footprint_count(TileFootprint f) {
         count += span.y - span.x;
     }
     return count;
+}
+
+// The number of tiles a stored splat touches (its keys): 0 for one at or below α = 1/255.
+uint splat_tile_count(vec2 mean, vec4 conic, float opacity) {
+    if (!(opacity > 1.0 / 255.0)) return 0u;
+    TileFootprint f = tile_footprint(mean, conic, opacity);
+    return frame.exact_tiles != 0u ? tile_footprint_count(f) : (f.rect.z - f.rect.x) * (f.rect.w - f.rect.y);
 }

@@ -1,6 +1,8 @@
-// Step 3, bin: every visible splat writes one sort key per tile of its footprint
-// (common_splat_tiles.glsl), into the key range the scan of tile counts gave it. Pairs beyond the key
-// capacity are dropped and the frame is flagged (splat_dispatch_args), never written out of bounds.
+// Step 3, bin: one workgroup per cluster step 1b projected, one invocation per splat it wrote. Every
+// splat writes one sort key per tile of its footprint (common_splat_tiles.glsl): the cluster's keys
+// start where the scan over the clusters put them, and its splats follow one another in their
+// Gaussians' order, so every key's position is the same from run to run. Pairs beyond the key capacity
+// are dropped and the frame is flagged (splat_dispatch_args), never written out of bounds.
 //
 // Keys (docs/algorithms.md §1, "Sort keys"): with frame.key_depth_bits == 0, uvec2(depth as float
 // bits, tile), sorted on all 32 depth bits and the tile's bits. Otherwise one word,
@@ -8,12 +10,14 @@
 // smallest (FrameCounters::depth_range), shifted right just enough to fit D bits. Positive floats
 // order like their bits, so depth_q orders like the depth; two depths share a step only when they
 // differ by less than 2^(shift − 23) of the depth (2^-13 for D = 16 and depths spanning a factor of
-// 256), and then keep their slots' order, which is their Gaussians' index order (the sort is stable).
+// 256), and then keep their order here, which is their Gaussians' index order (the sort is stable).
 #include "common_splat_bindings.glsl"
 
-layout(local_size_x = SPLAT_BIN_WORKGROUP_SIZE) in;
+layout(local_size_x = SPLAT_PROJECT_WORKGROUP_SIZE) in;
 layout(std430, binding = SPLAT_BINDING_PROJECTED) readonly buffer Projected { ProjectedSplat projected[]; };
-layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) readonly buffer KeyOffsets { uint key_offsets[]; };
+layout(std430, binding = SPLAT_BINDING_CLUSTER_PAIRS) readonly buffer ClusterKeys { uint cluster_keys[]; };
+layout(std430, binding = SPLAT_BINDING_CLUSTER_SPLATS) readonly buffer ClusterSplats { uvec2 cluster_splats[]; };
+layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
 layout(std430, binding = SPLAT_BINDING_KEYS) writeonly buffer Keys { uvec2 keys[]; };
 layout(std430, binding = SPLAT_BINDING_VALUES) writeonly buffer Values { uint values[]; };
 layout(std430, binding = SPLAT_BINDING_STATS) readonly buffer Stats { FrameCounters stats; };
@@ -22,17 +26,14 @@ layout(std430, binding = SPLAT_BINDING_STATS) readonly buffer Stats { FrameCount
 
 #ifdef SPLAT_INPUT_TEXELS
 // Texel fetches instead of storage loads on CPU drivers (as in splat_project).
-layout(binding = SPLAT_TEXTURE_PROJECTED_WORDS) uniform usamplerBuffer projected_words;  // rgba32ui, 4 per splat
-layout(binding = SPLAT_TEXTURE_KEY_OFFSETS) uniform usamplerBuffer key_offset_texels;    // r32ui
-uint key_offset(uint index) { return texelFetch(key_offset_texels, int(index)).x; }
+layout(binding = SPLAT_TEXTURE_PROJECTED_WORDS) uniform usamplerBuffer projected_words;  // rgba32ui, 3 per splat
 ProjectedSplat load_projected(uint index) {
-    int b = int(index) * 4;
+    int b = int(index) * 3;
     return ProjectedSplat(uintBitsToFloat(texelFetch(projected_words, b)),
                           uintBitsToFloat(texelFetch(projected_words, b + 1)),
-                          uintBitsToFloat(texelFetch(projected_words, b + 2)), texelFetch(projected_words, b + 3));
+                          uintBitsToFloat(texelFetch(projected_words, b + 2)));
 }
 #else
-uint key_offset(uint index) { return key_offsets[index]; }
 ProjectedSplat load_projected(uint index) { return projected[index]; }
 #endif
 
@@ -56,25 +57,39 @@ uvec2 depth_key(float depth) {
     return uvec2((bits - lo) >> uint(shift), d);
 }
 
+shared uint s_keys[SPLAT_PROJECT_WORKGROUP_SIZE];  // inclusive prefix of the splats' key counts
+
 void main() {
-    uint index = gl_GlobalInvocationID.x;  // the splat's slot
-    if (index >= frame.slot_count) return;
-    g_begin = key_offset(index);
-    g_end = key_offset(index + 1u);
-    if (g_begin == g_end) return;
-    ProjectedSplat s = load_projected(index);
+    uint lid = gl_LocalInvocationIndex;
+    uint cluster = cluster_list.ids[gl_WorkGroupID.x];
+    uvec2 splats = cluster_splats[cluster];
+    if (splats.y == 0u) return;  // the whole workgroup
+    ProjectedSplat s;
+    uint tiles = 0u;
+    if (lid < splats.y) {
+        s = load_projected(splats.x + lid);
+        tiles = splat_tile_count(s.mean_depth.xy, s.conic, s.mean_depth.w);
+    }
+    s_keys[lid] = tiles;
+    barrier();
+    for (uint d = 1u; d < SPLAT_PROJECT_WORKGROUP_SIZE; d <<= 1u) {
+        uint before = lid >= d ? s_keys[lid - d] : 0u;
+        barrier();
+        s_keys[lid] += before;
+        barrier();
+    }
+    if (lid >= splats.y) return;
+    // The cluster's range ends where the next cluster's begins; its last splat fills what is left.
+    uint cluster_end = cluster_keys[cluster + 1u];
+    g_begin = min(cluster_keys[cluster] + s_keys[lid] - tiles, cluster_end);
+    g_end = lid + 1u == splats.y ? cluster_end : min(g_begin + tiles, cluster_end);
     g_next = g_begin;
-    g_index = index;
+    g_index = splats.x + lid;
     g_depth_key = depth_key(s.mean_depth.z);
-    if (frame.exact_tiles != 0u) {
-        TileFootprint f = tile_footprint(s.mean_depth.xy, s.conic, s.mean_depth.w);
-        for (uint ty = f.rect.y; ty < f.rect.w; ++ty) {
-            uvec2 span = tile_row_span(f, ty);
-            for (uint tx = span.x; tx < span.y; ++tx) emit(ty * frame.tiles.x + tx);
-        }
-    } else {
-        for (uint ty = s.tile_rect.y; ty < s.tile_rect.w; ++ty)
-            for (uint tx = s.tile_rect.x; tx < s.tile_rect.z; ++tx) emit(ty * frame.tiles.x + tx);
+    TileFootprint f = tile_footprint(s.mean_depth.xy, s.conic, s.mean_depth.w);
+    for (uint ty = f.rect.y; tiles > 0u && ty < f.rect.w; ++ty) {
+        uvec2 span = frame.exact_tiles != 0u ? tile_row_span(f, ty) : f.rect.xz;
+        for (uint tx = span.x; tx < span.y; ++tx) emit(ty * frame.tiles.x + tx);
     }
     // Step 1b counted the same footprint, so nothing is left; should a driver round the two
     // differently, the rest of the range gets keys of tile tile_count, which sort last and belong to

@@ -1,56 +1,59 @@
-// Step 1d, the splat budget's trim: one invocation per Gaussian of the clusters step 1a kept (the
-// same indirect dispatch as step 1b). A splat that step 1b projected stays only if it is selected
-// at the β bin step 1c chose and its coverage is not below the cut; the others get 0 tiles, so no
-// later pass sees them. A kept splat's opacity is scaled by its LOD weight at coverage/β (smooth
-// transitions; step 1b's extent, from the unscaled opacity, stays a conservative bound). Counts the
-// drawn Gaussians per level (step 1b does not, under a budget).
+// Step 1d, the splat budget's trim: one workgroup per cluster step 1b projected (the same indirect
+// dispatch), one invocation per splat it wrote. A splat stays only if it is selected at the β bin
+// step 1c chose and its coverage is not below the cut; the others get opacity 0, which gives them no
+// tiles, so no later pass sees them. A kept splat's opacity is scaled by its LOD weight at coverage/β
+// (smooth transitions), and its tiles are counted again at that opacity, so that the cluster's pair
+// count (SPLAT_BINDING_CLUSTER_PAIRS) is what step 3 writes. Counts the drawn Gaussians per level
+// (step 1b does not, under a budget).
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = SPLAT_PROJECT_WORKGROUP_SIZE) in;
 layout(std430, binding = SPLAT_BINDING_PROJECTED) buffer Projected { ProjectedSplat projected[]; };
-layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) buffer TileCounts { uint tile_counts[]; };
+layout(std430, binding = SPLAT_BINDING_CLUSTER_PAIRS) writeonly buffer ClusterPairs { uint cluster_pairs[]; };
+layout(std430, binding = SPLAT_BINDING_CLUSTER_SPLATS) readonly buffer ClusterSplats { uvec2 cluster_splats[]; };
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
 layout(std430, binding = SPLAT_BINDING_BUDGET) readonly buffer Budget { SplatBudgetState budget; };
-layout(std430, binding = SPLAT_BINDING_CLUSTER_SLOTS) readonly buffer ClusterSlots { uint cluster_slots[]; };
 
 #include "common_splat_storage.glsl"
 #include "common_splat_lod.glsl"
 #include "common_splat_tiles.glsl"
 
-void main() {
-    uint cluster = cluster_list.ids[gl_WorkGroupID.x];
-    uint index = cluster * SPLAT_PROJECT_WORKGROUP_SIZE + gl_LocalInvocationIndex;
-    uint first = cluster_slots[cluster];
-    if (index >= frame.gaussian_count || first == SPLAT_NO_SLOT) return;
-    uint slot = first * SPLAT_PROJECT_WORKGROUP_SIZE + gl_LocalInvocationIndex;
-    if (tile_counts[slot] == 0u) return;  // culled by step 1b
-    uint bits = floatBitsToUint(projected[slot].conic.w);
-    uint lo = bits & 0xFFu, hi = (bits >> 8) & 0xFFu, cbin = (bits >> 16) & 0xFFu;
+shared uint s_tiles;
+
+// The splat's tiles at the chosen β; 0 when it is not drawn (its opacity then set to 0).
+uint trim(uint cluster, uint entry) {
+    uint bits = floatBitsToUint(projected[entry].conic.w);
+    uint lo = bits & 0xFFu, hi = (bits >> 8) & 0xFFu;
+    uint index = cluster * SPLAT_PROJECT_WORKGROUP_SIZE + ((bits >> 16) & 0xFFu);
     uint level = ((bits >> 24) & 0x3u) + 1u;
+    float coverage = projected[entry].color.w;
     uint chosen = budget.choice.x, cut = budget.choice.y;
-    if (lo <= chosen && chosen <= hi && cbin >= cut) {
-        if (smooth_transitions()) {
-            vec4 lod = load_lod(index);
-            float beta = chosen == 0u ? 1.0 : exp2(float(chosen) / SPLAT_BUDGET_BINS_PER_OCTAVE);
-            float opacity = projected[slot].mean_depth.w * lod_weight(level, projected[slot].color.w / beta, lod.x, lod.y);
-            if (!(opacity > 1.0 / 255.0)) {
-                tile_counts[slot] = 0u;
-                return;
-            }
-            projected[slot].mean_depth.w = opacity;
-            // The footprint shrinks with the opacity; step 3 writes the keys of the new one, and one
-            // that holds no pixel centre any more draws nothing.
-            if (frame.exact_tiles != 0u) {
-                vec2 mean = projected[slot].mean_depth.xy;
-                uint tiles = tile_footprint_count(tile_footprint(mean, projected[slot].conic, opacity));
-                tile_counts[slot] = tiles;
-                if (tiles == 0u) return;
-            }
-        }
+    float opacity = projected[entry].mean_depth.w;
+    if (!(lo <= chosen && chosen <= hi && coverage_bin(coverage) >= cut)) {
+        opacity = 0.0;
+    } else if (smooth_transitions()) {
+        vec4 lod = load_lod(index);
+        float beta = chosen == 0u ? 1.0 : exp2(float(chosen) / SPLAT_BUDGET_BINS_PER_OCTAVE);
+        opacity *= lod_weight(level, coverage / beta, lod.x, lod.y);
+    }
+    // The footprint shrinks with the opacity; one that holds no pixel centre any more draws nothing.
+    uint tiles = splat_tile_count(projected[entry].mean_depth.xy, projected[entry].conic, opacity);
+    projected[entry].mean_depth.w = tiles > 0u ? opacity : 0.0;
+    if (tiles > 0u) {
         atomicAdd(stats.visible, 1u);
         atomicAdd(stats.per_level[level - 1u], 1u);
-    } else {
-        tile_counts[slot] = 0u;
     }
+    return tiles;
+}
+
+void main() {
+    uint lid = gl_LocalInvocationIndex;
+    if (lid == 0u) s_tiles = 0u;
+    barrier();
+    uint cluster = cluster_list.ids[gl_WorkGroupID.x];
+    uvec2 splats = cluster_splats[cluster];
+    if (lid < splats.y) atomicAdd(s_tiles, trim(cluster, splats.x + lid));
+    barrier();
+    if (lid == 0u) cluster_pairs[cluster] = s_tiles;
 }

@@ -2,17 +2,15 @@
 // (GpuCluster). Clusters that the view frustum leaves out and clusters whose Gaussians are all too
 // small for this view are counted and left out; the others are
 // appended to the list that step 1b dispatches over (indirectly), so skipped Gaussians cost nothing
-// beyond their share of this pass. The list's order depends on scheduling, the result does not:
-// every Gaussian writes only its own slots.
+// beyond their share of this pass. The list's order depends on scheduling, the result does not
+// (splat_project.comp.glsl).
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = SPLAT_CLUSTER_WORKGROUP_SIZE) in;
 layout(std430, binding = SPLAT_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
-layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) writeonly buffer TileCounts { uint tile_counts[]; };
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
 layout(std430, binding = SPLAT_BINDING_CLUSTERS) readonly buffer Clusters { GpuCluster clusters[]; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
-layout(std430, binding = SPLAT_BINDING_CLUSTER_SLOTS) readonly buffer ClusterSlots { uint cluster_slots[]; };
 
 const mat3 VIEW_TO_CAMERA = mat3(1, 0, 0, 0, -1, 0, 0, 0, -1);
 
@@ -76,7 +74,6 @@ bool skip_cluster(uint cluster) {
 void main() {
     uint cluster = gl_GlobalInvocationID.x;
     uint count = frame.gaussian_count;
-    if (cluster == 0u) tile_counts[frame.slot_count] = 0u;  // the scan's extra slot, which receives the total
     uint first = cluster * SPLAT_PROJECT_WORKGROUP_SIZE;
     if (first >= count) return;
     if (clusters[cluster].sphere.w < 0.0) return;  // an empty range of the scene (GpuScene): no members
@@ -94,8 +91,5 @@ void main() {
         atomicAdd(stats.skipping.x, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
         return;
     }
-    // Every cluster that gets this far has slots (the GPU scene gives them to all that are resident, not
-    // hidden and not surely culled above); the test keeps a cluster without any from ever being projected.
-    if (cluster_slots[cluster] == SPLAT_NO_SLOT) return;
     cluster_list.ids[atomicAdd(cluster_list.dispatch.x, 1u)] = cluster;
 }

@@ -25,7 +25,6 @@ using mat4 = glm::mat4;
 #define SPLAT_TILE_SIZE 16  // pixels per tile side (the raster workgroup is one tile)
 #define SPLAT_PROJECT_WORKGROUP_SIZE 256
 #define SPLAT_CLUSTER_WORKGROUP_SIZE 64
-#define SPLAT_BIN_WORKGROUP_SIZE 256
 #define SPLAT_RANGES_WORKGROUP_SIZE 256
 #define SPLAT_MAX_SH_DEGREE 3
 #define SPLAT_MAX_LEVELS 4
@@ -43,14 +42,17 @@ using mat4 = glm::mat4;
 #define SPLAT_BINDING_GAUSSIANS 0
 #define SPLAT_BINDING_SH 1
 #define SPLAT_BINDING_INSTANCES 2  // GpuInstance[], per frame
-// The frame's splats live in slots: the Gaussians of the clusters that may be drawn (resident, not
-// hidden, not surely outside the view), in cluster order, 256 a cluster (GpuScene's cluster slots), so
-// that the per-frame buffers are sized by what the view can draw rather than by everything resident.
-#define SPLAT_BINDING_PROJECTED 3  // ProjectedSplat[S], per frame, at its slot
-#define SPLAT_BINDING_TILE_COUNTS \
-    4                           // uint[S + 1]: tiles touched per slot; scanned in place into key offsets, total at [S]
-#define SPLAT_BINDING_KEYS 5    // uvec2[capacity]: (depth bits, tile index)
-#define SPLAT_BINDING_VALUES 6  // uint[capacity]: the splat's slot
+// The frame's splats are packed densely: each cluster step 1b projects (one per project workgroup)
+// reserves one run of the array for its visible splats with a single atomic, so the runs' order depends
+// on scheduling, and writes them in its Gaussians' order. The pairs stay deterministic: their positions
+// come from a scan over the clusters in cluster order (SPLAT_BINDING_CLUSTER_PAIRS), and within a
+// cluster from its splats' order. The arrays are sized by what the view draws (docs/gpu_storage.md).
+#define SPLAT_BINDING_PROJECTED 3  // ProjectedSplat[frame.splat_capacity], per frame
+// uint[C + 1], C = ceil(N / SPLAT_PROJECT_WORKGROUP_SIZE): the tile-splat pairs of each cluster's
+// splats (0 for clusters not projected), scanned in place into each cluster's first key; total at [C].
+#define SPLAT_BINDING_CLUSTER_PAIRS 4
+#define SPLAT_BINDING_KEYS 5         // uvec2[capacity]: (depth bits, tile index)
+#define SPLAT_BINDING_VALUES 6       // uint[capacity]: the splat's index in SPLAT_BINDING_PROJECTED
 #define SPLAT_BINDING_TILE_RANGES 7  // uvec2[tile_count]: [begin, end) into the sorted keys
 #define SPLAT_BINDING_STATS 8        // FrameCounters
 #define SPLAT_BINDING_ARGS 9         // uvec4: tile-range dispatch size (xyz) and keys in use (w)
@@ -61,16 +63,14 @@ using mat4 = glm::mat4;
                                       // CPU resets it to (0, 1, 1) each frame)
 #define SPLAT_BINDING_BUDGET 12       // SplatBudgetState: the splat budget's histograms and choice, per frame
 #define SPLAT_BINDING_PAGE_CODECS 13  // GpuPageCodec[pages], compact storage only, static per scene
-// uint[clusters]: the first slot / 256 of each cluster's Gaussians this frame, in cluster order over
-// the clusters that may be drawn; SPLAT_NO_SLOT for free pages, hidden instances and clusters that
-// step 1a's frustum test surely culls (the CPU makes the same test with wide margins).
-#define SPLAT_BINDING_CLUSTER_SLOTS 14
-#define SPLAT_NO_SLOT 0xFFFFFFFFu
+// uvec2[C]: per projected cluster, its first splat in SPLAT_BINDING_PROJECTED and how many it wrote
+// there (0 when they did not fit: the CPU then grows the array and runs steps 1 and 2 again).
+#define SPLAT_BINDING_CLUSTER_SPLATS 14
 #define SPLAT_COMPACT_WORDS 5       // 32-bit words of one compact record
 #define SPLAT_UNIFORM_FRAME 0       // FrameUniforms (uniform block binding)
 #define SPLAT_IMAGE_COLOR 0         // the frame's display-space colour (rgba8), read and written
 #define SPLAT_TEXTURE_VIEW_DEPTH 1  // the mesh pass's view depth (r32f), +inf where no mesh
-// Buffer textures over the projected splats (rgba32f, 4 texels a splat) and the sorted values (r32ui),
+// Buffer textures over the projected splats (rgba32f, 3 texels a splat) and the sorted values (r32ui),
 // read by the raster with SplatPassSettings::raster_fetch = texel.
 #define SPLAT_TEXTURE_PROJECTED 2
 #define SPLAT_TEXTURE_VALUES 3
@@ -79,10 +79,9 @@ using mat4 = glm::mat4;
 #define SPLAT_TEXTURE_GAUSSIANS 4
 #define SPLAT_TEXTURE_SH 5
 #define SPLAT_TEXTURE_INSTANCES 6
-// ... and over the bin pass's inputs: the projected splats as rgba32ui (4 texels a splat, bit-exact, so
-// that the bin walks the footprint step 1b counted) and the scanned key offsets (r32ui).
+// ... and over the bin pass's input: the projected splats as rgba32ui (3 texels a splat, bit-exact, so
+// that the bin walks the footprint step 1b counted).
 #define SPLAT_TEXTURE_PROJECTED_WORDS 7
-#define SPLAT_TEXTURE_KEY_OFFSETS 8
 // ... and the sorted keys (rg32ui) for the tile-ranges pass.
 #define SPLAT_TEXTURE_SORTED_KEYS 9
 // With compact storage the project pass's views are the records and SH words (r32ui) and the page
@@ -115,8 +114,8 @@ using mat4 = glm::mat4;
 #define SPLAT_COVERAGE_BINS 256         // coverage 2^(k/8 − 8) px: 1/256 px … ≈ 2^24 px
 #define SPLAT_COVERAGE_BIN_OFFSET 64.0  // 8 octaves below 1 px
 // Under a budget step 1b stores a splat's bins in ProjectedSplat::conic.w as float bits: first β bin
-// (bits 0–7), last β bin (8–15), coverage bin (16–23), level − 1 (24–25), and bit 30 set, which
-// keeps the value a normal float (no denormal flushing can change it).
+// (bits 0–7), last β bin (8–15), the Gaussian's index within its cluster (16–23), level − 1 (24–25),
+// and bit 30 set, which keeps the value a normal float (no denormal flushing can change it).
 #define SPLAT_BUDGET_PACK_FLAG 0x40000000u
 
 // GpuInstance::info.z: the SH degree in the low byte; SPLAT_INSTANCE_HIDDEN set for a component that is
@@ -170,12 +169,12 @@ SPLAT_LOD_STRUCT(GpuCluster) {
                   //    (non-finite bounds); yzw unused
 };
 
-// A projected Gaussian, stored at its slot (entries of culled ones are not read).
+// A projected Gaussian (SPLAT_BINDING_PROJECTED). Its tiles are not stored: every pass that needs them
+// computes them from mean, conic and opacity (common_splat_tiles.glsl).
 SPLAT_LOD_STRUCT(ProjectedSplat) {
     vec4 mean_depth;  // x, y image position (top-left origin), z view depth, w opacity
-    vec4 conic;       // inverse of the dilated 2D covariance: xx, xy, yy; w unused
+    vec4 conic;       // inverse of the dilated 2D covariance: xx, xy, yy; w under a splat budget (below)
     vec4 color;       // rgb (SH + 0.5, clamped at 0), w the coverage S (output px) of the selection
-    uvec4 tile_rect;  // tiles [x0, x1) × [y0, y1)
 };
 
 // The frame's parameters (uniform block SPLAT_UNIFORM_FRAME, std140). Laid out so that std140 and
@@ -215,14 +214,15 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     float transition_band;       // octaves of coverage over which a Gaussian fades (0: hard switching)
     uint exact_tiles;            // 1: a splat's keys are the tiles its ellipse touches, 0: its bounding box
     uint key_depth_bits;         // D > 0: one-word sort keys (tile << D | depth_q), 0: (depth bits, tile)
-    uint slot_count;             // S: the frame's splat slots (SPLAT_BINDING_CLUSTER_SLOTS), a multiple of 256
+    uint splat_capacity;         // ProjectedSplat entries SPLAT_BINDING_PROJECTED holds
     uint sh_storage_degree;      // SH degree the scene stores (compact: how its SH words are laid out)
     uint pad1, pad2;
 };
 
-// Written by the GPU each frame and read back asynchronously by the CPU.
+// Written by the GPU each frame; the CPU reads `projected` and the pair total after step 2, and the
+// rest asynchronously.
 SPLAT_LOD_STRUCT(FrameCounters) {
-    uint considered;
+    uint projected;  // splats step 1b projected (reserved in SPLAT_BINDING_PROJECTED; may exceed its capacity)
     uint visible;
     uint keys_needed;   // tile-splat pairs this frame asked for
     uint overflowed;    // 1 when keys_needed > key capacity (the frame dropped pairs)

@@ -1,18 +1,19 @@
-// Step 1b, cull + project + colour (docs/algorithms.md §1): one invocation per Gaussian of the clusters
-// step 1a kept. Survivors get their projected form at their own index and the number of raster tiles
-// (frame.tile_size px a side) their footprint touches (common_splat_tiles.glsl); culled ones get 0
-// tiles. A scan of the counts then gives every splat its key range. The frame's depth range
+// Step 1b, cull + project + colour (docs/algorithms.md §1): one workgroup per cluster step 1a kept, one
+// invocation per Gaussian. The cluster's survivors go to one run of the dense splat array, reserved
+// with a single atomic, in their Gaussians' order; the cluster records that run and the number of
+// raster tiles (frame.tile_size px a side) its splats' footprints touch (common_splat_tiles.glsl). A
+// scan over the clusters then gives every cluster its range of keys. The frame's depth range
 // (FrameCounters::depth_range) sizes the sort keys' depth bits in step 3.
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = SPLAT_PROJECT_WORKGROUP_SIZE) in;
 layout(std430, binding = SPLAT_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
 layout(std430, binding = SPLAT_BINDING_PROJECTED) writeonly buffer Projected { ProjectedSplat projected[]; };
-layout(std430, binding = SPLAT_BINDING_TILE_COUNTS) writeonly buffer TileCounts { uint tile_counts[]; };
+layout(std430, binding = SPLAT_BINDING_CLUSTER_PAIRS) writeonly buffer ClusterPairs { uint cluster_pairs[]; };
+layout(std430, binding = SPLAT_BINDING_CLUSTER_SPLATS) writeonly buffer ClusterSplats { uvec2 cluster_splats[]; };
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
 layout(std430, binding = SPLAT_BINDING_BUDGET) buffer Budget { SplatBudgetState budget; };
-layout(std430, binding = SPLAT_BINDING_CLUSTER_SLOTS) readonly buffer ClusterSlots { uint cluster_slots[]; };
 
 #ifdef SPLAT_INPUT_TEXELS
 // On CPU drivers a storage-buffer load is a loop over the SIMD lanes and a texel fetch one gather
@@ -42,18 +43,6 @@ mat3 local_covariance(GpuGaussian g) {
     return mat3(a.x, a.y, a.z, a.y, a.w, b.x, a.z, b.x, b.y);
 }
 
-// Extent: the ellipse where α reaches 1/255 (docs/algorithms.md §1), as pixel-centre bounds [lo, hi];
-// false when it misses the raster (or is not a number).
-bool extent_on_raster(vec2 mean, mat2 cov, float opacity, out vec2 lo, out vec2 hi) {
-    float level_set = 2.0 * log(255.0 * opacity);
-    vec2 radius = sqrt(level_set * vec2(cov[0][0], cov[1][1]));
-    lo = ceil(mean - radius - 0.5);
-    hi = floor(mean + radius - 0.5);
-    vec2 size = frame.raster_size;
-    return !(any(isnan(lo)) || any(isnan(hi)) || hi.x < 0.0 || hi.y < 0.0 || lo.x > size.x - 1.0 ||
-             lo.y > size.y - 1.0 || any(greaterThan(lo, hi)));
-}
-
 // SplatComponent::dissolve: a pseudo-random rank in [0, 1) of a scene slot (an integer hash, xor-shift-
 // multiply rounds), so that about the fraction f of any component's Gaussians, a fixed subset while it
 // stays resident, rank below f.
@@ -67,8 +56,8 @@ float dissolve_rank(uint slot) {
     return float(h >> 8) * (1.0 / 16777216.0);
 }
 
-// Returns the tile count; 0 means culled. The projected form goes to `slot`.
-uint project(uint index, uint slot) {
+// Returns the tile count; 0 means culled. The projected form goes to `p`.
+uint project(uint index, out ProjectedSplat p) {
     GpuGaussian g = load_gaussian(index);
     GpuInstance inst = load_instance(floatBitsToUint(g.covariance_b.w));
     vec3 world = (inst.model * vec4(g.position_opacity.xyz, 1.0)).xyz;
@@ -116,27 +105,18 @@ uint project(uint index, uint slot) {
     if (!(opacity > 1.0 / 255.0)) return 0u;
 
     vec2 mean = vec2(frame.principal.x + fx * cam.x / z, frame.principal.y + fy * cam.y / z);
-    vec2 lo, hi;
-    if (!extent_on_raster(mean, cov, opacity, lo, hi)) return 0u;
-    vec2 size = frame.raster_size;
-    uvec2 pmin = uvec2(max(lo, vec2(0.0))), pmax = uvec2(min(hi, size - 1.0));
-    uvec4 rect = uvec4(pmin / frame.tile_size, pmax / frame.tile_size + 1u);
     vec4 conic = vec4(vec3(cov[1][1], -cov[0][1], cov[0][0]) / det, 0.0);
-    // The tiles it touches; with the exact footprint, a splat whose ellipse holds no pixel centre
-    // draws nothing and is culled here.
-    uint tiles = frame.exact_tiles != 0u ? tile_footprint_count(tile_footprint(mean, conic, opacity))
-                                         : (rect.z - rect.x) * (rect.w - rect.y);
+    // The tiles it touches; a splat whose footprint holds no pixel centre of the raster (or is not a
+    // number) draws nothing and is culled here.
+    uint tiles = splat_tile_count(mean, conic, opacity);
     if (tiles == 0u) return 0u;
     // Bin 0 (β = 1) counts exactly what the frame without a budget draws: not a splat whose opacity
-    // weighted at β = 1 is below 1/255 or whose extent (footprint) with it misses the raster (every
-    // pixel centre); the trim pass drops those at any β. The extent kept is the unweighted one, which
-    // holds every weight's.
+    // weighted at β = 1 is below 1/255 or whose footprint with it holds no pixel centre; the trim pass
+    // drops those at any β. The tiles counted here are the unweighted footprint's, which holds every
+    // weight's; the trim recounts them at its β.
     if (budgeted && bins.x == 0) {
         float weighted = opacity * lod_weight(uint(g.lod.z), coverage, g.lod.x, g.lod.y);
-        vec2 lo0, hi0;
-        bool none = !(weighted > 1.0 / 255.0) || !extent_on_raster(mean, cov, weighted, lo0, hi0) ||
-                    (frame.exact_tiles != 0u && tile_footprint_count(tile_footprint(mean, conic, weighted)) == 0u);
-        if (none) {
+        if (splat_tile_count(mean, conic, weighted) == 0u) {
             bins.x = 1;
             if (bins.y < 1) return 0u;
         }
@@ -148,7 +128,8 @@ uint project(uint index, uint slot) {
 
     if (budgeted) {
         uint cbin = coverage_bin(coverage);
-        conic.w = uintBitsToFloat(SPLAT_BUDGET_PACK_FLAG | uint(bins.x) | (uint(bins.y) << 8) | (cbin << 16) |
+        uint local = index % SPLAT_PROJECT_WORKGROUP_SIZE;
+        conic.w = uintBitsToFloat(SPLAT_BUDGET_PACK_FLAG | uint(bins.x) | (uint(bins.y) << 8) | (local << 16) |
                                   ((level - 1u) << 24));
         atomicAdd(budget.selected[bins.x], 1u);
         if (bins.y + 1 < SPLAT_BUDGET_BINS) atomicAdd(budget.selected[bins.y + 1], 0xFFFFFFFFu);  // −1
@@ -160,17 +141,46 @@ uint project(uint index, uint slot) {
     atomicMax(stats.depth_range.x, floatBitsToUint(z));  // positive floats order like their bits
     atomicMax(stats.depth_range.y, ~floatBitsToUint(z));
     // color.w: the coverage, from which the budget's trim computes the weight at its β.
-    projected[slot] = ProjectedSplat(vec4(mean, z, opacity), conic, vec4(color, coverage), rect);
+    p = ProjectedSplat(vec4(mean, z, opacity), conic, vec4(color, coverage));
     return tiles;
 }
 
-// One workgroup per cluster that step 1a kept (GpuCluster): the slots of skipped clusters keep the
-// tile count 0 they were cleared to.
+shared uint s_visible[SPLAT_PROJECT_WORKGROUP_SIZE / 32];  // a bit per invocation whose splat is visible
+shared uint s_tiles;                                      // the cluster's tiles
+shared uint s_first;                                      // its first entry in the dense array
+
+// The splats of the invocations before this one in the workgroup (bit order of s_visible).
+uint visible_before(uint lid) {
+    uint rank = bitCount(s_visible[lid / 32u] & ((1u << (lid % 32u)) - 1u));
+    for (uint w = 0u; w < lid / 32u; ++w) rank += bitCount(s_visible[w]);
+    return rank;
+}
+
 void main() {
+    uint lid = gl_LocalInvocationIndex;
+    if (lid < SPLAT_PROJECT_WORKGROUP_SIZE / 32) s_visible[lid] = 0u;
+    if (lid == 0u) s_tiles = 0u;
+    barrier();
     uint cluster = cluster_list.ids[gl_WorkGroupID.x];
-    uint index = cluster * SPLAT_PROJECT_WORKGROUP_SIZE + gl_LocalInvocationIndex;
-    uint first = cluster_slots[cluster];
-    if (index >= frame.gaussian_count || first == SPLAT_NO_SLOT) return;
-    uint slot = first * SPLAT_PROJECT_WORKGROUP_SIZE + gl_LocalInvocationIndex;
-    tile_counts[slot] = project(index, slot);
+    uint index = cluster * SPLAT_PROJECT_WORKGROUP_SIZE + lid;
+    ProjectedSplat p;
+    uint tiles = index < frame.gaussian_count ? project(index, p) : 0u;
+    if (tiles > 0u) {
+        atomicOr(s_visible[lid / 32u], 1u << (lid % 32u));
+        atomicAdd(s_tiles, tiles);
+    }
+    barrier();
+    // One reservation for the cluster; a cluster that does not fit writes nothing (the CPU sees the
+    // count above the capacity and runs the frame's steps 1–2 again with a larger array).
+    if (lid == 0u) {
+        uint count = 0u;
+        for (uint w = 0u; w < SPLAT_PROJECT_WORKGROUP_SIZE / 32; ++w) count += bitCount(s_visible[w]);
+        uint first = count > 0u ? atomicAdd(stats.projected, count) : 0u;
+        bool fits = first + count <= frame.splat_capacity && first + count >= first;
+        cluster_splats[cluster] = uvec2(first, fits ? count : 0u);
+        cluster_pairs[cluster] = fits ? s_tiles : 0u;
+        s_first = fits ? first : 0xFFFFFFFFu;
+    }
+    barrier();
+    if (tiles > 0u && s_first != 0xFFFFFFFFu) projected[s_first + visible_before(lid)] = p;
 }

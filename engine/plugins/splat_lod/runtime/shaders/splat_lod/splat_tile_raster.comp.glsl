@@ -31,7 +31,7 @@ layout(local_size_x = RASTER_TILE_SIZE, local_size_y = RASTER_TILE_SIZE) in;
 layout(std430, binding = SPLAT_BINDING_PROJECTED) readonly buffer Projected { ProjectedSplat projected[]; };
 layout(std430, binding = SPLAT_BINDING_VALUES) readonly buffer Values { uint values[]; };
 #else
-layout(binding = SPLAT_TEXTURE_PROJECTED) uniform samplerBuffer projected_texels;  // 4 RGBA32F per splat
+layout(binding = SPLAT_TEXTURE_PROJECTED) uniform samplerBuffer projected_texels;  // 3 RGBA32F per splat
 layout(binding = SPLAT_TEXTURE_VALUES) uniform usamplerBuffer value_texels;         // R32UI per key
 #endif
 layout(std430, binding = SPLAT_BINDING_TILE_RANGES) readonly buffer Ranges { uvec2 ranges[]; };
@@ -141,7 +141,7 @@ void walk(uvec2 range, bool inside) {
 }
 #else
 RasterSplat fetch(uint k) {
-    int base = int(texelFetch(value_texels, int(k)).x) * 4;
+    int base = int(texelFetch(value_texels, int(k)).x) * 3;
     return RasterSplat(texelFetch(projected_texels, base), texelFetch(projected_texels, base + 1),
                        texelFetch(projected_texels, base + 2).rgb);
 }

@@ -59,22 +59,13 @@ public:
 
     // Gaussian slots up to the end of the last page in use (what step 1a walks).
     std::uint32_t gaussian_count() const { return gaussian_count_; }
-    // The frame's splat slots (SPLAT_BINDING_CLUSTER_SLOTS): 256 for every page of a component that is
-    // resident and not hidden (one page at least), numbered in page order, so that the frame's buffers
-    // hold what this frame can draw and a splat's slot orders like its Gaussian's index.
-    std::uint32_t slot_count() const { return slot_count_; }
-    // Numbers the pages of the drawn components, leaving out those whose cluster step 1a surely culls
-    // for `view`. The splat pass calls it every frame, after update(); slot_count() is this frame's.
-    void assign_frame_slots(const FrameUniforms& view);
-    const engine::gl::Buffer& cluster_slots() const { return cluster_slots_; }
     std::uint32_t instance_count() const { return static_cast<std::uint32_t>(slots_.size()); }
     int sh_degree() const { return std::max(sh_degree_, 0); }         // the SH degree the buffers store
     std::uint32_t sh_stride() const { return sh_stride_; }            // floats (full) or words (compact) per Gaussian
     std::uint32_t coarsest_level() const { return coarsest_level_; }  // highest LOD level present
     std::size_t dropped() const { return dropped_; }                  // not drawable (NaN/Inf, zero rotation)
     std::size_t resident_bytes() const {
-        return gaussians_.size() + sh_.size() + instances_.size() + clusters_.size() + codecs_.size() +
-               cluster_slots_.size();
+        return gaussians_.size() + sh_.size() + instances_.size() + clusters_.size() + codecs_.size();
     }
     // Bytes sent to the GPU by the last update() for Gaussians, SH and clusters (GPU-side copies
     // when the buffers grow are not uploads and are not counted).
@@ -131,8 +122,6 @@ private:
     std::vector<std::uint32_t> free_;  // free pages below the end, sorted descending (lowest at the back)
     std::uint32_t capacity_ = 0;       // Gaussian slots the buffers hold (whole pages)
     std::uint32_t gaussian_count_ = 0;
-    std::uint32_t slot_count_ = 0;
-    std::vector<std::uint32_t> frame_slots_;  // what cluster_slots_ holds
     std::uint64_t last_upload_bytes_ = 0;
     std::size_t dropped_ = 0;
     int sh_degree_ = -1;  // the degree the SH stride holds; −1 before the first upload
@@ -144,7 +133,6 @@ private:
     engine::gl::Buffer instances_{engine::gl::NoCreate};
     engine::gl::Buffer clusters_{engine::gl::NoCreate};
     engine::gl::Buffer codecs_{engine::gl::NoCreate};
-    engine::gl::Buffer cluster_slots_{engine::gl::NoCreate};
 };
 
 }  // namespace gpu

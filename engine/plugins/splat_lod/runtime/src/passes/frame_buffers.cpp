@@ -2,6 +2,7 @@
 #include "passes/frame_buffers.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "engine/gl/compute_step.h"
 #include "engine/gl/radix_sort.h"
@@ -10,8 +11,8 @@
 namespace splat_lod {
 namespace {
 
-constexpr std::uint32_t initial_keys_per_slot = 4;
-constexpr std::uint32_t minimum_key_capacity = 1u << 16;
+constexpr std::uint32_t minimum_splat_capacity = 1u << 12;
+constexpr std::uint32_t minimum_key_capacity = 1u << 14;
 
 engine::gl::Buffer fixed_buffer(const char* label, std::size_t bytes) {
     engine::gl::Buffer buffer(label);
@@ -19,55 +20,65 @@ engine::gl::Buffer fixed_buffer(const char* label, std::size_t bytes) {
     return buffer;
 }
 
-// `buffer` holding at least `bytes`: made anew with a quarter to spare when smaller, or when more
-// than four times larger (a view that draws less), its contents not kept.
-void fit(engine::gl::Buffer& buffer, std::size_t bytes, const char* label) {
-    if (buffer && buffer.size() >= bytes && buffer.size() / 4 <= bytes) return;
-    buffer = engine::gl::Buffer(engine::gl::NoCreate);
-    buffer.ensure_size(bytes + bytes / 4, label);
+// A capacity for `need` elements: `capacity` while it holds them and a quarter of it would not, else
+// the need and an eighth, at least `minimum` and at most `limit`.
+std::uint32_t follow(std::uint32_t capacity, std::uint32_t need, std::uint32_t minimum, std::uint32_t limit) {
+    if (capacity >= need && (capacity / 4 <= need || capacity <= minimum)) return capacity;
+    const std::uint64_t wanted = std::max<std::uint64_t>(minimum, std::uint64_t(need) + need / 8);
+    return static_cast<std::uint32_t>(std::min<std::uint64_t>(wanted, limit));
 }
 
 }  // namespace
 
-void FrameBuffers::ensure(std::uint32_t slots, std::uint32_t clusters, std::uint32_t tile_count) {
+void FrameBuffers::ensure(std::uint32_t clusters, std::uint32_t tile_count) {
     if (!uniforms) {
         uniforms = fixed_buffer("splat frame uniforms", sizeof(gpu::FrameUniforms));
         counters = fixed_buffer("splat frame counters", sizeof(gpu::FrameCounters));
         args = fixed_buffer("splat dispatch args", sizeof(glm::uvec4));
-        count = fixed_buffer("splat slot count", sizeof(std::uint32_t));
+        count = fixed_buffer("splat cluster count", sizeof(std::uint32_t));
         budget = fixed_buffer("splat budget", sizeof(gpu::SplatBudgetState));
     }
-    fit(projected, std::size_t(slots) * sizeof(gpu::ProjectedSplat), "splat projected");
     cluster_list.ensure_size(sizeof(glm::uvec4) + std::size_t(clusters) * sizeof(std::uint32_t), "splat cluster list");
-    fit(tile_counts, (std::size_t(slots) + 1) * sizeof(std::uint32_t), "splat tile counts");
+    cluster_pairs.ensure_size((std::size_t(clusters) + 1) * sizeof(std::uint32_t), "splat cluster pairs");
+    cluster_splats.ensure_size(std::max<std::size_t>(clusters, 1) * sizeof(glm::uvec2), "splat cluster splats");
     tile_ranges.ensure_size(std::size_t(tile_count) * sizeof(glm::uvec2), "splat tile ranges");
-    const std::uint32_t wanted =
-        std::max({minimum_key_capacity, slots * initial_keys_per_slot, pending_growth + pending_growth / 4});
-    const std::uint32_t capacity = std::min(wanted, engine::gl::RadixSort::max_sort_count());
-    if (capacity > key_capacity || capacity < key_capacity / 4) {
-        keys = engine::gl::Buffer(engine::gl::NoCreate);
-        values = engine::gl::Buffer(engine::gl::NoCreate);
-        keys.ensure_size(std::size_t(capacity) * sizeof(glm::uvec2), "splat tile keys");
-        values.ensure_size(std::size_t(capacity) * sizeof(std::uint32_t), "splat tile values");
-        key_capacity = capacity;
-    }
-    pending_growth = 0;
+    count.upload(0, sizeof(clusters), &clusters);
+}
+
+void FrameBuffers::ensure_splats(std::uint32_t splats) {
+    const std::uint32_t capacity =
+        follow(splat_capacity, splats, minimum_splat_capacity, std::numeric_limits<std::uint32_t>::max() / 64);
+    if (capacity == splat_capacity && projected) return;
+    projected = engine::gl::Buffer(engine::gl::NoCreate);
+    projected.ensure_size(std::size_t(capacity) * sizeof(gpu::ProjectedSplat), "splat projected");
+    splat_capacity = capacity;
+}
+
+void FrameBuffers::ensure_keys(std::uint32_t pairs) {
+    const std::uint32_t capacity =
+        follow(key_capacity, pairs, minimum_key_capacity, engine::gl::RadixSort::max_sort_count());
+    if (capacity == key_capacity && keys) return;
+    keys = engine::gl::Buffer(engine::gl::NoCreate);
+    values = engine::gl::Buffer(engine::gl::NoCreate);
+    keys.ensure_size(std::size_t(capacity) * sizeof(glm::uvec2), "splat tile keys");
+    values.ensure_size(std::size_t(capacity) * sizeof(std::uint32_t), "splat tile values");
+    key_capacity = capacity;
 }
 
 void FrameBuffers::clear(bool with_budget) {
     engine::gl::clear_to_zero(counters);
     if (with_budget) engine::gl::clear_to_zero(budget);
     engine::gl::clear_to_zero(tile_ranges);
-    // Gaussians of skipped clusters are never visited: their tile counts stay 0.
-    engine::gl::clear_to_zero(tile_counts);
+    // Clusters step 1b does not project keep no pairs.
+    engine::gl::clear_to_zero(cluster_pairs);
     const glm::uvec4 no_clusters(0u, 1u, 1u, 0u);
     cluster_list.upload(0, sizeof(no_clusters), &no_clusters);
     engine::gl::memory_barrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 std::uint64_t FrameBuffers::bytes() const {
-    return projected.size() + tile_counts.size() + keys.size() + values.size() + tile_ranges.size() +
-           cluster_list.size();
+    return projected.size() + cluster_pairs.size() + cluster_splats.size() + keys.size() + values.size() +
+           tile_ranges.size() + cluster_list.size();
 }
 
 void LowResImages::ensure(int w, int h) {

@@ -12,26 +12,30 @@
 namespace splat_lod {
 
 struct FrameBuffers {
-    engine::gl::Buffer uniforms{engine::gl::NoCreate};      // gpu::FrameUniforms
-    engine::gl::Buffer counters{engine::gl::NoCreate};      // gpu::FrameCounters
-    engine::gl::Buffer args{engine::gl::NoCreate};          // indirect dispatch arguments of steps 5 on
-    engine::gl::Buffer count{engine::gl::NoCreate};         // the frame's slot count, for the scan
-    engine::gl::Buffer budget{engine::gl::NoCreate};        // gpu::SplatBudgetState
-    engine::gl::Buffer projected{engine::gl::NoCreate};     // one gpu::ProjectedSplat per slot
-    engine::gl::Buffer cluster_list{engine::gl::NoCreate};  // dispatch arguments + the clusters kept
-    engine::gl::Buffer tile_counts{engine::gl::NoCreate};   // per slot, then its key offset; total at [slots]
-    engine::gl::Buffer tile_ranges{engine::gl::NoCreate};   // per tile, its range of sorted keys
+    engine::gl::Buffer uniforms{engine::gl::NoCreate};        // gpu::FrameUniforms
+    engine::gl::Buffer counters{engine::gl::NoCreate};        // gpu::FrameCounters
+    engine::gl::Buffer args{engine::gl::NoCreate};            // indirect dispatch arguments of steps 5 on
+    engine::gl::Buffer count{engine::gl::NoCreate};           // the scene's cluster count, for the scan
+    engine::gl::Buffer budget{engine::gl::NoCreate};          // gpu::SplatBudgetState
+    engine::gl::Buffer projected{engine::gl::NoCreate};       // splat_capacity gpu::ProjectedSplat, dense
+    engine::gl::Buffer cluster_list{engine::gl::NoCreate};    // dispatch arguments + the clusters kept
+    engine::gl::Buffer cluster_pairs{engine::gl::NoCreate};   // per cluster, then its first key; total at [C]
+    engine::gl::Buffer cluster_splats{engine::gl::NoCreate};  // per cluster, its run of projected splats
+    engine::gl::Buffer tile_ranges{engine::gl::NoCreate};     // per tile, its range of sorted keys
     engine::gl::Buffer keys{engine::gl::NoCreate}, values{engine::gl::NoCreate};  // tile-splat pairs
+    std::uint32_t splat_capacity = 0;
     std::uint32_t key_capacity = 0;
-    std::uint32_t pending_growth = 0;  // keys a past frame needed beyond the capacity
 
-    // Sizes the buffers for `slots` splat slots (GpuScene::slot_count), `clusters` in the cluster list
-    // and `tile_count` tiles, with room for the keys a past frame needed (pending_growth), at most the
-    // sort's limit. They grow with room to spare and shrink when a quarter would do, so that they follow
-    // what the view can draw.
-    void ensure(std::uint32_t slots, std::uint32_t clusters, std::uint32_t tile_count);
-    // The counters, the budget's histograms (with a budget), the tile ranges and counts at zero, and the
-    // cluster list empty, before step 1 fills them.
+    // Sizes the buffers that follow the scene and the raster: `clusters` (the scene's, one per project
+    // workgroup) and `tile_count` tiles.
+    void ensure(std::uint32_t clusters, std::uint32_t tile_count);
+    // Room for `splats` projected splats and for `pairs` tile-splat pairs (at most the sort's limit),
+    // which the frame reads back after its scan: grown with an eighth to spare, and made anew smaller
+    // when a quarter would do, so that they follow what the view draws. Contents are not kept.
+    void ensure_splats(std::uint32_t splats);
+    void ensure_keys(std::uint32_t pairs);
+    // The counters, the budget's histograms (with a budget), the tile ranges and the clusters' pair
+    // counts at zero, and the cluster list empty, before step 1 fills them.
     void clear(bool with_budget);
     // The per-frame buffers that grow with the scene and the view.
     std::uint64_t bytes() const;

@@ -63,14 +63,10 @@ void FrameStatistics::collect(FrameBuffers& buffers, engine::MessageBus& bus, bo
         engine::gl::read_buffer(r.buffer, 0, sizeof(c), &c);  // waits for the copy
         r.fence.reset();
         const plugin_msgs::SplatStatistics s = statistics_of(r.frame, c, buffers.key_capacity);
-        if (s.overflowed) {
-            // That frame dropped tile-splat pairs; the next frames get room for them.
-            if (c.keys_needed > buffers.pending_growth)
-                engine::log_warning("splat_lod: frame " + std::to_string(r.frame.index) + " needed " +
-                                    std::to_string(c.keys_needed) + " tile-splat pairs but the buffer holds " +
-                                    std::to_string(buffers.key_capacity) + "; growing it");
-            buffers.pending_growth = std::max(buffers.pending_growth, c.keys_needed);
-        }
+        if (s.overflowed)  // the keys are sized by the frame's need, up to the sort's limit
+            engine::log_warning("splat_lod: frame " + std::to_string(r.frame.index) + " needed " +
+                                std::to_string(c.keys_needed) + " tile-splat pairs, more than the sort's " +
+                                std::to_string(buffers.key_capacity) + "; some were dropped");
         if (!latest_ || latest_->frame_index <= s.frame_index) latest_ = s;
         bus.publish(s);
     }

@@ -1,8 +1,8 @@
 #pragma once
 // The splat frame's statistics: each frame's GPU counters copied into one of four readback buffers
 // behind a fence, read when the GPU is done (never stalling a frame, unless all four are in flight)
-// and published on the bus as plugin_msgs::SplatStatistics. A frame whose keys overflowed asks the
-// frame buffers for room (FrameBuffers::pending_growth).
+// and published on the bus as plugin_msgs::SplatStatistics. A frame whose keys overflowed (more than
+// the sort can take) is logged.
 #include <array>
 #include <cstdint>
 #include <optional>

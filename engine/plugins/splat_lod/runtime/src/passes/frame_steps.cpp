@@ -17,7 +17,7 @@ void FrameSteps::bind_all() const {
                                                  {SPLAT_BINDING_PROJECTED, &b.projected},
                                                  {SPLAT_BINDING_CLUSTERS, &scene.clusters()},
                                                  {SPLAT_BINDING_CLUSTER_LIST, &b.cluster_list},
-                                                 {SPLAT_BINDING_TILE_COUNTS, &b.tile_counts},
+                                                 {SPLAT_BINDING_CLUSTER_PAIRS, &b.cluster_pairs},
                                                  {SPLAT_BINDING_KEYS, &b.keys},
                                                  {SPLAT_BINDING_VALUES, &b.values},
                                                  {SPLAT_BINDING_TILE_RANGES, &b.tile_ranges},
@@ -25,7 +25,7 @@ void FrameSteps::bind_all() const {
                                                  {SPLAT_BINDING_ARGS, &b.args},
                                                  {SPLAT_BINDING_BUDGET, &b.budget},
                                                  {SPLAT_BINDING_PAGE_CODECS, &scene.page_codecs()},
-                                                 {SPLAT_BINDING_CLUSTER_SLOTS, &scene.cluster_slots()}};
+                                                 {SPLAT_BINDING_CLUSTER_SPLATS, &b.cluster_splats}};
     const engine::gl::ImageBinding images[] = {{SPLAT_IMAGE_COLOR, &frame.target.color(), GL_RGBA8},
                                                {SPLAT_IMAGE_LOW_VALUE + 0, &low.images[0], GL_RGBA32F},
                                                {SPLAT_IMAGE_LOW_VALUE + 1, &low.images[1], GL_RGBA32F},

@@ -3,8 +3,9 @@
 //   1 selection   a: cull clusters outside the frustum, skip those too small for the view;
 //                 b: cull + project + SH colour, tiles touched; under a splat budget c: choose β,
 //                 d: keep what is selected at it                                  (selection_steps.cpp)
-//   2–5 sort      scan of the tile counts, bin into (depth, tile) keys, radix sort, tile ranges
-//                                                                                  (sort_steps.cpp)
+//   2–5 sort      scan of the clusters' pair counts; then, once the CPU has read the frame's splat and
+//                 pair counts back and sized the buffers, bin into (depth, tile) keys, radix sort,
+//                 tile ranges                                                      (sort_steps.cpp)
 //   6–7 raster    per-tile front-to-back raster composited over the mesh pass; below render scale 1 at
 //                 low resolution with derivatives, then the upscale to the output  (raster_steps.cpp)
 // Every step binds the frame's whole set of resources (the sort and the scan bind their own between).
@@ -66,8 +67,18 @@ inline constexpr GLbitfield kStepBarrier =
 inline constexpr GLbitfield kImageBarrier = GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                                             GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
 
+// What steps 1–2 found: the splats projected and the tile-splat pairs they need.
+struct FrameCounts {
+    std::uint32_t splats = 0;
+    std::uint32_t pairs = 0;
+};
+
 void record_selection(const FrameSteps& steps, std::uint32_t gaussians);
-void record_sort(const FrameSteps& steps, std::uint32_t slots);
+void record_scan(const FrameSteps& steps, std::uint32_t clusters);
+// Steps 1–2 with `uniforms` (their splat capacity set here), then a blocking read of the two counts; when
+// the splats did not fit, the array grows to hold them and steps 1–2 run again.
+FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms, std::uint32_t gaussians);
+void record_sort(const FrameSteps& steps);
 void record_raster(const FrameSteps& steps);
 
 }  // namespace splat_lod

@@ -1,4 +1,9 @@
-// Step 1 of the splat frame (frame_steps.h): which Gaussians the view draws.
+// Steps 1 and 2 of the splat frame (frame_steps.h): which Gaussians the view draws, and how many splats
+// and tile-splat pairs that makes.
+#include <cstddef>
+#include <string>
+
+#include "engine/core/log.h"
 #include "engine/gl/compute_step.h"
 #include "engine/gl/gpu_timers.h"
 #include "passes/frame_steps.h"
@@ -24,6 +29,30 @@ void record_selection(const FrameSteps& steps, std::uint32_t gaussians) {
     engine::gl::run({.program = &steps.storage_program("splat_budget_trim.comp.glsl"),
                      .indirect = &steps.buffers.cluster_list,
                      .barrier = kStepBarrier});
+}
+
+FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms, std::uint32_t gaussians) {
+    FrameBuffers& b = steps.buffers;
+    const std::uint32_t clusters = engine::gl::groups_for(gaussians, SPLAT_PROJECT_WORKGROUP_SIZE);
+    FrameCounts counts;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        uniforms.splat_capacity = b.splat_capacity;
+        b.uniforms.upload(0, sizeof(uniforms), &uniforms);
+        b.clear(steps.lod.splat_budget > 0);
+        record_selection(steps, gaussians);
+        record_scan(steps, clusters);
+        // The frame's one wait: the two counts, before the steps that are sized by them are recorded.
+        engine::gl::memory_barrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        engine::gl::read_buffer(b.counters, offsetof(gpu::FrameCounters, projected), sizeof(std::uint32_t),
+                                &counts.splats);
+        engine::gl::read_buffer(b.cluster_pairs, std::size_t(clusters) * sizeof(std::uint32_t), sizeof(std::uint32_t),
+                                &counts.pairs);
+        if (counts.splats <= b.splat_capacity) return counts;
+        b.ensure_splats(counts.splats);  // the clusters that did not fit wrote nothing: again, with room
+    }
+    engine::log_warning("splat_lod: " + std::to_string(counts.splats) + " projected splats exceed the " +
+                        std::to_string(b.splat_capacity) + " the frame can hold; some are not drawn");
+    return counts;
 }
 
 }  // namespace splat_lod

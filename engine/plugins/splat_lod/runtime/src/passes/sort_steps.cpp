@@ -1,5 +1,5 @@
-// Steps 2–5 of the splat frame (frame_steps.h): the splats' key ranges, their (depth, tile) keys, the
-// sort and each tile's range of keys.
+// Steps 2–5 of the splat frame (frame_steps.h): the clusters' key ranges, the splats' (depth, tile) keys,
+// the sort and each tile's range of keys.
 #include <bit>
 
 #include "engine/gl/compute_step.h"
@@ -8,22 +8,23 @@
 
 namespace splat_lod {
 
-void record_sort(const FrameSteps& steps, std::uint32_t slots) {
+void record_scan(const FrameSteps& steps, std::uint32_t clusters) {
+    // 2. exclusive scan of the clusters' pair counts: each cluster's first key; the total lands at [clusters]
+    engine::gl::GpuTimerScope t(steps.frame.timers, "splat.scan");
+    FrameBuffers& b = steps.buffers;
+    steps.scan.record(
+        {b.cluster_pairs, b.count, 0, clusters, b.cluster_pairs, std::size_t(clusters) * sizeof(std::uint32_t)});
+}
+
+void record_sort(const FrameSteps& steps) {
     using engine::gl::GpuTimerScope;
     FrameBuffers& b = steps.buffers;
-    {  // 2. exclusive scan of tile counts: each splat's key range; the total lands at [slots]
-        GpuTimerScope t(steps.frame.timers, "splat.scan");
-        steps.scan.record(
-            {b.tile_counts, b.count, 0, slots, b.tile_counts, std::size_t(slots) * sizeof(std::uint32_t)});
-    }
     {  // 3. bin: one (depth, tile) key per tile touched, within the key capacity
         GpuTimerScope t(steps.frame.timers, "splat.bin");
         steps.bind_all();
         engine::gl::run({.program = &steps.program("splat_dispatch_args.comp.glsl")});
         const auto& bin = steps.input_program("splat_bin.comp.glsl", [&] { steps.texels.bind_bin(b); });
-        engine::gl::run({.program = &bin,
-                         .groups = {engine::gl::groups_for(slots, SPLAT_BIN_WORKGROUP_SIZE), 1, 1},
-                         .barrier = kStepBarrier});
+        engine::gl::run({.program = &bin, .indirect = &b.cluster_list, .barrier = kStepBarrier});
     }
     {  // 4. stable radix sort by (tile, depth); the key count stays on the GPU
         GpuTimerScope t(steps.frame.timers, "splat.sort");

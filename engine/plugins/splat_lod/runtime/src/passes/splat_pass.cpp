@@ -36,24 +36,25 @@ void SplatPass::execute(engine::FrameContext& frame) {
         low_.ensure(raster.width, raster.height);
     else if (low_.width > 0)
         low_ = LowResImages{};  // back at native resolution: nothing keeps them
-    // Step 1 walks the scene's n Gaussian slots; the frame's buffers and steps 2 on hold its splat slots,
-    // those of the pages that are drawn and not surely outside this view.
+    // Step 1 walks the scene's n Gaussian slots, a cluster of them per workgroup. The dense splat array
+    // starts at what the last frame projected; the keys are sized by what this one needs.
+    buffers_.ensure(engine::gl::groups_for(n, SPLAT_PROJECT_WORKGROUP_SIZE), raster.tile_count());
+    buffers_.ensure_splats(last_counts_.splats);
+    fetch_in_use_ =
+        texels_.resolve(settings.raster_fetch, buffers_.splat_capacity, buffers_.key_capacity, scene_, fetch_in_use_);
     gpu::FrameUniforms uniforms = frame_uniforms(settings, lod_, frame, raster, scene_, 0);
-    scene_.assign_frame_slots(uniforms);
-    const std::uint32_t slots = scene_.slot_count();
-    buffers_.ensure(slots, engine::gl::groups_for(n, SPLAT_PROJECT_WORKGROUP_SIZE), raster.tile_count());
-    fetch_in_use_ = texels_.resolve(settings.raster_fetch, slots, buffers_.key_capacity, scene_, fetch_in_use_);
+    const FrameSteps selection{frame, settings, lod_,          raster, scene_, buffers_,
+                               low_,  texels_,  fetch_in_use_, *scan_, *sort_};
+    last_counts_ = select_splats(selection, uniforms, n);  // 1. a–d: cull, skip, project, the budget; 2. scan
+    buffers_.ensure_keys(last_counts_.pairs);
+    fetch_in_use_ =
+        texels_.resolve(settings.raster_fetch, buffers_.splat_capacity, buffers_.key_capacity, scene_, fetch_in_use_);
     uniforms.key_capacity = buffers_.key_capacity;
-    uniforms.slot_count = slots;
     buffers_.uniforms.upload(0, sizeof(uniforms), &uniforms);
-    buffers_.count.upload(0, sizeof(slots), &slots);
-    buffers_.clear(lod_.splat_budget > 0);
-
     const FrameSteps steps{frame, settings, lod_,          raster, scene_, buffers_,
                            low_,  texels_,  fetch_in_use_, *scan_, *sort_};
-    record_selection(steps, n);  // 1. a–d: cull, skip, project, the splat budget
-    record_sort(steps, slots);   // 2–5. scan, bin, sort, tile ranges
-    record_raster(steps);        // 6. raster; 7. upscale below render scale 1
+    record_sort(steps);    // 3–5. bin, sort, tile ranges
+    record_raster(steps);  // 6. raster; 7. upscale below render scale 1
     engine::gl::end_steps();
 
     FrameStatistics::Frame facts;
@@ -63,6 +64,10 @@ void SplatPass::execute(engine::FrameContext& frame) {
     facts.size_threshold_px = lod_.rule.size_threshold_px;
     facts.resident_bytes = scene_.resident_bytes() + frame_bytes();
     statistics_.record(facts, buffers_, frame.bus);
+}
+
+std::uint64_t SplatPass::frame_bytes() const {
+    return buffers_.bytes() + low_.bytes() + (scan_ ? scan_->bytes() : 0) + (sort_ ? sort_->bytes() : 0);
 }
 
 // The readback waits for each copy, so reading with `wait` blocks until every frame's is done.

@@ -14,6 +14,7 @@
 #include "gpu/gpu_scene.h"
 #include "passes/frame_buffers.h"
 #include "passes/frame_statistics.h"
+#include "passes/frame_steps.h"
 #include "passes/texel_views.h"
 #include "splat_lod/core/upscale.h"
 #include "splat_lod/splat_renderer.h"
@@ -43,8 +44,10 @@ public:
     // Blocks until the statistics of every frame drawn so far are read; for tools and tests.
     void wait_for_statistics(engine::MessageBus& bus);
     std::uint32_t key_capacity() const { return buffers_.key_capacity; }
-    // GPU bytes of the per-frame buffers and the low-resolution images.
-    std::uint64_t frame_bytes() const { return buffers_.bytes() + low_.bytes(); }
+    // GPU bytes of the per-frame buffers, the scan's and the sort's own, and the low-resolution images.
+    std::uint64_t frame_bytes() const;
+    // Splats the latest frame projected (the dense array's need) and the tile-splat pairs it sorted.
+    FrameCounts last_frame_counts() const { return last_counts_; }
     RasterFetch raster_fetch_in_use() const { return fetch_in_use_; }
     // The resident Gaussians (which clouds, where, what the last frame uploaded); for tools and tests.
     const gpu::GpuScene& scene() const { return scene_; }
@@ -65,6 +68,7 @@ private:
     std::unique_ptr<engine::gl::PrefixScan> scan_;
     std::unique_ptr<engine::gl::RadixSort> sort_;
     RasterFetch fetch_in_use_ = RasterFetch::automatic;
+    FrameCounts last_counts_;
 };
 
 // The plugin's pass in a running engine (nullptr when the plugin is not started).

@@ -10,7 +10,7 @@
 
 namespace splat_lod {
 
-RasterFetch TexelViews::resolve(RasterFetch wanted, std::uint32_t gaussians, std::uint32_t key_capacity,
+RasterFetch TexelViews::resolve(RasterFetch wanted, std::uint32_t splat_capacity, std::uint32_t key_capacity,
                                 const gpu::GpuScene& scene, RasterFetch in_use) {
     if (!driver_) driver_ = engine::gl::driver_limits();
     RasterFetch fetch = wanted;
@@ -18,7 +18,7 @@ RasterFetch TexelViews::resolve(RasterFetch wanted, std::uint32_t gaussians, std
     // Compact records and SH are read a word a texel, full ones a vec4 and a coefficient (12 bytes).
     const bool compact = scene.storage() == GpuStorage::compact;
     const std::uint64_t needed =
-        std::max({std::uint64_t(gaussians) * 4, std::uint64_t(key_capacity),
+        std::max({std::uint64_t(splat_capacity) * 3, std::uint64_t(key_capacity),
                   std::uint64_t(scene.gaussians().size() / (compact ? 4 : 16)),
                   std::uint64_t(scene.sh().size() / (compact ? 4 : 12)), std::uint64_t(scene.instances().size() / 16)});
     const auto limit = static_cast<std::uint64_t>(driver_->max_texture_buffer_texels);
@@ -49,8 +49,6 @@ void TexelViews::bind_project(const gpu::GpuScene& scene) {
 void TexelViews::bind_bin(const FrameBuffers& buffers) {
     engine::gl::bind_buffer_texture(projected_words_, "splat projected words", GL_RGBA32UI, buffers.projected,
                                     SPLAT_TEXTURE_PROJECTED_WORDS);
-    engine::gl::bind_buffer_texture(key_offset_texels_, "splat key offset texels", GL_R32UI, buffers.tile_counts,
-                                    SPLAT_TEXTURE_KEY_OFFSETS);
     engine::gl::memory_barrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
 }
 
