@@ -5,7 +5,7 @@
 // the number of set bits below its lane, and rounds are handled in order. No subgroup ops needed.
 #include "radix_sort_common.glsl"
 
-layout(std430, binding = SORT_BINDING_KEYS_OUT) writeonly buffer SortKeysOut { uvec2 keys_out[]; };
+layout(std430, binding = SORT_BINDING_KEYS_OUT) writeonly buffer SortKeysOut { SORT_KEY_TYPE keys_out[]; };
 layout(std430, binding = SORT_BINDING_VALUES_OUT) writeonly buffer SortValuesOut { uint values_out[]; };
 layout(std430, binding = SORT_BINDING_HISTOGRAM) readonly buffer SortHistogram { uint digit_offsets[]; };
 
@@ -61,7 +61,7 @@ void main() {
         const uint rank = rank_in_round(masks, total);
         const uint destination = s_digit_next[digit] + rank;
         if (valid) {
-            keys_out[destination] = key;
+            store_key(keys_out, destination, key);
             values_out[destination] = load_value(i);
         }
         barrier();

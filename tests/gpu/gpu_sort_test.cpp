@@ -74,18 +74,21 @@ struct SortRun {
     std::uint32_t count = 0;      // what the GPU count buffer says
     std::uint32_t max_count = 0;  // the capacity the CPU knows
     std::uint32_t hi_bits = 0;
-    bool texel_reads = false;  // SortJob::texel_reads
+    bool texel_reads = false;     // SortJob::texel_reads
+    std::uint32_t key_words = 2;  // SortJob::key_words (1: the low words alone, hi_bits 0)
 };
 
 // Sorts `elements` (max_count of them) on the GPU with the count in a GPU buffer at byte 8.
 std::vector<Element> gpu_sort(RadixSort& sort, const std::vector<Element>& elements, const SortRun& run) {
     std::vector<glm::uvec2> keys(elements.size());
-    std::vector<std::uint32_t> values(elements.size());
+    std::vector<std::uint32_t> words(elements.size()), values(elements.size());
     for (std::size_t i = 0; i < elements.size(); ++i) {
         keys[i] = elements[i].key;
+        words[i] = elements[i].key.x;
         values[i] = elements[i].value;
     }
-    Buffer key_buffer = make_buffer(keys, "test keys");
+    const bool one_word = run.key_words == 1;
+    Buffer key_buffer = one_word ? make_buffer(words, "test keys") : make_buffer(keys, "test keys");
     Buffer value_buffer = make_buffer(values, "test values");
     const Buffer count_buffer = make_buffer(std::vector<std::uint32_t>{7u, 7u, run.count, 7u}, "test count");
     sort.record({.keys = key_buffer,
@@ -94,8 +97,14 @@ std::vector<Element> gpu_sort(RadixSort& sort, const std::vector<Element>& eleme
                  .count_offset = 8,
                  .max_count = run.max_count,
                  .hi_bits = run.hi_bits,
+                 .key_words = run.key_words,
                  .texel_reads = run.texel_reads});
-    keys = read_buffer<glm::uvec2>(key_buffer, elements.size());
+    if (one_word) {
+        words = read_buffer<std::uint32_t>(key_buffer, elements.size());
+        for (std::size_t i = 0; i < elements.size(); ++i) keys[i] = {words[i], 0u};
+    } else {
+        keys = read_buffer<glm::uvec2>(key_buffer, elements.size());
+    }
     values = read_buffer<std::uint32_t>(value_buffer, elements.size());
     std::vector<Element> sorted(elements.size());
     for (std::size_t i = 0; i < elements.size(); ++i) sorted[i] = {keys[i], values[i]};
@@ -157,6 +166,14 @@ TEST_F(GpuSortTest, SortHandlesEveryHighBitWidth) {
     for (const std::uint32_t hi_bits : {0u, 1u, 8u, 9u, 12u, 16u, 24u, 32u}) expect_sorted(20000, hi_bits, 0, hi_bits);
 }
 
+// One-word keys sort like two-word keys whose high word is 0, in half the bytes.
+TEST_F(GpuSortTest, OneWordKeysSortLikeTheirLowWord) {
+    for (const std::uint32_t count : {0u, 1u, 257u, std::uint32_t{SORT_TILE_SIZE} + 1, 70001u})
+        expect_sorted(random_elements(count, 0, 0, count), {count, count, 0, false, 1});
+    expect_sorted(random_elements(50000, 0, 7, 9), {50000, 50000, 0, false, 1});    // long runs of equal keys
+    expect_sorted(random_elements(30000, 0, 40, 10), {20000, 30000, 0, false, 1});  // the rest untouched
+}
+
 TEST_F(GpuSortTest, SortHandlesAllDepthBitsSet) {
     auto elements = random_elements(10000, 16, 0, 3);
     for (std::size_t i = 0; i < elements.size(); i += 3) elements[i].key.x = 0xffffffffu;
@@ -210,19 +227,24 @@ TEST_F(GpuSortTest, SortRejectsInconsistentJobs) {
     Buffer keys = make_buffer(std::vector<glm::uvec2>(100), "test keys");
     Buffer values = make_buffer(std::vector<std::uint32_t>(100), "test values");
     const Buffer count = make_buffer(std::vector<std::uint32_t>{100u, 0u}, "test count");
-    const auto job = [&](std::size_t count_offset, std::uint32_t max_count, std::uint32_t hi_bits) {
+    const auto job = [&](std::size_t count_offset, std::uint32_t max_count, std::uint32_t hi_bits,
+                         std::uint32_t key_words = 2) {
         sort.record({.keys = keys,
                      .values = values,
                      .count_buffer = count,
                      .count_offset = count_offset,
                      .max_count = max_count,
-                     .hi_bits = hi_bits});
+                     .hi_bits = hi_bits,
+                     .key_words = key_words});
     };
-    EXPECT_THROW(job(2, 100, 8), engine::Error);   // misaligned count
-    EXPECT_THROW(job(8, 100, 8), engine::Error);   // count outside its buffer
-    EXPECT_THROW(job(0, 101, 8), engine::Error);   // buffers smaller than max_count
-    EXPECT_THROW(job(0, 100, 33), engine::Error);  // more high bits than a word has
+    EXPECT_THROW(job(2, 100, 8), engine::Error);     // misaligned count
+    EXPECT_THROW(job(8, 100, 8), engine::Error);     // count outside its buffer
+    EXPECT_THROW(job(0, 101, 8), engine::Error);     // buffers smaller than max_count
+    EXPECT_THROW(job(0, 100, 33), engine::Error);    // more high bits than a word has
+    EXPECT_THROW(job(0, 100, 8, 1), engine::Error);  // high bits with one-word keys
+    EXPECT_THROW(job(0, 100, 0, 3), engine::Error);  // keys of three words
     EXPECT_NO_THROW(job(4, 100, 32));
+    EXPECT_NO_THROW(job(4, 100, 0, 1));
 }
 
 // ---- Prefix scan ----

@@ -41,9 +41,13 @@ void check_job(const SortJob& job) {
     if (job.max_count > RadixSort::max_sort_count())
         fail("max_count " + std::to_string(job.max_count) + " exceeds the limit " +
              std::to_string(RadixSort::max_sort_count()));
-    if (!job.keys || job.keys.size() < std::size_t{job.max_count} * 8)
+    if (job.key_words != 1 && job.key_words != 2)
+        fail("key_words " + std::to_string(job.key_words) + " is neither 1 nor 2");
+    if (job.key_words == 1 && job.hi_bits != 0)
+        fail("hi_bits " + std::to_string(job.hi_bits) + " with one-word keys, which have no high word");
+    if (!job.keys || job.keys.size() < std::size_t{job.max_count} * 4 * job.key_words)
         fail("keys buffer of " + std::to_string(job.keys.size()) + " bytes is smaller than max_count " +
-             std::to_string(job.max_count) + " uvec2 keys");
+             std::to_string(job.max_count) + (job.key_words == 1 ? " uint keys" : " uvec2 keys"));
     if (!job.values || job.values.size() < std::size_t{job.max_count} * 4)
         fail("values buffer of " + std::to_string(job.values.size()) + " bytes is smaller than max_count " +
              std::to_string(job.max_count) + " uint values");
@@ -77,7 +81,8 @@ void RadixSort::record(const SortJob& job, GpuTimers* timers) {
     check_job(job);
     const OptionalSpan total_span(timers, "radix_sort");
     texel_reads_ = job.texel_reads;
-    prepare_buffers(job.max_count);
+    key_words_ = job.key_words;
+    prepare_buffers(job.max_count, job.key_words);
     // The keys, values and count were written by earlier passes.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     {
@@ -94,18 +99,17 @@ void RadixSort::record(const SortJob& job, GpuTimers* timers) {
     glMemoryBarrier(results_visible);
 }
 
-// Internal buffers follow the job's capacity: made anew at its size when smaller than it or more than
-// four times larger.
-void RadixSort::prepare_buffers(std::uint32_t max_count) {
+// Internal buffers follow the job's capacity: made anew at its size when it changes (whole 16 bytes).
+void RadixSort::prepare_buffers(std::uint32_t max_count, std::uint32_t key_words) {
     max_count_ = max_count;
     const auto fit = [](Buffer& buffer, std::size_t bytes, const char* label) {
-        if (buffer && buffer.size() >= bytes && buffer.size() / 4 <= bytes) return;
+        if (buffer && buffer.size() >= bytes && buffer.size() < bytes + 16) return;
         buffer = Buffer(NoCreate);
         buffer.ensure_size(bytes, label);
     };
     params_.ensure_size(sizeof(SortParams), "radix_sort params");
     fit(histogram_, std::size_t{SORT_RADIX_SIZE} * tiles_for(max_count) * 4, "radix_sort histogram");
-    fit(keys_swap_, std::size_t{max_count} * 8, "radix_sort keys swap");
+    fit(keys_swap_, std::size_t{max_count} * 4 * key_words, "radix_sort keys swap");
     fit(values_swap_, std::size_t{max_count} * 4, "radix_sort values swap");
 }
 
@@ -180,12 +184,14 @@ void RadixSort::record_copy(const Pair& in, const Pair& out) {
 const Program& RadixSort::program(const char* file) const {
     std::vector<std::string> defines;
     if (texel_reads_) defines.push_back("SORT_TEXEL_READS");
+    if (key_words_ == 1) defines.push_back("SORT_ONE_WORD_KEYS");
     return shaders_.program({std::string("engine/") + file}, defines);
 }
 
 void RadixSort::bind_pairs(const Pair& in, const Pair& out) {
     if (texel_reads_) {
-        bind_buffer_texture(key_texels_, "radix_sort key texels", GL_RG32UI, in.keys, SORT_TEXTURE_KEYS_IN);
+        bind_buffer_texture(key_texels_, "radix_sort key texels", key_words_ == 1 ? GL_R32UI : GL_RG32UI, in.keys,
+                            SORT_TEXTURE_KEYS_IN);
         bind_buffer_texture(value_texels_, "radix_sort value texels", GL_R32UI, in.values, SORT_TEXTURE_VALUES_IN);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
     }

@@ -1,5 +1,5 @@
 #pragma once
-// GPU stable LSD radix sort of 64-bit (tile, depth) keys with uint values. The element count
+// GPU stable LSD radix sort of 64-bit (tile, depth) keys, or 32-bit keys, with uint values. The element count
 // lives in a GPU buffer (written by an earlier pass, never read back by the CPU inside a frame);
 // every dispatch is indirect, sized on the GPU from that count, so work follows the real count
 // while the CPU only knows the capacity.
@@ -23,6 +23,9 @@ struct SortJob {
     std::uint32_t max_count = 0;   // capacity; a larger count on the GPU is clamped
     // Significant bits of the high word, 0..32: ceil(log2(tile_count)). Higher bits are ignored.
     std::uint32_t hi_bits = 0;
+    // 2: the uvec2 keys above; 1: one uint per key (the low word alone, all 32 bits sorted; hi_bits
+    // must be 0), half the bytes of the keys and of the sort's own copy of them.
+    std::uint32_t key_words = 2;
     // Read the input keys and values through buffer textures instead of storage loads (faster on CPU
     // drivers; the caller checks that max_count texels fit the driver's buffer textures). Same result.
     bool texel_reads = false;
@@ -43,7 +46,7 @@ public:
     // The largest max_count: indirect dispatches are limited to 65535 workgroups per dimension.
     static std::uint32_t max_sort_count();
     // GPU bytes of its own buffers (the ping-pong partners, histograms, its scan's), which follow the
-    // latest job's max_count: made anew when smaller or more than four times larger.
+    // latest job's max_count: made anew at its size when it changes.
     std::uint64_t bytes() const;
     // Digit passes for `hi_bits`: all 32 low bits plus hi_bits, SORT_RADIX_BITS at a time.
     static std::uint32_t pass_count(std::uint32_t hi_bits);
@@ -58,7 +61,7 @@ private:
         const Buffer& keys;
         const Buffer& values;
     };
-    void prepare_buffers(std::uint32_t max_count);
+    void prepare_buffers(std::uint32_t max_count, std::uint32_t key_words);
     void record_arguments(const SortJob& job);
     void record_pass(const SortJob& job, std::uint32_t index, GpuTimers* timers);
     void record_histogram(const Pass& pass, const Pair& in);
@@ -71,7 +74,8 @@ private:
     ShaderLibrary& shaders_;
     PrefixScan scan_;
     std::uint32_t max_count_ = 0;
-    bool texel_reads_ = false;  // the current job's SortJob::texel_reads
+    bool texel_reads_ = false;     // the current job's SortJob::texel_reads
+    std::uint32_t key_words_ = 2;  // and its SortJob::key_words
     Texture key_texels_{NoCreate}, value_texels_{NoCreate};
     Buffer params_{NoCreate};       // SortParams, GPU-written
     Buffer histogram_{NoCreate};    // per-tile digit counts, then offsets

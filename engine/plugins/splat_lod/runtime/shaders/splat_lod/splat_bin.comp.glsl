@@ -1,7 +1,7 @@
 // Step 3, bin: one workgroup per cluster step 1b projected, one invocation per splat it wrote. Every
 // splat writes one sort key per tile of its footprint (common_splat_tiles.glsl): the cluster's keys
-// start where the scan over the clusters put them, and its splats follow one another in their
-// Gaussians' order, so every key's position is the same from run to run. Pairs beyond the key capacity
+// start where the scan over the clusters put them, and its splats' keys follow in their Gaussians' order
+// from the first key step 1b (or 1d) gave each, so every key's position is the same from run to run. Pairs beyond the key capacity
 // are dropped and the frame is flagged (splat_dispatch_args), never written out of bounds.
 //
 // Keys (docs/algorithms.md §1, "Sort keys"): with frame.key_depth_bits == 0, uvec2(depth as float
@@ -18,7 +18,11 @@ layout(std430, binding = SPLAT_BINDING_PROJECTED) readonly buffer Projected { Pr
 layout(std430, binding = SPLAT_BINDING_CLUSTER_PAIRS) readonly buffer ClusterKeys { uint cluster_keys[]; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_SPLATS) readonly buffer ClusterSplats { uvec2 cluster_splats[]; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
+#ifdef SPLAT_ONE_WORD_KEYS  // frame.key_depth_bits > 0
+layout(std430, binding = SPLAT_BINDING_KEYS) writeonly buffer Keys { uint keys[]; };
+#else
 layout(std430, binding = SPLAT_BINDING_KEYS) writeonly buffer Keys { uvec2 keys[]; };
+#endif
 layout(std430, binding = SPLAT_BINDING_VALUES) writeonly buffer Values { uint values[]; };
 layout(std430, binding = SPLAT_BINDING_STATS) readonly buffer Stats { FrameCounters stats; };
 
@@ -33,8 +37,10 @@ ProjectedSplat load_projected(uint index) {
                           uintBitsToFloat(texelFetch(projected_words, b + 1)),
                           uintBitsToFloat(texelFetch(projected_words, b + 2)));
 }
+uint load_key_word(uint index) { return texelFetch(projected_words, int(index) * 3 + 1).w; }
 #else
 ProjectedSplat load_projected(uint index) { return projected[index]; }
+uint load_key_word(uint index) { return floatBitsToUint(projected[index].conic.w); }
 #endif
 
 uint g_begin, g_end, g_next, g_index;
@@ -42,8 +48,11 @@ uvec2 g_depth_key;  // x: the depth part of the key, y: its shift into the key (
 
 void emit(uint tile) {
     if (g_next >= g_end || g_next >= frame.key_capacity) return;
-    bool wide = frame.key_depth_bits == 0u;
-    keys[g_next] = wide ? uvec2(g_depth_key.x, tile) : uvec2((tile << g_depth_key.y) | g_depth_key.x, 0u);
+#ifdef SPLAT_ONE_WORD_KEYS
+    keys[g_next] = (tile << g_depth_key.y) | g_depth_key.x;
+#else
+    keys[g_next] = uvec2(g_depth_key.x, tile);
+#endif
     values[g_next] = g_index;
     ++g_next;
 }
@@ -57,37 +66,27 @@ uvec2 depth_key(float depth) {
     return uvec2((bits - lo) >> uint(shift), d);
 }
 
-shared uint s_keys[SPLAT_PROJECT_WORKGROUP_SIZE];  // inclusive prefix of the splats' key counts
+// The first key within its cluster of the splat at `index` (steps 1b and 1d, ProjectedSplat::conic.w).
+uint first_key(uint index) {
+    return load_key_word(index) & ~SPLAT_BUDGET_PACK_FLAG;
+}
 
 void main() {
     uint lid = gl_LocalInvocationIndex;
     uint cluster = cluster_list.ids[gl_WorkGroupID.x];
     uvec2 splats = cluster_splats[cluster];
-    if (splats.y == 0u) return;  // the whole workgroup
-    ProjectedSplat s;
-    uint tiles = 0u;
-    if (lid < splats.y) {
-        s = load_projected(splats.x + lid);
-        tiles = splat_tile_count(s.mean_depth.xy, s.conic, s.mean_depth.w);
-    }
-    s_keys[lid] = tiles;
-    barrier();
-    for (uint d = 1u; d < SPLAT_PROJECT_WORKGROUP_SIZE; d <<= 1u) {
-        uint before = lid >= d ? s_keys[lid - d] : 0u;
-        barrier();
-        s_keys[lid] += before;
-        barrier();
-    }
     if (lid >= splats.y) return;
-    // The cluster's range ends where the next cluster's begins; its last splat fills what is left.
-    uint cluster_end = cluster_keys[cluster + 1u];
-    g_begin = min(cluster_keys[cluster] + s_keys[lid] - tiles, cluster_end);
-    g_end = lid + 1u == splats.y ? cluster_end : min(g_begin + tiles, cluster_end);
+    ProjectedSplat s = load_projected(splats.x + lid);
+    // The splat's keys end where the next splat's begin; the cluster's last fills what is left of the
+    // cluster's range, which ends where the next cluster's begins.
+    uint cluster_first = cluster_keys[cluster], cluster_end = cluster_keys[cluster + 1u];
+    g_begin = min(cluster_first + first_key(splats.x + lid), cluster_end);
+    g_end = lid + 1u == splats.y ? cluster_end : min(cluster_first + first_key(splats.x + lid + 1u), cluster_end);
     g_next = g_begin;
     g_index = splats.x + lid;
     g_depth_key = depth_key(s.mean_depth.z);
     TileFootprint f = tile_footprint(s.mean_depth.xy, s.conic, s.mean_depth.w);
-    for (uint ty = f.rect.y; tiles > 0u && ty < f.rect.w; ++ty) {
+    for (uint ty = f.rect.y; g_begin < g_end && ty < f.rect.w; ++ty) {
         uvec2 span = frame.exact_tiles != 0u ? tile_row_span(f, ty) : f.rect.xz;
         for (uint tx = span.x; tx < span.y; ++tx) emit(ty * frame.tiles.x + tx);
     }

@@ -2,8 +2,8 @@
 // dispatch), one invocation per splat it wrote. A splat stays only if it is selected at the β bin
 // step 1c chose and its coverage is not below the cut; the others get opacity 0, which gives them no
 // tiles, so no later pass sees them. A kept splat's opacity is scaled by its LOD weight at coverage/β
-// (smooth transitions), and its tiles are counted again at that opacity, so that the cluster's pair
-// count (SPLAT_BINDING_CLUSTER_PAIRS) is what step 3 writes. Counts the drawn Gaussians per level
+// (smooth transitions), and its tiles are counted again at that opacity: the splats' first keys within
+// the cluster and the cluster's pair count (SPLAT_BINDING_CLUSTER_PAIRS) are what step 3 writes. Counts the drawn Gaussians per level
 // (step 1b does not, under a budget).
 #include "common_splat_bindings.glsl"
 
@@ -18,8 +18,7 @@ layout(std430, binding = SPLAT_BINDING_BUDGET) readonly buffer Budget { SplatBud
 #include "common_splat_storage.glsl"
 #include "common_splat_lod.glsl"
 #include "common_splat_tiles.glsl"
-
-shared uint s_tiles;
+#include "common_splat_cluster_scan.glsl"
 
 // The splat's tiles at the chosen β; 0 when it is not drawn (its opacity then set to 0).
 uint trim(uint cluster, uint entry) {
@@ -49,11 +48,13 @@ uint trim(uint cluster, uint entry) {
 
 void main() {
     uint lid = gl_LocalInvocationIndex;
-    if (lid == 0u) s_tiles = 0u;
-    barrier();
     uint cluster = cluster_list.ids[gl_WorkGroupID.x];
     uvec2 splats = cluster_splats[cluster];
-    if (lid < splats.y) atomicAdd(s_tiles, trim(cluster, splats.x + lid));
+    if (splats.y == 0u) return;  // the whole workgroup
+    uint tiles = lid < splats.y ? trim(cluster, splats.x + lid) : 0u;
+    scan_cluster(lid, uvec2(0u, tiles));
+    if (lid == 0u) cluster_pairs[cluster] = s_scan_total.y;
     barrier();
-    if (lid == 0u) cluster_pairs[cluster] = s_tiles;
+    if (lid < splats.y)
+        projected[splats.x + lid].conic.w = uintBitsToFloat(SPLAT_BUDGET_PACK_FLAG | cluster_prefix(lid).y);
 }

@@ -113,9 +113,10 @@ using mat4 = glm::mat4;
 #define SPLAT_BUDGET_BINS_PER_OCTAVE 8.0
 #define SPLAT_COVERAGE_BINS 256         // coverage 2^(k/8 − 8) px: 1/256 px … ≈ 2^24 px
 #define SPLAT_COVERAGE_BIN_OFFSET 64.0  // 8 octaves below 1 px
-// Under a budget step 1b stores a splat's bins in ProjectedSplat::conic.w as float bits: first β bin
-// (bits 0–7), last β bin (8–15), the Gaussian's index within its cluster (16–23), level − 1 (24–25),
-// and bit 30 set, which keeps the value a normal float (no denormal flushing can change it).
+// ProjectedSplat::conic.w holds, as float bits with bit 30 set (which keeps the value a normal float:
+// no denormal flushing can change it), the splat's first key within its cluster in bits 0–29, for step 3.
+// Under a budget step 1b stores the splat's bins there instead, which the trim (step 1d) replaces: first
+// β bin (bits 0–7), last β bin (8–15), the Gaussian's index within its cluster (16–23), level − 1 (24–25).
 #define SPLAT_BUDGET_PACK_FLAG 0x40000000u
 
 // GpuInstance::info.z: the SH degree in the low byte; SPLAT_INSTANCE_HIDDEN set for a component that is
@@ -173,7 +174,7 @@ SPLAT_LOD_STRUCT(GpuCluster) {
 // computes them from mean, conic and opacity (common_splat_tiles.glsl).
 SPLAT_LOD_STRUCT(ProjectedSplat) {
     vec4 mean_depth;  // x, y image position (top-left origin), z view depth, w opacity
-    vec4 conic;       // inverse of the dilated 2D covariance: xx, xy, yy; w under a splat budget (below)
+    vec4 conic;       // inverse of the dilated 2D covariance: xx, xy, yy; w its first key (below)
     vec4 color;       // rgb (SH + 0.5, clamped at 0), w the coverage S (output px) of the selection
 };
 

@@ -1,8 +1,9 @@
 // Step 1b, cull + project + colour (docs/algorithms.md §1): one workgroup per cluster step 1a kept, one
 // invocation per Gaussian. The cluster's survivors go to one run of the dense splat array, reserved
-// with a single atomic, in their Gaussians' order; the cluster records that run and the number of
-// raster tiles (frame.tile_size px a side) its splats' footprints touch (common_splat_tiles.glsl). A
-// scan over the clusters then gives every cluster its range of keys. The frame's depth range
+// with a single atomic, in their Gaussians' order, each with its first key within the cluster; the
+// cluster records that run and the number of raster tiles (frame.tile_size px a side) its splats'
+// footprints touch (common_splat_tiles.glsl). A scan over the clusters then gives every cluster its
+// range of keys. The frame's depth range
 // (FrameCounters::depth_range) sizes the sort keys' depth bits in step 3.
 #include "common_splat_bindings.glsl"
 
@@ -33,6 +34,7 @@ GpuInstance load_instance(uint index) { return instances[index]; }
 #include "common_splat_sh.glsl"
 #include "common_splat_lod.glsl"
 #include "common_splat_tiles.glsl"
+#include "common_splat_cluster_scan.glsl"
 
 // The view transform into a camera frame whose y points down the image and z forward (so that
 // the 3DGS Jacobian applies as written); F = diag(1, −1, −1).
@@ -145,42 +147,29 @@ uint project(uint index, out ProjectedSplat p) {
     return tiles;
 }
 
-shared uint s_visible[SPLAT_PROJECT_WORKGROUP_SIZE / 32];  // a bit per invocation whose splat is visible
-shared uint s_tiles;                                      // the cluster's tiles
-shared uint s_first;                                      // its first entry in the dense array
-
-// The splats of the invocations before this one in the workgroup (bit order of s_visible).
-uint visible_before(uint lid) {
-    uint rank = bitCount(s_visible[lid / 32u] & ((1u << (lid % 32u)) - 1u));
-    for (uint w = 0u; w < lid / 32u; ++w) rank += bitCount(s_visible[w]);
-    return rank;
-}
+shared uint s_first;  // the cluster's first entry in the dense array
 
 void main() {
     uint lid = gl_LocalInvocationIndex;
-    if (lid < SPLAT_PROJECT_WORKGROUP_SIZE / 32) s_visible[lid] = 0u;
-    if (lid == 0u) s_tiles = 0u;
-    barrier();
     uint cluster = cluster_list.ids[gl_WorkGroupID.x];
     uint index = cluster * SPLAT_PROJECT_WORKGROUP_SIZE + lid;
     ProjectedSplat p;
     uint tiles = index < frame.gaussian_count ? project(index, p) : 0u;
-    if (tiles > 0u) {
-        atomicOr(s_visible[lid / 32u], 1u << (lid % 32u));
-        atomicAdd(s_tiles, tiles);
-    }
-    barrier();
+    // Each visible splat's place among the cluster's and its first key within the cluster.
+    scan_cluster(lid, uvec2(tiles > 0u ? 1u : 0u, tiles));
     // One reservation for the cluster; a cluster that does not fit writes nothing (the CPU sees the
     // count above the capacity and runs the frame's steps 1–2 again with a larger array).
     if (lid == 0u) {
-        uint count = 0u;
-        for (uint w = 0u; w < SPLAT_PROJECT_WORKGROUP_SIZE / 32; ++w) count += bitCount(s_visible[w]);
+        uint count = s_scan_total.x;
         uint first = count > 0u ? atomicAdd(stats.projected, count) : 0u;
         bool fits = first + count <= frame.splat_capacity && first + count >= first;
         cluster_splats[cluster] = uvec2(first, fits ? count : 0u);
-        cluster_pairs[cluster] = fits ? s_tiles : 0u;
+        cluster_pairs[cluster] = fits ? s_scan_total.y : 0u;
         s_first = fits ? first : 0xFFFFFFFFu;
     }
     barrier();
-    if (tiles > 0u && s_first != 0xFFFFFFFFu) projected[s_first + visible_before(lid)] = p;
+    if (tiles == 0u || s_first == 0xFFFFFFFFu) return;
+    uvec2 before = cluster_prefix(lid);
+    if (frame.splat_budget == 0u) p.conic.w = uintBitsToFloat(SPLAT_BUDGET_PACK_FLAG | before.y);
+    projected[s_first + before.x] = p;
 }

@@ -222,7 +222,16 @@ void GpuScene::grow(std::uint32_t capacity) {
     capacity_ = capacity;
 }
 
-// The lowest free page, else a new one at the end (growing by half again when full).
+// Room up to `end` Gaussian slots: the buffers grow to it or by a sixteenth, whichever is more (each growth
+// is a copy on the GPU, and what the buffers hold beyond the pages is memory no view can use).
+void GpuScene::grow_for(std::uint64_t end) {
+    if (end <= capacity_ || end > std::numeric_limits<std::uint32_t>::max() / 2) return;
+    const std::uint64_t wanted =
+        std::max<std::uint64_t>(end, (std::uint64_t(capacity_) + capacity_ / 16) / kCluster * kCluster);
+    grow(static_cast<std::uint32_t>(std::min<std::uint64_t>(wanted, std::numeric_limits<std::uint32_t>::max() / 2)));
+}
+
+// The lowest free page, else a new one at the end.
 std::uint32_t GpuScene::allocate_page() {
     if (!free_.empty()) {
         const std::uint32_t page = free_.back();
@@ -232,11 +241,7 @@ std::uint32_t GpuScene::allocate_page() {
     const std::uint64_t end = std::uint64_t(gaussian_count_) + kCluster;
     if (end > std::numeric_limits<std::uint32_t>::max() / 2)
         engine::fail("splat_lod: " + std::to_string(end) + " Gaussians exceed what one scene can draw");
-    if (end > capacity_) {
-        const std::uint64_t wanted =
-            std::max<std::uint64_t>(end, (std::uint64_t(capacity_) + capacity_ / 2) / kCluster * kCluster);
-        grow(static_cast<std::uint32_t>(wanted));
-    }
+    grow_for(end);
     gaussian_count_ = static_cast<std::uint32_t>(end);
     return static_cast<std::uint32_t>(end / kCluster - 1);
 }
@@ -265,6 +270,8 @@ void GpuScene::place(Slot& slot) {
     const auto instance = static_cast<std::uint32_t>(&slot - slots_.data());
     const std::size_t pages = std::max<std::size_t>((cloud.size() + kCluster - 1) / kCluster, 1);
     slot.pages.clear();
+    // The pages beyond the free ones come at the end: one growth for all of them.
+    grow_for(std::uint64_t(gaussian_count_) + (pages - std::min(pages, free_.size())) * kCluster);
     for (std::size_t j = 0; j < pages; ++j) slot.pages.push_back(allocate_page());
     if (storage_ == GpuStorage::compact) {
         std::vector<std::uint32_t> records, sh;

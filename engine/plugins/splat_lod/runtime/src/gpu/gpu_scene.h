@@ -104,6 +104,7 @@ private:
     // keeps its cluster records.
     void upload_pages(Slot& slot, const void* records, const void* sh, const void* codecs);
     std::uint32_t allocate_page();
+    void grow_for(std::uint64_t end);
     void release(Slot& slot);
     void place(Slot& slot);
     void grow(std::uint32_t capacity);

@@ -2,6 +2,7 @@
 #include "passes/frame_buffers.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "engine/gl/compute_step.h"
@@ -13,6 +14,10 @@ namespace {
 
 constexpr std::uint32_t minimum_splat_capacity = 1u << 12;
 constexpr std::uint32_t minimum_key_capacity = 1u << 14;
+// Room beyond the need: a frame that projects more splats than the array holds runs steps 1–2 again,
+// one that needs more keys only allocates them, so the splats get more.
+constexpr double splat_spare = 0.25;
+constexpr double key_spare = 1.0 / 16.0;
 
 engine::gl::Buffer fixed_buffer(const char* label, std::size_t bytes) {
     engine::gl::Buffer buffer(label);
@@ -20,12 +25,13 @@ engine::gl::Buffer fixed_buffer(const char* label, std::size_t bytes) {
     return buffer;
 }
 
-// A capacity for `need` elements: `capacity` while it holds them and a quarter of it would not, else
-// the need and an eighth, at least `minimum` and at most `limit`.
-std::uint32_t follow(std::uint32_t capacity, std::uint32_t need, std::uint32_t minimum, std::uint32_t limit) {
-    if (capacity >= need && (capacity / 4 <= need || capacity <= minimum)) return capacity;
-    const std::uint64_t wanted = std::max<std::uint64_t>(minimum, std::uint64_t(need) + need / 8);
-    return static_cast<std::uint32_t>(std::min<std::uint64_t>(wanted, limit));
+// A capacity for `need` elements: `capacity` while it holds them and three quarters of it would not,
+// else the need and `spare` of it more, at least `minimum` and at most `limit`.
+std::uint32_t follow(std::uint32_t capacity, std::uint32_t need, double spare, std::uint32_t minimum,
+                     std::uint32_t limit) {
+    if (capacity >= need && (need >= capacity / 4 * 3 || capacity <= minimum)) return capacity;
+    const double wanted = std::max<double>(minimum, std::ceil(need * (1.0 + spare)));
+    return static_cast<std::uint32_t>(std::min<double>(wanted, limit));
 }
 
 }  // namespace
@@ -46,23 +52,24 @@ void FrameBuffers::ensure(std::uint32_t clusters, std::uint32_t tile_count) {
 }
 
 void FrameBuffers::ensure_splats(std::uint32_t splats) {
-    const std::uint32_t capacity =
-        follow(splat_capacity, splats, minimum_splat_capacity, std::numeric_limits<std::uint32_t>::max() / 64);
+    const std::uint32_t capacity = follow(splat_capacity, splats, splat_spare, minimum_splat_capacity,
+                                          std::numeric_limits<std::uint32_t>::max() / 64);
     if (capacity == splat_capacity && projected) return;
     projected = engine::gl::Buffer(engine::gl::NoCreate);
     projected.ensure_size(std::size_t(capacity) * sizeof(gpu::ProjectedSplat), "splat projected");
     splat_capacity = capacity;
 }
 
-void FrameBuffers::ensure_keys(std::uint32_t pairs) {
+void FrameBuffers::ensure_keys(std::uint32_t pairs, std::uint32_t words) {
     const std::uint32_t capacity =
-        follow(key_capacity, pairs, minimum_key_capacity, engine::gl::RadixSort::max_sort_count());
-    if (capacity == key_capacity && keys) return;
+        follow(key_capacity, pairs, key_spare, minimum_key_capacity, engine::gl::RadixSort::max_sort_count());
+    if (capacity == key_capacity && words == key_words && keys) return;
     keys = engine::gl::Buffer(engine::gl::NoCreate);
     values = engine::gl::Buffer(engine::gl::NoCreate);
-    keys.ensure_size(std::size_t(capacity) * sizeof(glm::uvec2), "splat tile keys");
+    keys.ensure_size(std::size_t(capacity) * sizeof(std::uint32_t) * words, "splat tile keys");
     values.ensure_size(std::size_t(capacity) * sizeof(std::uint32_t), "splat tile values");
     key_capacity = capacity;
+    key_words = words;
 }
 
 void FrameBuffers::clear(bool with_budget) {

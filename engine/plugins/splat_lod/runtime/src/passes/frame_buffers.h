@@ -25,15 +25,17 @@ struct FrameBuffers {
     engine::gl::Buffer keys{engine::gl::NoCreate}, values{engine::gl::NoCreate};  // tile-splat pairs
     std::uint32_t splat_capacity = 0;
     std::uint32_t key_capacity = 0;
+    std::uint32_t key_words = 2;  // 32-bit words of a key (RadixSort's SortJob::key_words)
 
     // Sizes the buffers that follow the scene and the raster: `clusters` (the scene's, one per project
     // workgroup) and `tile_count` tiles.
     void ensure(std::uint32_t clusters, std::uint32_t tile_count);
-    // Room for `splats` projected splats and for `pairs` tile-splat pairs (at most the sort's limit),
-    // which the frame reads back after its scan: grown with an eighth to spare, and made anew smaller
-    // when a quarter would do, so that they follow what the view draws. Contents are not kept.
+    // Room for `splats` projected splats and for `pairs` tile-splat pairs of `words`-word keys (at most
+    // the sort's limit), which the frame reads back after its scan: grown with room to spare (a quarter
+    // for the splats, a sixteenth for the keys), and made anew smaller when three quarters would do, so
+    // that they follow what the view draws. Contents are not kept.
     void ensure_splats(std::uint32_t splats);
-    void ensure_keys(std::uint32_t pairs);
+    void ensure_keys(std::uint32_t pairs, std::uint32_t words);
     // The counters, the budget's histograms (with a budget), the tile ranges and the clusters' pair
     // counts at zero, and the cluster list empty, before step 1 fills them.
     void clear(bool with_budget);

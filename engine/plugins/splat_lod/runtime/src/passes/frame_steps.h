@@ -11,6 +11,7 @@
 // Every step binds the frame's whole set of resources (the sort and the scan bind their own between).
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/gl/prefix_scan.h"
@@ -53,10 +54,17 @@ struct FrameSteps {
     // The storage program that reads its inputs through texel views when `fetch` is texel (binding
     // them with `bind_views`, SPLAT_INPUT_TEXELS defined), else from storage buffers.
     template <typename BindViews>
-    const engine::gl::Program& input_program(const char* file, BindViews&& bind_views) const {
-        if (fetch != RasterFetch::texel) return storage_program(file);
+    const engine::gl::Program& input_program(const char* file, BindViews&& bind_views,
+                                             std::vector<std::string> defines = {}) const {
+        if (fetch != RasterFetch::texel) return storage_program(file, std::move(defines));
         bind_views();
-        return storage_program(file, {"SPLAT_INPUT_TEXELS"});
+        defines.emplace_back("SPLAT_INPUT_TEXELS");
+        return storage_program(file, std::move(defines));
+    }
+    // One-word sort keys (FrameUniforms::key_depth_bits > 0): the key buffer holds a uint per pair.
+    bool one_word_keys() const { return raster.key_depth_bits > 0; }
+    std::vector<std::string> key_defines() const {
+        return one_word_keys() ? std::vector<std::string>{"SPLAT_ONE_WORD_KEYS"} : std::vector<std::string>{};
     }
 };
 

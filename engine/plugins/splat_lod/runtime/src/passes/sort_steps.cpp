@@ -23,7 +23,8 @@ void record_sort(const FrameSteps& steps) {
         GpuTimerScope t(steps.frame.timers, "splat.bin");
         steps.bind_all();
         engine::gl::run({.program = &steps.program("splat_dispatch_args.comp.glsl")});
-        const auto& bin = steps.input_program("splat_bin.comp.glsl", [&] { steps.texels.bind_bin(b); });
+        const auto& bin = steps.input_program(
+            "splat_bin.comp.glsl", [&] { steps.texels.bind_bin(b); }, steps.key_defines());
         engine::gl::run({.program = &bin, .indirect = &b.cluster_list, .barrier = kStepBarrier});
     }
     {  // 4. stable radix sort by (tile, depth); the key count stays on the GPU
@@ -31,12 +32,14 @@ void record_sort(const FrameSteps& steps) {
         const RasterSize& r = steps.raster;
         const auto hi_bits = r.key_depth_bits > 0 ? 0u : static_cast<std::uint32_t>(std::bit_width(r.tile_count()));
         steps.sort.record({b.keys, b.values, b.args, 3 * sizeof(std::uint32_t), b.key_capacity, hi_bits,
-                           steps.fetch == RasterFetch::texel});
+                           steps.one_word_keys() ? 1u : 2u, steps.fetch == RasterFetch::texel});
     }
     {  // 5. tile ranges in the sorted keys
         GpuTimerScope t(steps.frame.timers, "splat.ranges");
         steps.bind_all();
-        const auto& ranges = steps.input_program("splat_tile_ranges.comp.glsl", [&] { steps.texels.bind_ranges(b); });
+        const auto& ranges = steps.input_program(
+            "splat_tile_ranges.comp.glsl", [&] { steps.texels.bind_ranges(b, steps.one_word_keys()); },
+            steps.key_defines());
         engine::gl::run({.program = &ranges, .indirect = &b.args, .barrier = kStepBarrier});
     }
 }

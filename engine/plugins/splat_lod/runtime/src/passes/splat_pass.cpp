@@ -46,7 +46,7 @@ void SplatPass::execute(engine::FrameContext& frame) {
     const FrameSteps selection{frame, settings, lod_,          raster, scene_, buffers_,
                                low_,  texels_,  fetch_in_use_, *scan_, *sort_};
     last_counts_ = select_splats(selection, uniforms, n);  // 1. a–d: cull, skip, project, the budget; 2. scan
-    buffers_.ensure_keys(last_counts_.pairs);
+    buffers_.ensure_keys(last_counts_.pairs, raster.key_depth_bits > 0 ? 1 : 2);
     fetch_in_use_ =
         texels_.resolve(settings.raster_fetch, buffers_.splat_capacity, buffers_.key_capacity, scene_, fetch_in_use_);
     uniforms.key_capacity = buffers_.key_capacity;

@@ -52,9 +52,9 @@ void TexelViews::bind_bin(const FrameBuffers& buffers) {
     engine::gl::memory_barrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // written through storage buffers, read as texels
 }
 
-void TexelViews::bind_ranges(const FrameBuffers& buffers) {
-    engine::gl::bind_buffer_texture(key_texels_, "splat sorted key texels", GL_RG32UI, buffers.keys,
-                                    SPLAT_TEXTURE_SORTED_KEYS);
+void TexelViews::bind_ranges(const FrameBuffers& buffers, bool one_word_keys) {
+    engine::gl::bind_buffer_texture(key_texels_, "splat sorted key texels", one_word_keys ? GL_R32UI : GL_RG32UI,
+                                    buffers.keys, SPLAT_TEXTURE_SORTED_KEYS);
     engine::gl::memory_barrier(GL_TEXTURE_FETCH_BARRIER_BIT);  // sorted through storage buffers, read as texels
 }
 

@@ -26,7 +26,7 @@ public:
     // 6: the projected splats and the sorted values.
     void bind_project(const gpu::GpuScene& scene);
     void bind_bin(const FrameBuffers& buffers);
-    void bind_ranges(const FrameBuffers& buffers);
+    void bind_ranges(const FrameBuffers& buffers, bool one_word_keys);
     void bind_raster(const FrameBuffers& buffers);
 
 private:
