@@ -88,6 +88,23 @@ TEST(ProfileSummary, PassesWhenTheMeasurementsAreWithinBudgetAndTheOverviewIsChe
     EXPECT_NE(text.find("6.00x cheaper"), std::string::npos) << text;
 }
 
+// The splat pass's peak memory against the peak resident scene, whichever frames they fall on.
+TEST(ProfileSummary, ThePassMemoryCheckComparesThePeaks) {
+    std::vector<FrameRecord> records = lod_run(100 * kMiB, 4 * kMiB);
+    ProfileSummary s = summarize(records, {}, 128 * kMiB, 4 * kMiB);
+    EXPECT_FALSE(s.pass_memory.measured) << "no GPU totals recorded";
+    for (auto& r : records) r.gpu_total_bytes = 60 * kMiB;
+    records[3].gpu_total_bytes = 149 * kMiB;  // not the frame of the resident peak (13)
+    records[7].selection_runs = 2;
+    s = summarize(records, {}, 128 * kMiB, 4 * kMiB);
+    EXPECT_TRUE(s.pass_memory.pass) << s.pass_memory.text;
+    EXPECT_EQ(s.reselected_frames, 1);
+    EXPECT_NE(s.pass_memory.text.find("1.49x"), std::string::npos) << s.pass_memory.text;
+    records[3].gpu_total_bytes = 151 * kMiB;
+    s = summarize(records, {}, 128 * kMiB, 4 * kMiB);
+    EXPECT_FALSE(s.pass_memory.pass) << s.pass_memory.text;
+}
+
 TEST(ProfileSummary, FailsEachCheckFromTheNumbersAlone) {
     const ProfileSummary s = summarize(lod_run(200 * kMiB, 5 * kMiB), baseline_run(30.0), 128 * kMiB, 4 * kMiB);
     EXPECT_FALSE(s.memory.pass);

@@ -79,6 +79,7 @@ void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::Ca
     record.gpu_page_bytes = std::uint64_t(memory.pages_in_use) * memory.page_bytes;
     record.gpu_scene_bytes = memory.scene_bytes;
     record.gpu_frame_bytes = memory.frame_bytes;
+    record.selection_runs = static_cast<int>(memory.selection_runs);
     record_streaming(world, record);
 }
 

@@ -154,6 +154,8 @@ std::vector<FrameColumn> memory_columns() {
          [](R r) { return integer(r.gpu_scene_bytes); }},
         {"gpu_frame_bytes", "of gpu_total_bytes, the per-frame buffers and low-resolution images",
          [](R r) { return integer(r.gpu_frame_bytes); }},
+        {"selection_runs", "times the splat pass ran its selection (2: the projected splats outgrew their buffer)",
+         [](R r) { return integer(r.selection_runs); }},
         {"upload_bytes", "bytes the streamer handed to the GPU this frame (held to the upload budget)",
          [](R r) { return integer(r.stream_upload_bytes); }},
         {"gpu_upload_bytes",

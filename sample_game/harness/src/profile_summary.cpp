@@ -56,6 +56,7 @@ void budget_checks(const std::vector<FrameRecord>& lod, ProfileSummary& s) {
         s.frames_over_upload += r.stream_upload_bytes > s.upload_budget_bytes ? 1 : 0;
         s.frames_pages_differ += r.gpu_page_bytes != r.resident_bytes + r.props_gpu_bytes ? 1 : 0;
         s.failures = std::max(s.failures, r.failures_total);
+        s.reselected_frames += r.selection_runs > 1 ? 1 : 0;
     }
     s.memory.measured = !lod.empty();
     s.memory.pass = s.memory.measured && s.frames_over_memory == 0 && s.frames_pages_differ == 0;
@@ -68,6 +69,14 @@ void budget_checks(const std::vector<FrameRecord>& lod, ProfileSummary& s) {
     s.upload.pass = s.upload.measured && s.frames_over_upload == 0;
     s.upload.text = formatted("upload: largest %.2f MiB in one frame, budget %.2f MiB; over budget on %d frames",
                               mib(s.max_upload_bytes), mib(s.upload_budget_bytes), s.frames_over_upload);
+    s.pass_memory.measured = !lod.empty() && s.peak_resident_bytes > 0 && s.peak_gpu_total_bytes > 0;
+    const double ratio = s.pass_memory.measured ? double(s.peak_gpu_total_bytes) / double(s.peak_resident_bytes) : 0.0;
+    s.pass_memory.pass = s.pass_memory.measured && ratio <= kMaxPassMemoryRatio;
+    s.pass_memory.text = formatted(
+        "splat pass memory: peak %.1f MiB, %.2fx the peak resident %.1f MiB (bar %.1fx); steps 1-2 ran twice on %d "
+        "of %d frames",
+        mib(s.peak_gpu_total_bytes), ratio, mib(s.peak_resident_bytes), kMaxPassMemoryRatio, s.reselected_frames,
+        s.frames);
 }
 
 void overview_check(const std::vector<FrameRecord>& lod, const std::vector<FrameRecord>& baseline, ProfileSummary& s) {
@@ -393,7 +402,8 @@ std::string format_summary(const ProfileSummary& s, const SummaryContext& contex
         mib(s.total_upload_bytes), mib(s.peak_gpu_total_bytes), mib(s.peak_scene_bytes), mib(s.peak_frame_bytes),
         static_cast<unsigned long long>(s.failures));
     out += "\nchecks (computed from the measurements)\n";
-    out += "  " + verdict(s.memory) + "  " + verdict(s.upload) + "  " + verdict(s.overview);
+    out += "  " + verdict(s.memory) + "  " + verdict(s.pass_memory) + "  " + verdict(s.upload) + "  " +
+           verdict(s.overview);
     out += "  " + verdict(s.reference_loss) + "  " + verdict(s.reference_overview) + "  " + verdict(s.reference_seams);
     out += "  " + verdict(s.scale_time) + "  " + verdict(s.scale_density) + "  " + verdict(s.scale_culling) + "  " +
            verdict(s.scale_memory) + "  " + verdict(s.splat_budget);

@@ -204,11 +204,13 @@ TEST_F(SplatPipelineTest, FirstFrameLargerThanItsBuffersDrawsEverything) {
     const auto first = splat_lod::render_complete(engine, scene, camera, target);
     const auto gpu = target.read_color();
     ASSERT_GT(first.visible, 4096u) << "more than the dense array's first capacity";
+    EXPECT_EQ(pass.memory().selection_runs, 2u) << "steps 1-2 ran again with room";
     EXPECT_FALSE(first.overflowed);
     EXPECT_GE(pass.key_capacity(), first.tile_splat_pairs);
     EXPECT_LE(pass.memory().frame_bytes, 4u * (first.visible * 48u + first.tile_splat_pairs * 24u) + (1u << 20))
         << "sized by the frame, not by the scene";
     splat_lod::render_complete(engine, scene, camera, target);
+    EXPECT_EQ(pass.memory().selection_runs, 1u);
     EXPECT_EQ(engine::compare_images(target.read_color(), gpu).max_channel_difference, 0)
         << "the next frame, with room";
     const auto cpu = reference(*cloud, camera);

@@ -22,7 +22,10 @@
 //   9. on every ground frame at least kMinGroundCulledShare of the resident Gaussians are culled by the
 //      frustum or skipped as too small before projection;
 //  10. at the overview at most kMaxOverviewResidentShare of the world's GPU bytes are resident;
-//  11. with a splat budget, no frame draws more than it.
+//  11. with a splat budget, no frame draws more than it;
+// and of the splat pass's own GPU memory:
+//  12. its peak (the scene's buffers and the per-frame buffers) is at most kMaxPassMemoryRatio× the peak
+//      resident scene (pages in use).
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -38,6 +41,7 @@ inline constexpr double kReferenceMaxLossDb = 0.5;
 inline constexpr double kReferenceOverviewGainDb = 3.0;
 inline constexpr double kReferenceOverviewMinDb = 30.0;
 inline constexpr double kMaxSeamRatio = 1.25;
+inline constexpr double kMaxPassMemoryRatio = 1.5;
 inline constexpr double kMaxOverviewGaussiansPerPixel = 1.5;
 inline constexpr double kMaxPathGaussiansPerPixel = 2.5;
 inline constexpr double kMinGroundCulledShare = 0.6;
@@ -107,6 +111,8 @@ struct ProfileSummary {
     TemporalErrors lod_temporal, baseline_temporal;      // pairs 0: not measured
     Check reference_loss, reference_overview, reference_seams;
     Check scale_time, scale_density, scale_culling, scale_memory, splat_budget;
+    Check pass_memory;
+    int reselected_frames = 0;  // frames whose steps 1–2 ran twice (FrameRecord::selection_runs)
 };
 
 ProfileSummary summarize(const std::vector<FrameRecord>& lod, const std::vector<FrameRecord>& baseline,

@@ -88,10 +88,14 @@ struct SplatMemory {
     std::uint64_t last_upload_bytes = 0;  // bytes the latest frame uploaded
     std::uint32_t sh_stride = 0;          // SH stored per Gaussian: floats (full) or 32-bit words (compact)
     // What the splat pass holds on the GPU: the scene's buffers (their capacity, pages in use or not),
-    // and the per-frame buffers sized by the latest frame's view (projected splats, tile counts, the
-    // key_capacity() sort keys, tile ranges) with the low-resolution images.
+    // and the per-frame buffers sized by what the latest frames drew (the projected splats, the
+    // key_capacity() sort keys with the sort's own copy, per-cluster counts, tile ranges) with the
+    // low-resolution images.
     std::uint64_t scene_bytes = 0;
     std::uint64_t frame_bytes = 0;
+    // How often the latest frame ran its selection (steps 1–2): 2 when it projected more splats than
+    // the buffer sized by the frame before held, which then grew.
+    std::uint32_t selection_runs = 0;
     GpuStorage storage = GpuStorage::compact;  // how the scene is stored (docs/gpu_storage.md)
 };
 

@@ -62,6 +62,7 @@ SplatMemory SplatRenderer::memory() const {
     m.storage = scene.storage();
     m.scene_bytes = scene.resident_bytes();
     m.frame_bytes = pass_->frame_bytes();
+    m.selection_runs = pass_->last_frame_counts().selection_runs;
     return m;
 }
 

@@ -79,6 +79,7 @@ inline constexpr GLbitfield kImageBarrier = GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
 struct FrameCounts {
     std::uint32_t splats = 0;
     std::uint32_t pairs = 0;
+    std::uint32_t selection_runs = 0;  // 1, or 2 when the splats did not fit at first
 };
 
 void record_selection(const FrameSteps& steps, std::uint32_t gaussians);

@@ -35,7 +35,7 @@ FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms,
     FrameBuffers& b = steps.buffers;
     const std::uint32_t clusters = engine::gl::groups_for(gaussians, SPLAT_PROJECT_WORKGROUP_SIZE);
     FrameCounts counts;
-    for (int attempt = 0; attempt < 2; ++attempt) {
+    for (counts.selection_runs = 1; counts.selection_runs <= 2; ++counts.selection_runs) {
         uniforms.splat_capacity = b.splat_capacity;
         b.uniforms.upload(0, sizeof(uniforms), &uniforms);
         b.clear(steps.lod.splat_budget > 0);
@@ -50,6 +50,7 @@ FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms,
         if (counts.splats <= b.splat_capacity) return counts;
         b.ensure_splats(counts.splats);  // the clusters that did not fit wrote nothing: again, with room
     }
+    counts.selection_runs = 2;
     engine::log_warning("splat_lod: " + std::to_string(counts.splats) + " projected splats exceed the " +
                         std::to_string(b.splat_capacity) + " the frame can hold; some are not drawn");
     return counts;
