@@ -43,16 +43,14 @@ void SplatPass::execute(engine::FrameContext& frame) {
     fetch_in_use_ =
         texels_.resolve(settings.raster_fetch, buffers_.splat_capacity, buffers_.key_capacity, scene_, fetch_in_use_);
     gpu::FrameUniforms uniforms = frame_uniforms(settings, lod_, frame, raster, scene_, 0);
-    const FrameSteps selection{frame, settings, lod_,          raster, scene_, buffers_,
-                               low_,  texels_,  fetch_in_use_, *scan_, *sort_};
-    last_counts_ = select_splats(selection, uniforms, n);  // 1. a–d: cull, skip, project, the budget; 2. scan
-    buffers_.ensure_keys(last_counts_.pairs, raster.key_depth_bits > 0 ? 1 : 2);
+    FrameSteps steps{frame, settings, lod_, raster, scene_, buffers_, low_, texels_, fetch_in_use_, *scan_, *sort_};
+    last_counts_ = select_splats(steps, uniforms, n);  // 1. a–d: cull, skip, project, the budget; 2. scan
+    buffers_.ensure_keys(last_counts_.pairs, steps.one_word_keys() ? 1 : 2);
     fetch_in_use_ =
         texels_.resolve(settings.raster_fetch, buffers_.splat_capacity, buffers_.key_capacity, scene_, fetch_in_use_);
+    steps.fetch = fetch_in_use_;  // the buffers may have outgrown the driver's buffer textures
     uniforms.key_capacity = buffers_.key_capacity;
     buffers_.uniforms.upload(0, sizeof(uniforms), &uniforms);
-    const FrameSteps steps{frame, settings, lod_,          raster, scene_, buffers_,
-                           low_,  texels_,  fetch_in_use_, *scan_, *sort_};
     record_sort(steps);    // 3–5. bin, sort, tile ranges
     record_raster(steps);  // 6. raster; 7. upscale below render scale 1
     engine::gl::end_steps();
