@@ -115,7 +115,7 @@ public:
     const std::optional<plugin_msgs::SplatStatistics>& latest_statistics() const;
     // Waits for the GPU and reads back every frame rendered so far, publishing their statistics.
     void wait_for_statistics(engine::MessageBus& bus);
-    // Tile-splat pairs the key buffer holds now (it grows after a frame that needed more).
+    // Tile-splat pairs the key buffer holds now: what the latest frame needed and a little room.
     std::uint32_t key_capacity() const;
     // The raster fetch the latest frame used (settings().raster_fetch resolved for this driver).
     RasterFetch raster_fetch_in_use() const;

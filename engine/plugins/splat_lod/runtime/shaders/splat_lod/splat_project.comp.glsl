@@ -3,8 +3,8 @@
 // with a single atomic, in their Gaussians' order, each with its first key within the cluster; the
 // cluster records that run and the number of raster tiles (frame.tile_size px a side) its splats'
 // footprints touch (common_splat_tiles.glsl). A scan over the clusters then gives every cluster its
-// range of keys. The frame's depth range
-// (FrameCounters::depth_range) sizes the sort keys' depth bits in step 3.
+// range of keys. The frame's depth range (FrameCounters::depth_range) sizes the sort keys' depth bits
+// in step 3.
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = SPLAT_PROJECT_WORKGROUP_SIZE) in;

@@ -48,7 +48,9 @@ FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms,
         engine::gl::read_buffer(b.cluster_pairs, std::size_t(clusters) * sizeof(std::uint32_t), sizeof(std::uint32_t),
                                 &counts.pairs);
         if (counts.splats <= b.splat_capacity) return counts;
-        b.ensure_splats(counts.splats);  // the clusters that did not fit wrote nothing: again, with room
+        // The clusters that did not fit wrote nothing: again, with room (not after the second run, whose
+        // splats the frame draws).
+        if (counts.selection_runs == 1) b.ensure_splats(counts.splats);
     }
     counts.selection_runs = 2;
     engine::log_warning("splat_lod: " + std::to_string(counts.splats) + " projected splats exceed the " +
