@@ -1,8 +1,9 @@
 // Step 3, bin: one workgroup per cluster step 1b projected, one invocation per splat it wrote. Every
 // splat writes one sort key per tile of its footprint (common_splat_tiles.glsl): the cluster's keys
-// start where the scan over the clusters put them, and its splats' keys follow in their Gaussians' order
-// from the first key step 1b (or 1d) gave each, so every key's position is the same from run to run. Pairs beyond the key capacity
-// are dropped and the frame is flagged (splat_dispatch_args), never written out of bounds.
+// start where the scan over the clusters put them, and its splats' keys follow in their Gaussians'
+// order from the first key step 1b (or 1d) gave each, so every key's position is the same from run to
+// run. Pairs beyond the key capacity are dropped and the frame is flagged (splat_dispatch_args), never
+// written out of bounds.
 //
 // Keys (docs/algorithms.md §1, "Sort keys"): with frame.key_depth_bits == 0, uvec2(depth as float
 // bits, tile), sorted on all 32 depth bits and the tile's bits. Otherwise one word,

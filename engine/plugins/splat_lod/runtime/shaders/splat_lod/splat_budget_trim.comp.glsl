@@ -3,8 +3,8 @@
 // step 1c chose and its coverage is not below the cut; the others get opacity 0, which gives them no
 // tiles, so no later pass sees them. A kept splat's opacity is scaled by its LOD weight at coverage/β
 // (smooth transitions), and its tiles are counted again at that opacity: the splats' first keys within
-// the cluster and the cluster's pair count (SPLAT_BINDING_CLUSTER_PAIRS) are what step 3 writes. Counts the drawn Gaussians per level
-// (step 1b does not, under a budget).
+// the cluster and the cluster's pair count (SPLAT_BINDING_CLUSTER_PAIRS) are what step 3 writes. Counts
+// the drawn Gaussians per level (step 1b does not, under a budget).
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = SPLAT_PROJECT_WORKGROUP_SIZE) in;

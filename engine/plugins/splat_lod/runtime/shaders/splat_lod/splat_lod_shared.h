@@ -51,7 +51,7 @@ using mat4 = glm::mat4;
 // uint[C + 1], C = ceil(N / SPLAT_PROJECT_WORKGROUP_SIZE): the tile-splat pairs of each cluster's
 // splats (0 for clusters not projected), scanned in place into each cluster's first key; total at [C].
 #define SPLAT_BINDING_CLUSTER_PAIRS 4
-#define SPLAT_BINDING_KEYS 5         // uvec2[capacity]: (depth bits, tile index)
+#define SPLAT_BINDING_KEYS 5         // uvec2[capacity] (depth bits, tile), or uint[] one-word keys
 #define SPLAT_BINDING_VALUES 6       // uint[capacity]: the splat's index in SPLAT_BINDING_PROJECTED
 #define SPLAT_BINDING_TILE_RANGES 7  // uvec2[tile_count]: [begin, end) into the sorted keys
 #define SPLAT_BINDING_STATS 8        // FrameCounters

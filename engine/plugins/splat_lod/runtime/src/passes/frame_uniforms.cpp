@@ -35,7 +35,7 @@ RasterSize raster_size(const SplatPassSettings& settings, const plugin_msgs::Lod
 
 gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const plugin_msgs::LodSettings& lod,
                                   const engine::FrameContext& frame, const RasterSize& raster,
-                                  const gpu::GpuScene& scene, std::uint32_t key_capacity) {
+                                  const gpu::GpuScene& scene) {
     const engine::CameraView& camera = frame.camera;
     // The raster's pixel coordinates are the output's times s (splat_lod/core/upscale.h); the Jacobian's
     // clamp stays the output camera's, so both resolutions clamp the same Gaussians.
@@ -59,7 +59,6 @@ gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const plugi
     u.gaussian_count = scene.gaussian_count();
     u.sh_stride = scene.sh_stride();
     u.sh_storage_degree = static_cast<std::uint32_t>(scene.sh_degree());
-    u.key_capacity = key_capacity;
     u.instance_count = scene.instance_count();
     u.tiles = glm::uvec2(raster.tiles_x, raster.tiles_y);
     u.tile_count = raster.tile_count();

@@ -25,8 +25,9 @@ struct RasterSize {
 RasterSize raster_size(const SplatPassSettings& settings, const plugin_msgs::LodSettings& lod, int output_width,
                        int output_height);
 
+// Everything but splat_capacity and key_capacity, which the frame sets as it sizes its buffers.
 gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const plugin_msgs::LodSettings& lod,
                                   const engine::FrameContext& frame, const RasterSize& raster,
-                                  const gpu::GpuScene& scene, std::uint32_t key_capacity);
+                                  const gpu::GpuScene& scene);
 
 }  // namespace splat_lod

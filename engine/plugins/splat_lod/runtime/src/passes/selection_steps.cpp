@@ -35,7 +35,7 @@ FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms,
     FrameBuffers& b = steps.buffers;
     const std::uint32_t clusters = engine::gl::groups_for(gaussians, SPLAT_PROJECT_WORKGROUP_SIZE);
     FrameCounts counts;
-    for (counts.selection_runs = 1; counts.selection_runs <= 2; ++counts.selection_runs) {
+    for (counts.selection_runs = 1;; ++counts.selection_runs) {
         uniforms.splat_capacity = b.splat_capacity;
         b.uniforms.upload(0, sizeof(uniforms), &uniforms);
         b.clear(steps.lod.splat_budget > 0);
@@ -47,12 +47,10 @@ FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms,
                                 &counts.splats);
         engine::gl::read_buffer(b.cluster_pairs, std::size_t(clusters) * sizeof(std::uint32_t), sizeof(std::uint32_t),
                                 &counts.pairs);
-        if (counts.splats <= b.splat_capacity) return counts;
-        // The clusters that did not fit wrote nothing: again, with room (not after the second run, whose
-        // splats the frame draws).
-        if (counts.selection_runs == 1) b.ensure_splats(counts.splats);
+        if (counts.splats <= b.splat_capacity || counts.selection_runs == 2) break;
+        b.ensure_splats(counts.splats);  // the clusters that did not fit wrote nothing: again, with room
     }
-    counts.selection_runs = 2;
+    if (counts.splats <= b.splat_capacity) return counts;
     engine::log_warning("splat_lod: " + std::to_string(counts.splats) + " projected splats exceed the " +
                         std::to_string(b.splat_capacity) + " the frame can hold; some are not drawn");
     return counts;

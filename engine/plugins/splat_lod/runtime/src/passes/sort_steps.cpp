@@ -30,7 +30,7 @@ void record_sort(const FrameSteps& steps) {
     {  // 4. stable radix sort by (tile, depth); the key count stays on the GPU
         GpuTimerScope t(steps.frame.timers, "splat.sort");
         const RasterSize& r = steps.raster;
-        const auto hi_bits = r.key_depth_bits > 0 ? 0u : static_cast<std::uint32_t>(std::bit_width(r.tile_count()));
+        const auto hi_bits = steps.one_word_keys() ? 0u : static_cast<std::uint32_t>(std::bit_width(r.tile_count()));
         steps.sort.record({b.keys, b.values, b.args, 3 * sizeof(std::uint32_t), b.key_capacity, hi_bits,
                            steps.one_word_keys() ? 1u : 2u, steps.fetch == RasterFetch::texel});
     }

@@ -42,7 +42,7 @@ void SplatPass::execute(engine::FrameContext& frame) {
     buffers_.ensure_splats(last_counts_.splats);
     fetch_in_use_ =
         texels_.resolve(settings.raster_fetch, buffers_.splat_capacity, buffers_.key_capacity, scene_, fetch_in_use_);
-    gpu::FrameUniforms uniforms = frame_uniforms(settings, lod_, frame, raster, scene_, 0);
+    gpu::FrameUniforms uniforms = frame_uniforms(settings, lod_, frame, raster, scene_);
     FrameSteps steps{frame, settings, lod_, raster, scene_, buffers_, low_, texels_, fetch_in_use_, *scan_, *sort_};
     last_counts_ = select_splats(steps, uniforms, n);  // 1. a–d: cull, skip, project, the budget; 2. scan
     buffers_.ensure_keys(last_counts_.pairs, steps.one_word_keys() ? 1 : 2);
