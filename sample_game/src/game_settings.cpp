@@ -25,6 +25,7 @@ splat_lod::world::StreamerSettings streamer_settings(const GameSettings& s) {
     out.rule = s.lod.rule;  // a streamer with the game's bus follows the published settings anyway
     out.load_distance_scale = s.load_distance_scale;
     out.group_cell_px = s.group_cell_px;
+    out.group_grazing_deg = s.group_grazing_deg;
     out.retry_failed_after_frames = s.retry_failed_after_frames;
     out.fade_frames = s.fade_frames;
     out.anticipation_updates = s.anticipation_updates;

@@ -72,6 +72,10 @@ inline void add_streaming_options(CLI::App& app, GameCommandLine& c) {
                    "Draw a chunk group instead of its chunks where its cell is at most this many pixels (0: never)")
         ->check(CLI::Range(0.0, 1000.0))
         ->capture_default_str();
+    app.add_option("--group-grazing-deg", c.settings.group_grazing_deg,
+                   "Below this elevation a group's cell counts by its box's foreshortened area (0: by its edge)")
+        ->check(CLI::Range(0.0, 90.0))
+        ->capture_default_str();
     app.add_option("--fade-frames", c.settings.fade_frames,
                    "Updates over which a chunk, group or arriving level fades in or out (0: at once)")
         ->check(CLI::Range(0, 1000))

@@ -34,6 +34,9 @@ struct GameSettings {
     // Chunk groups replace their chunks where their pooling cell projects to at most this many pixels
     // (StreamerSettings::group_cell_px; 0: never, every chunk drawn from its own levels).
     float group_cell_px = 2.0f;
+    // ... and below this elevation (degrees) by the projected area of the group's box, smaller at
+    // grazing angles (StreamerSettings::group_grazing_deg); 0: by the cell's edge alone.
+    float group_grazing_deg = 30.0f;
     // A chunk whose file could not be read (missing, cut short, replaced by a patcher or a running
     // regeneration) is tried again after this many frames, so that it comes back once its file does.
     int retry_failed_after_frames = 120;

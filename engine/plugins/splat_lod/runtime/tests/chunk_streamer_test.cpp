@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <numbers>
 #include <set>
 #include <string>
 #include <utility>
@@ -68,6 +69,38 @@ TEST(StreamPolicy, GpuBytesDistancesAndLoadDistances) {
     bad = e;
     bad.file_bytes += 1;
     EXPECT_NE(sw::check_chunk_entry(bad).find("file bytes"), std::string::npos);
+}
+
+TEST(StreamPolicy, AGroupSeenAtAGrazingAngleSpansFewerPixels) {
+    sw::ChunkEntry g = make_chunk(0, 0);
+    g.depth = 1;
+    g.cell_m = 1.0f;
+    g.bounds_min = {0.0f, 0.0f, 0.0f};
+    g.bounds_max = {20.0f, 2.0f, 20.0f};  // widened by the cell: 21 × 3 × 21, centre (10, 1, 10)
+    const double full = 1.0 * kFocal / 90.0;
+    // From straight above the box's top is all that shows: the cell's edge, as without foreshortening.
+    EXPECT_DOUBLE_EQ(sw::group_cell_pixels(g, {10.0f, 92.0f, 10.0f}, 90.0f, kFocal, 90.0f), full);
+    // Level with its centre, along x: a = e_y / e_x = 3 / 21.
+    EXPECT_NEAR(sw::group_cell_pixels(g, {-80.0f, 1.0f, 10.0f}, 90.0f, kFocal, 90.0f), full * std::sqrt(3.0 / 21.0),
+                1e-9);
+    // 45° above, along x: a = (1 + 3 / 21) / √2.
+    EXPECT_NEAR(sw::group_cell_pixels(g, {-90.0f, 101.0f, 10.0f}, 90.0f, kFocal, 90.0f),
+                full * std::sqrt((1.0 + 3.0 / 21.0) / std::sqrt(2.0)), 1e-6);
+    EXPECT_DOUBLE_EQ(sw::group_cell_pixels(g, {-80.0f, 1.0f, 10.0f}, 90.0f, kFocal, 0.0f), full);
+    // Below 20°: the same area measured against sin 20°; from 45° above, by the edge.
+    EXPECT_NEAR(sw::group_cell_pixels(g, {-80.0f, 1.0f, 10.0f}, 90.0f, kFocal, 20.0f),
+                full * std::sqrt(3.0 / 21.0 / std::sin(20.0 * std::numbers::pi / 180.0)), 1e-9);
+    EXPECT_DOUBLE_EQ(sw::group_cell_pixels(g, {-90.0f, 101.0f, 10.0f}, 90.0f, kFocal, 20.0f), full);
+    // Never more than the edge: a tall group seen from the side (a = 51 / 3) and a box of zero width
+    // (one cell each way, a ≥ 1).
+    sw::ChunkEntry tall = g;
+    tall.bounds_max = {2.0f, 50.0f, 2.0f};
+    EXPECT_DOUBLE_EQ(sw::group_cell_pixels(tall, {-89.0f, 25.0f, 1.0f}, 90.0f, kFocal, 90.0f), full);
+    sw::ChunkEntry point = g;
+    point.bounds_max = point.bounds_min;
+    EXPECT_DOUBLE_EQ(sw::group_cell_pixels(point, {-90.0f, 0.0f, 0.0f}, 90.0f, kFocal, 90.0f), full);
+    // At or inside the box: never coarse enough.
+    EXPECT_TRUE(std::isinf(sw::group_cell_pixels(g, {10.0f, 1.0f, 10.0f}, 0.0f, kFocal, 90.0f)));
 }
 
 TEST(ChunkStreamer, FarCameraKeepsOnlyTheCoarsePrefixOfEveryChunk) {
@@ -313,6 +346,11 @@ TEST(ChunkStreamer, RejectsInvalidSettingsAndViews) {
     other = sync_settings();
     other.anticipation_updates = -1;
     EXPECT_THROW(streamer.set_settings(other), engine::Error);
+    for (const float deg : {-1.0f, 91.0f, NAN}) {
+        other = sync_settings();
+        other.group_grazing_deg = deg;
+        EXPECT_THROW(streamer.set_settings(other), engine::Error) << deg;
+    }
     EXPECT_THROW(streamer.update({{NAN, 0.0f, 0.0f}, kFocal, 0}), engine::Error);
     EXPECT_THROW(streamer.update({{0.0f, 0.0f, 0.0f}, 0.0f, 0}), engine::Error);
     EXPECT_THROW(streamer.update({{0.0f, 0.0f, 0.0f}, kFocal, 0, {}, 0.5f}), engine::Error) << "a cut scale below 1";

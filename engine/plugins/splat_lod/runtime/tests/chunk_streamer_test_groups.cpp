@@ -170,6 +170,7 @@ TEST(ChunkStreamerGroups, ACoarserNodeDoesNotComeBackOnceFinerOnesAreIn) {
 
 TEST(ChunkStreamerGroups, NearViewDrawsChunksAndReleasesGroups) {
     sw::StreamerSettings settings = sync_settings();
+    settings.group_grazing_deg = 0.0f;  // by the cell's edge: every group is too near
     Harness h(settings, nullptr, make_grouped_world());
     h.steps({20.0f, 400.0f, 20.0f}, 3);
     h.steps({5.0f, 1.0f, 5.0f}, 6);  // inside chunk_0_0: its group 1 is 0 m away
@@ -179,6 +180,31 @@ TEST(ChunkStreamerGroups, NearViewDrawsChunksAndReleasesGroups) {
     // Chunks more than 50 m away are drawn from their depth-1 group... none here (the world is 40 m):
     EXPECT_EQ(h.streamer.residency().drawn_groups, 0u);
     EXPECT_EQ(h.streamer.residency().drawn_chunks, 16u);
+}
+
+TEST(ChunkStreamerGroups, AtAGrazingAngleAFarGroupStandsInForItsChunks) {
+    const sw::WorldManifest world = make_grouped_world();
+    sw::StreamerSettings settings = sync_settings();
+    settings.group_grazing_deg = 90.0f;  // the box's area at every elevation (a / sin 90°)
+    Harness h(settings, nullptr, world);
+    h.steps({20.0f, 400.0f, 20.0f}, 3);
+    // 1 m above the corner of chunk_0_0: the far depth-1 group is 21.2 m away, its 0.5 m cell
+    // 2.36 px by its edge, but its box (20.5 × 2.5 × 20.5 m, widened by the cell) shows 0.17 of its
+    // ground area from here (a = 2.5 · (0.707 + 0.707) / 20.5): 0.98 px ≤ 1. The depth-1 group at
+    // x = 0…20, z = 20…40 is 15 m away: 3.33 px by its edge, 1.26 px foreshortened, so not.
+    h.steps({5.0f, 1.0f, 5.0f}, 8);
+    EXPECT_TRUE(h.sink.drawn("group_1_+001_+001"));
+    EXPECT_TRUE(h.sink.drawn("chunk_0_0"));
+    EXPECT_EQ(h.streamer.residency().drawn_groups, 1u);
+    EXPECT_EQ(h.streamer.residency().drawn_chunks, 12u);
+    for (const std::string& problem : coverage_problems(h, world, true)) ADD_FAILURE() << problem;
+    // From straight above at about the same distance (20.2 m over the box's top) it is 2.47 px: its
+    // chunks are drawn.
+    h.steps({30.0f, 22.2f, 30.0f}, 8);
+    EXPECT_FALSE(h.sink.drawn("group_1_+001_+001"));
+    EXPECT_EQ(h.streamer.residency().drawn_groups, 0u);
+    EXPECT_EQ(h.streamer.residency().drawn_chunks, 16u);
+    for (const std::string& problem : coverage_problems(h, world, true)) ADD_FAILURE() << problem;
 }
 
 TEST(ChunkStreamerGroups, AMissingGroupIsReportedAndItsChunksDrawn) {

@@ -53,7 +53,8 @@ void ChunkStreamer::State::choose_cut(const StreamView& view) {
             bool in = !covered;
             if (slot.depth > 0) {
                 const float z = ahead ? slot.cut_distance : slot.distance;
-                const double pixels = static_cast<double>(slot.entry->cell_m) * view.focal_length_px / z;
+                const double pixels = group_cell_pixels(*slot.entry, view.camera_position, z, view.focal_length_px,
+                                                        settings.group_grazing_deg);
                 const bool coarse_enough = z > 0.0f && pixels <= pixels_max;
                 in = groups_on && !covered && coarse_enough && !slot.failed && !slot.failure_permanent;
             }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <glm/glm.hpp>
 
@@ -28,6 +29,26 @@ double level_load_distance(const ChunkEntry& chunk, int level, double focal_leng
     const double by_ratio = 2.0 * bounds.extent_per_min_coverage_max * focal_length_px / rule.rel_min;
     const double distance = std::max(by_size, by_ratio);
     return distance > 0.0 ? distance : 0.0;  // NaN and negative bounds: never needed by distance
+}
+
+double group_cell_pixels(const ChunkEntry& group, const glm::vec3& camera, float distance, double focal_length_px,
+                         float grazing_deg) {
+    if (!(distance > 0.0f)) return std::numeric_limits<double>::infinity();  // at or inside the box
+    const double full = static_cast<double>(group.cell_m) * focal_length_px / static_cast<double>(distance);
+    if (!(grazing_deg > 0.0f)) return full;
+    const glm::dvec3 lo = glm::min(glm::dvec3(group.bounds_min), glm::dvec3(group.bounds_max));
+    const glm::dvec3 hi = glm::max(glm::dvec3(group.bounds_min), glm::dvec3(group.bounds_max));
+    const double cell = group.cell_m;
+    // The box of the Gaussians' means, widened by one cell: a pooled Gaussian is up to a cell across.
+    const glm::dvec3 extent = hi - lo + glm::dvec3(cell);
+    glm::dvec3 toward = 0.5 * (lo + hi) - glm::dvec3(camera);
+    const double length = glm::length(toward);
+    if (!(length > 0.0) || !std::isfinite(length)) return full;
+    toward /= length;
+    // The box's projected area per unit of its ground area (its top face seen straight down: 1).
+    const double area = std::abs(toward.y) + extent.y * (std::abs(toward.x) / extent.x + std::abs(toward.z) / extent.z);
+    const double grazing_area = std::sin(static_cast<double>(grazing_deg) * (std::numbers::pi / 180.0));
+    return full * std::sqrt(std::min(1.0, area / grazing_area));
 }
 
 std::string check_chunk_entry(const ChunkEntry& chunk) {

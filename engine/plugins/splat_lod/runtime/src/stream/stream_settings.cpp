@@ -35,6 +35,8 @@ void validate(const StreamerSettings& s) {
     if (s.fade_frames < 0 || s.fade_frames > 1000) settings_error("fade_frames must be in [0, 1000]");
     if (s.anticipation_updates < 0 || s.anticipation_updates > 1000)
         settings_error("anticipation_updates must be in [0, 1000]");
+    if (!(s.group_grazing_deg >= 0.0f && s.group_grazing_deg <= 90.0f))
+        settings_error("group_grazing_deg must be between 0 (off) and 90 degrees");
     if (!(s.group_cell_px >= 0.0f) || !std::isfinite(s.group_cell_px))
         settings_error("group_cell_px must be 0 (no groups) or positive, and finite");
 }

@@ -36,8 +36,9 @@
 // import's chunk of several cells, ChunkEntry::span; a group's the group one depth up), and
 // step 1 first chooses the cut, top-down from the roots: a group is drawn instead of everything below
 // it when its pooling cell projects to at most group_cell_px pixels at the group's nearest distance
-// (cell_m · f / z ≤ group_cell_px; z only grows and the cell only shrinks going down, so exactly one
-// node on every root-to-chunk path is in the cut) and it has not failed; a chunk is in the cut when no
+// (cell_m · f / z ≤ group_cell_px, the left side reduced where the group's box is seen at a grazing
+// angle: stream_policy.h, group_cell_pixels; the walk is top-down and stops at the first node in, so
+// exactly one node on every root-to-chunk path is in the cut) and it has not failed; a chunk is in the cut when no
 // group above it is. Only nodes in the cut are needed (a group as its single level 4, a chunk as
 // before). Hysteresis: a loaded node that would be in the cut if the camera were
 // unload_distance_factor times nearer or farther (the cuts for group_cell_px × and ÷ that factor) is
@@ -133,6 +134,11 @@ struct StreamerSettings {
     // (output pixels); 0: groups are never used. Chosen on the default world (docs/world_lod.md, "The
     // numbers that chose it").
     float group_cell_px = 2.0f;
+    // Below this elevation (degrees) a group's cell counts for fewer pixels, by the projected area of the
+    // group's box (stream_policy.h, group_cell_pixels): a group seen at a grazing angle stands in from
+    // nearer, so that a larger world's far field seen from the ground costs about what a smaller one's
+    // does (docs/world_lod.md, "How the costs grow with the world"). 0: by the cell's edge alone.
+    float group_grazing_deg = 30.0f;
     // Updates over which a node or a newly arrived level fades in or out (see "fades"); 0: at once.
     // 4: on the default world's walkthrough 8 let fades overlap in the flyout (2.74 Gaussians per
     // pixel against 2.47 with 4; docs/world_lod.md, "Fades").

@@ -37,6 +37,18 @@ float nearest_distance(const ChunkEntry& chunk, const glm::vec3& point);
 double level_load_distance(const ChunkEntry& chunk, int level, double focal_length_px,
                            const plugin_msgs::LodRule& rule);
 
+// How many pixels one pooling cell of a chunk group spans for the cut (chunk_streamer.h, "the cut") at
+// `distance`, the group's nearest distance: cell_m · f / distance, times √min(1, a / sin(grazing_deg))
+// when grazing_deg > 0. a is the projected area of the group's box per unit of its ground area, seen
+// from `camera` toward the box's centre: a = |d_y| + e_y · (|d_x| / e_x + |d_z| / e_z), with d that unit
+// direction and e the box of the Gaussians' means widened by one cell (a pooled Gaussian is up to a cell
+// across); a flat box seen at elevation θ has a ≈ sin θ. So a group seen from above grazing_deg counts
+// by its cell's edge, as without the factor; one seen at a grazing angle, whose Gaussians share few
+// pixel rows (as a Gaussian's coverage, docs/algorithms.md §2, the shorter chord, shrinks when it is seen
+// edge-on), counts for fewer pixels and stands in from nearer. Never more than the edge's value.
+double group_cell_pixels(const ChunkEntry& group, const glm::vec3& camera, float distance, double focal_length_px,
+                         float grazing_deg);
+
 // The splat budget and the cut (chunk_streamer.h): the renderer meets a per-frame splat budget on the
 // GPU by raising its size threshold, which moves the per-Gaussian cut inside chunks but cannot make a
 // chunk group coarser (group Gaussians are drawn whole). Fed with the renderer's latest statistics
