@@ -4,6 +4,7 @@
 // binding splat budget that coarsens the cut; nodes and levels that fade in and out.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 #include <string>
 #include <utility>
@@ -205,6 +206,63 @@ TEST(ChunkStreamerGroups, AtAGrazingAngleAFarGroupStandsInForItsChunks) {
     EXPECT_EQ(h.streamer.residency().drawn_groups, 0u);
     EXPECT_EQ(h.streamer.residency().drawn_chunks, 16u);
     for (const std::string& problem : coverage_problems(h, world, true)) ADD_FAILURE() << problem;
+}
+
+namespace {
+
+// A world of side × side chunks (side a power of 2) under a full quadtree of groups, as
+// make_grouped_world() builds its two depths: depth d pools cells of 0.5 · 2^(d − 1) m.
+sw::WorldManifest make_deep_world(int side) {
+    sw::WorldManifest world;
+    world.size_m = static_cast<float>(side) * kChunkSize;
+    world.chunk_size_m = kChunkSize;
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) world.chunks.push_back(make_chunk(i, j));
+    for (sw::ChunkEntry& c : world.chunks) c.cell -= glm::ivec2(side / 2);  // cells from −side/2, as generated
+    for (int depth = 1; (1 << depth) <= side; ++depth) {
+        std::map<std::pair<int, int>, sw::ChunkEntry> made;
+        for (const sw::ChunkEntry& c : world.chunks) {
+            const glm::ivec2 g = sw::group_of_chunk(c.cell, side, depth);
+            auto [it, fresh] = made.try_emplace({g.x, g.y}, c);
+            sw::ChunkEntry& e = it->second;
+            if (fresh) {
+                e.id = sw::group_id(depth, g);
+                e.file = e.id + ".ply";
+                e.cell = g;
+                e.depth = depth;
+                e.cell_m = 0.5f * static_cast<float>(1 << (depth - 1));
+                e.prefix_count = {30, 30, 30, 30};
+                e.levels = {};
+                e.file_bytes = e.prefix_bytes(1);
+            }
+            e.bounds_min = glm::min(e.bounds_min, c.bounds_min);
+            e.bounds_max = glm::max(e.bounds_max, c.bounds_max);
+        }
+        for (auto& [cell, e] : made) world.groups.push_back(e);
+    }
+    return world;
+}
+
+}  // namespace
+
+// The update looks at the cut and what is live, not at the whole world: a world 64 times larger
+// (4,096 chunks under 1,365 groups against 64 under 21) costs it a few more nodes, those of the
+// deeper quadtree above the cut and the cut's coarser groups farther away (89 against 57 when written).
+TEST(ChunkStreamerGroups, AnUpdateLooksAtTheViewNotTheWholeWorld) {
+    std::uint64_t looked_at[2] = {0, 0};
+    std::size_t drawn_chunks[2] = {0, 0};
+    for (const int k : {0, 1}) {
+        const sw::WorldManifest world = make_deep_world(k == 0 ? 8 : 64);
+        Harness h(sync_settings(), nullptr, world);
+        h.steps({15.0f, 3.0f, 15.0f}, 20);  // 3 m above chunk (1, 1), near the world's corner
+        looked_at[k] = h.streamer.stats().nodes_last_update;
+        drawn_chunks[k] = h.streamer.residency().drawn_chunks;
+        EXPECT_TRUE(h.sink.drawn("chunk_1_1"));
+        EXPECT_TRUE(h.sink.violations.empty());
+    }
+    EXPECT_EQ(drawn_chunks[0], drawn_chunks[1]) << "the same chunks near the camera";
+    EXPECT_GT(looked_at[0], 0u);
+    EXPECT_LE(looked_at[1], 2 * looked_at[0]) << looked_at[0] << " nodes for 85, " << looked_at[1] << " for 5,461";
 }
 
 TEST(ChunkStreamerGroups, AMissingGroupIsReportedAndItsChunksDrawn) {

@@ -108,6 +108,7 @@ ChunkStreamer::State::State(WorldManifest world, std::filesystem::path root, Str
         slot.depth = slot.entry->depth;
         slot.file = folder / slot.entry->file;
         if (std::string problem = check_chunk_entry(*slot.entry); !problem.empty()) {
+            ++permanent_failures[group ? 1 : 0];
             slot.failed = slot.failure_permanent = true;
             slot.failed_level = kLevels;
             slot.failure = slot.file.string() + ": " + problem;
@@ -179,6 +180,7 @@ void ChunkStreamer::State::apply_pending_settings() {
 }
 
 void ChunkStreamer::State::report_construction_failures() {
+    if (permanent_failures[0] + permanent_failures[1] == 0 || stats.updates > 0) return;  // once, at the first update
     for (ChunkSlot& slot : chunks) {
         if (!slot.failure_permanent || slot.failure_reported) continue;
         slot.failure_reported = true;
@@ -232,7 +234,7 @@ void ChunkStreamer::State::fail_chunk(std::size_t chunk, int level, const std::s
 }
 
 void ChunkStreamer::State::release_unwanted() {
-    for (std::size_t c = 0; c < chunks.size(); ++c) {
+    for (const std::size_t c : work) {
         ChunkSlot& slot = chunks[c];
         if (slot.failure_permanent) continue;
         for (int l = 1; l <= kLevels; ++l) {
@@ -315,8 +317,8 @@ void ChunkStreamer::State::upload_loaded() {
 
 void ChunkStreamer::State::request_reads() {
     std::size_t in_flight = 0;
-    for (const ChunkSlot& slot : chunks)
-        for (const LevelSlot& s : slot.levels)
+    for (const std::size_t c : work)
+        for (const LevelSlot& s : chunks[c].levels)
             in_flight += s.parts_in(PartPhase::requested) + s.parts_in(PartPhase::loaded);
     const auto limit = static_cast<std::size_t>(settings.max_requests_in_flight);
     for (const PlannedLevel& p : order) {
@@ -348,7 +350,10 @@ void ChunkStreamer::State::publish_report(std::uint64_t frame_index) {
     r.frame_index = frame_index;
     r.resident_bytes = resident;
     r.budget_bytes = settings.memory_budget_bytes;
-    for (const ChunkSlot& slot : chunks) {
+    r.chunks.failed = permanent_failures[0];
+    r.groups.failed = permanent_failures[1];
+    for (const std::size_t c : work) {  // nothing else is requested, loaded, resident or drawn
+        const ChunkSlot& slot = chunks[c];
         std::size_t requested = 0, loaded = 0;
         for (const LevelSlot& s : slot.levels) {
             requested += s.parts_in(PartPhase::requested);
@@ -359,7 +364,7 @@ void ChunkStreamer::State::publish_report(std::uint64_t frame_index) {
         counts.requested += requested > 0 ? 1u : 0u;
         counts.loaded += loaded > 0 ? 1u : 0u;
         counts.resident += !coarse.parts.empty() && coarse.complete() ? 1u : 0u;
-        counts.failed += slot.failed ? 1u : 0u;
+        counts.failed += slot.failed && !slot.failure_permanent ? 1u : 0u;
         (slot.depth == 0 ? r.drawn_chunks : r.drawn_groups) += slot.drawn ? 1u : 0u;
     }
     report = r;
@@ -390,7 +395,8 @@ void ChunkStreamer::update(const StreamView& view) {
     s.events.clear();
     s.apply_pending_settings();
     s.report_construction_failures();
-    for (ChunkSlot& slot : s.chunks) {
+    for (const std::size_t c : s.live) {  // a failed node stays live until retried
+        ChunkSlot& slot = s.chunks[c];
         const int retry = s.settings.retry_failed_after_frames;
         if (slot.failed && !slot.failure_permanent && retry > 0 &&
             s.frame >= slot.failed_frame + static_cast<std::uint64_t>(retry)) {
@@ -408,9 +414,11 @@ void ChunkStreamer::update(const StreamView& view) {
     s.advance_fades();
     s.request_reads();
     ++s.stats.updates;
+    s.stats.nodes_last_update = s.work.size();
     s.stats.uploaded_bytes_last_update = s.frame_uploaded;
     s.stats.max_uploaded_bytes_per_update = std::max(s.stats.max_uploaded_bytes_per_update, s.frame_uploaded);
     s.publish_report(view.frame_index);
+    s.keep_live();
 }
 
 void ChunkStreamer::wait_idle() {
@@ -475,7 +483,7 @@ ChunkStatus ChunkStreamer::chunk_status(std::size_t index) const {
     const ChunkSlot& slot = state_->chunks.at(index);
     ChunkStatus status;
     status.id = slot.entry->id;
-    status.distance = slot.distance;
+    status.distance = nearest_distance(*slot.entry, state_->eye);  // also for a node the update did not look at
     status.finest_needed_level = slot.finest_needed;
     status.failed = slot.failed;
     status.failure = slot.failure;

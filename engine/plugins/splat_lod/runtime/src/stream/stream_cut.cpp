@@ -24,7 +24,11 @@ bool level4_any(const ChunkSlot& slot) {
 }  // namespace
 
 void ChunkStreamer::State::link_groups() {
-    if (manifest.groups.empty()) return;
+    const auto find_roots = [this] {
+        for (std::size_t k = 0; k < chunks.size(); ++k)
+            if (chunks[k].parent == ChunkSlot::kNoSlot) roots.push_back(k);
+    };
+    if (manifest.groups.empty()) return find_roots();
     const int count = chunks_per_side(manifest);
     std::map<std::tuple<int, int, int>, std::size_t> by_cell;  // (depth, x, z) → slot of a group
     for (std::size_t k = manifest.chunks.size(); k < chunks.size(); ++k)
@@ -41,28 +45,41 @@ void ChunkStreamer::State::link_groups() {
         slot.parent = it->second;
         chunks[it->second].children.push_back(k);
     }
+    find_roots();
+}
+
+void ChunkStreamer::State::touch(std::size_t k) {
+    ChunkSlot& slot = chunks[k];
+    if (slot.visited == stamp) return;
+    slot.visited = stamp;
+    work.push_back(k);
+    slot.distance = nearest_distance(*slot.entry, eye);
+    slot.cut_distance =
+        eye_ahead != eye ? std::max(slot.distance, nearest_distance(*slot.entry, eye_ahead)) : slot.distance;
 }
 
 void ChunkStreamer::State::choose_cut(const StreamView& view) {
     const bool groups_on = settings.group_cell_px > 0.0f && !manifest.groups.empty();
-    // The cut for a switch of `pixels_max`; `covered`: a group above is in it. `ahead`: decide by
-    // ChunkSlot::cut_distance ("anticipation"), else by the distance now.
+    // The cut for a switch of `pixels_max`, top-down from the roots: the walk stops at a node in it,
+    // so what lies below is not visited (and not in: the last update's flags are cleared in plan()).
+    // `ahead`: decide by ChunkSlot::cut_distance ("anticipation"), else by the distance now.
     const auto cut = [&](double pixels_max, bool ahead, auto&& assign) {
-        std::function<void(std::size_t, bool)> mark = [&](std::size_t k, bool covered) {
+        std::function<void(std::size_t)> mark = [&](std::size_t k) {
+            touch(k);
             const ChunkSlot& slot = chunks[k];
-            bool in = !covered;
+            bool in = true;  // a chunk with no group above it in the cut
             if (slot.depth > 0) {
                 const float z = ahead ? slot.cut_distance : slot.distance;
                 const double pixels = group_cell_pixels(*slot.entry, view.camera_position, z, view.focal_length_px,
                                                         settings.group_grazing_deg);
                 const bool coarse_enough = z > 0.0f && pixels <= pixels_max;
-                in = groups_on && !covered && coarse_enough && !slot.failed && !slot.failure_permanent;
+                in = groups_on && coarse_enough && !slot.failed && !slot.failure_permanent;
             }
             assign(k, in);
-            for (const std::size_t c : slot.children) mark(c, covered || in);
+            if (!in)
+                for (const std::size_t c : slot.children) mark(c);
         };
-        for (std::size_t k = 0; k < chunks.size(); ++k)
-            if (chunks[k].parent == ChunkSlot::kNoSlot) mark(k, false);
+        for (const std::size_t k : roots) mark(k);
     };
     const double switch_px = settings.group_cell_px * double{group_cell_scale}, band = settings.unload_distance_factor;
     cut(switch_px, true, [&](std::size_t k, bool in) {
@@ -77,7 +94,7 @@ void ChunkStreamer::State::choose_cut(const StreamView& view) {
 }
 
 void ChunkStreamer::State::decide_drawn() {
-    for (ChunkSlot& slot : chunks) slot.drawn = false;
+    for (const std::size_t k : work) chunks[k].drawn = false;  // only live nodes were drawn
     // covered: k's part of the view can be drawn whole from complete nodes at or below k (k itself, or
     // every child covered). The cut's own nodes are the finest such cover when they are complete.
     std::function<bool(std::size_t)> covered = [&](std::size_t k) {
@@ -122,8 +139,7 @@ void ChunkStreamer::State::decide_drawn() {
         }
         for (const std::size_t c : slot.children) draw(c);
     };
-    for (std::size_t k = 0; k < chunks.size(); ++k)
-        if (chunks[k].parent == ChunkSlot::kNoSlot) draw(k);
+    for (const std::size_t k : roots) draw(k);
 }
 
 }  // namespace splat_lod::world

@@ -57,18 +57,22 @@ float handover_opacity(const std::vector<ChunkSlot>& chunks, std::size_t k) {
 
 void ChunkStreamer::State::advance_fades() {
     const float step = settings.fade_frames > 0 ? 1.0f / static_cast<float>(settings.fade_frames) : 1.0f;
-    for (ChunkSlot& slot : chunks)
+    // Only this update's work can be drawn or on screen (stream_state.h).
+    for (const std::size_t k : work) {
+        ChunkSlot& slot = chunks[k];
         slot.fade = slot.drawn ? std::min(1.0f, slot.fade + step) : std::max(0.0f, slot.fade - step);
+    }
     // A node that stops being drawn before it had faded in fully (the cut moved on mid-fade) would leave
     // part of its ground uncovered while its replacements fade in: the node next to them keeps what the
     // others on the same ground leave (handover_opacity), so the opacities there sum to 1 and nothing
     // coarser has to come back to fill the hole.
-    std::vector<float> keep(chunks.size(), -1.0f);
-    for (std::size_t k = 0; k < chunks.size(); ++k)
-        if (!chunks[k].drawn && chunks[k].shown) keep[k] = handover_opacity(chunks, k);
-    for (std::size_t k = 0; k < chunks.size(); ++k)
-        if (keep[k] >= 0.0f) chunks[k].fade = std::max(chunks[k].fade, keep[k]);
-    for (ChunkSlot& slot : chunks) {
+    std::vector<float> keep(work.size(), -1.0f);
+    for (std::size_t i = 0; i < work.size(); ++i)
+        if (!chunks[work[i]].drawn && chunks[work[i]].shown) keep[i] = handover_opacity(chunks, work[i]);
+    for (std::size_t i = 0; i < work.size(); ++i)
+        if (keep[i] >= 0.0f) chunks[work[i]].fade = std::max(chunks[work[i]].fade, keep[i]);
+    for (const std::size_t k : work) {
+        ChunkSlot& slot = chunks[k];
         const bool was_visible = slot.shown;
         const bool visible = slot.fade > 0.0f;
         if (visible != slot.shown) {

@@ -40,15 +40,16 @@ LevelRank ChunkStreamer::State::rank(std::size_t chunk, int level) const {
 void ChunkStreamer::State::plan(const StreamView& view) {
     const double keep_factor = settings.unload_distance_factor;
     order.clear();
-    const glm::vec3 ahead =
-        view.camera_position + view.camera_velocity * static_cast<float>(settings.anticipation_updates);
-    const bool moving = ahead != view.camera_position;
-    for (ChunkSlot& slot : chunks) {
-        slot.distance = nearest_distance(*slot.entry, view.camera_position);
-        slot.cut_distance = moving ? std::max(slot.distance, nearest_distance(*slot.entry, ahead)) : slot.distance;
-    }
+    eye = view.camera_position;
+    eye_ahead = eye + view.camera_velocity * static_cast<float>(settings.anticipation_updates);
+    // This update's work: what the cut's walks visit, then the live nodes. The walks set the cut's
+    // flags of the nodes they visit; every other node is out of the cut.
+    ++stamp;
+    work.clear();
+    for (const std::size_t c : live) chunks[c].in_cut = chunks[c].near_cut = false;
     choose_cut(view);
-    for (std::size_t c = 0; c < chunks.size(); ++c) {
+    for (const std::size_t c : live) touch(c);
+    for (const std::size_t c : work) {
         ChunkSlot& slot = chunks[c];
         // Prefix semantics: a level is needed when it or any finer level could be selected. Nothing
         // of a node outside the cut is needed, but what is drawn stays (chunk_streamer.h, "the cut").
@@ -111,7 +112,7 @@ struct EvictionCandidate {
 // a chunk's finest level holding GPU memory is a candidate (what stays must be a coarse prefix).
 EvictionCandidate worst_candidate(const ChunkStreamer::State& state, bool allow_target) {
     EvictionCandidate worst;
-    for (std::size_t c = 0; c < state.chunks.size(); ++c) {
+    for (const std::size_t c : state.work) {  // only live nodes hold memory
         const ChunkSlot& slot = state.chunks[c];
         int finest = 0;
         for (int l = 1; l <= kLevels && finest == 0; ++l)
@@ -127,6 +128,27 @@ EvictionCandidate worst_candidate(const ChunkStreamer::State& state, bool allow_
 }
 
 }  // namespace
+
+void ChunkStreamer::State::keep_live() {
+    live.clear();
+    for (const std::size_t k : work) {
+        ChunkSlot& slot = chunks[k];
+        bool state =
+            slot.in_cut || slot.near_cut || slot.on_screen() || slot.shown || (slot.failed && !slot.failure_permanent);
+        for (const LevelSlot& s : slot.levels) state = state || s.active();
+        if (state) {
+            live.push_back(k);
+            continue;
+        }
+        // Idle: what plan() gives a node out of the cut with nothing loaded, so that it may be skipped.
+        slot.finest_needed = kLevels;
+        for (LevelSlot& s : slot.levels) {
+            s.margin = 0.0;
+            s.wanted = s.target = false;
+            s.frames_outside_keep = 0;
+        }
+    }
+}
 
 bool ChunkStreamer::State::make_room(std::uint64_t bytes) {
     while (resident + bytes > settings.memory_budget_bytes) {

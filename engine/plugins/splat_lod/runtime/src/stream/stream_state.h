@@ -63,11 +63,13 @@ struct ChunkSlot {
     int depth = 0;
     std::size_t parent = kNoSlot;
     std::vector<std::size_t> children;
-    bool in_cut = true;
+    bool in_cut = false;
     bool near_cut = false;  // in the cut of a camera unload_distance_factor times nearer or farther
     bool drawn = false;     // decided after this update's uploads
     bool shown = false;     // what the sink was last told (ResidencySink::show): on screen
     float fade = 0.0f;      // the node's opacity: toward 1 while drawn, toward 0 after (stream_fade.cpp)
+
+    std::uint64_t visited = 0;  // State::stamp of the last update whose work list holds it
 
     bool on_screen() const { return drawn || fade > 0.0f; }
 
@@ -118,7 +120,17 @@ struct ChunkStreamer::State {
     engine::Subscription lod_subscription;
     std::optional<plugin_msgs::LodRule> bus_rule;  // the latest LodSettings' rule on the bus, once there is one
     float group_cell_scale = 1.0f;
-    std::unique_ptr<StreamReader> reader;  // last: destroyed (and joined) first
+    // What an update looks at (chunk_streamer.h, "the work of an update"): the nodes the cut's walks
+    // visit, and those left with any state by the last update. Every other node is idle: not in or
+    // near the cut, nothing requested, loaded or uploaded, not on screen, not failed but for a wrong
+    // manifest entry; the update would leave it so.
+    std::vector<std::size_t> roots;                // nodes without a parent
+    std::vector<std::size_t> live;                 // nodes with state after the last update (all before the first)
+    std::vector<std::size_t> work;                 // this update's nodes: the walks' and the live ones
+    std::uint64_t stamp = 0;                       // this update's mark in ChunkSlot::visited
+    glm::vec3 eye{0.0f}, eye_ahead{0.0f};          // the camera now and as anticipated (plan)
+    std::uint64_t permanent_failures[2] = {0, 0};  // wrong manifest entries: chunks, groups
+    std::unique_ptr<StreamReader> reader;          // last: destroyed (and joined) first
 
     // stream_plan.cpp
     void plan(const StreamView& view);
@@ -126,7 +138,9 @@ struct ChunkStreamer::State {
     bool make_room(std::uint64_t bytes);  // evicts levels outside the target set only
     void enforce_memory_budget();         // evicts anything, worst first, down to the budget
 
-    void link_groups();                       // parents and children of the quadtree
+    void link_groups();                       // parents and children of the quadtree, the roots
+    void touch(std::size_t k);                // k joins this update's work, with its distances
+    void keep_live();                         // after an update: the live nodes; the rest idle
     void choose_cut(const StreamView& view);  // ChunkSlot::in_cut
     void decide_drawn();                      // ChunkSlot::drawn
 

@@ -73,6 +73,13 @@
 // (its opacity is the node's times its own); one that arrives while the node is not shown takes the
 // node's. fade_frames = 0: every change at once.
 //
+// The work of an update: the cut's walks visit the nodes above the cut and the cut itself, and stop
+// there; every other step looks at those and at the nodes the last update left with any state (in or
+// near the cut, something requested, loaded or uploaded, on screen, failed). The rest of the world is
+// idle and would stay so, so an update costs what the view holds, not what the world holds
+// (StreamerStats::nodes_last_update). Only new settings, a wrong manifest entry (reported once), and a
+// cut group that is still loading (whose stand-ins below it are searched) reach further.
+//
 // Anticipation: a fade takes fade_frames updates, so a cut that switched only when the camera got far
 // enough would keep the finer nodes (and their cost) for that long after. With a camera_velocity v,
 // the cut decides each node by the farther of its distance now and its distance from the camera
@@ -196,6 +203,9 @@ struct StreamerStats {
     std::uint64_t levels_evicted_for_memory = 0;
     std::uint64_t levels_released_unneeded = 0;
     std::uint64_t failures = 0;
+    // Nodes (chunks and groups) the last update looked at: those its cut visited and those with anything
+    // loading, resident, on screen or failed ("the work of an update"); the rest of the world is skipped.
+    std::uint64_t nodes_last_update = 0;
 };
 
 class ChunkStreamer {
