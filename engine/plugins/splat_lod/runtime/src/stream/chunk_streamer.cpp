@@ -379,31 +379,12 @@ ChunkStreamer::~ChunkStreamer() = default;
 
 void ChunkStreamer::update(const StreamView& view) {
     State& s = *state_;
-    const glm::vec3& p = view.camera_position;
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-        engine::fail("splat_lod::world::ChunkStreamer::update(): the camera position is not finite");
-    const glm::vec3& v = view.camera_velocity;
-    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-        engine::fail("splat_lod::world::ChunkStreamer::update(): the camera velocity is not finite");
-    if (!(view.focal_length_px > 0.0f) || !std::isfinite(view.focal_length_px))
-        engine::fail("splat_lod::world::ChunkStreamer::update(): the focal length must be positive and finite, got " +
-                     std::to_string(view.focal_length_px));
-    if (!(view.cut_scale >= 1.0f) || !std::isfinite(view.cut_scale))
-        engine::fail("splat_lod::world::ChunkStreamer::update(): the cut scale must be finite and at least 1, got " +
-                     std::to_string(view.cut_scale));
+    check_view(view);
     s.frame = view.frame_index;
     s.events.clear();
     s.apply_pending_settings();
     s.report_construction_failures();
-    for (const std::size_t c : s.live) {  // a failed node stays live until retried
-        ChunkSlot& slot = s.chunks[c];
-        const int retry = s.settings.retry_failed_after_frames;
-        if (slot.failed && !slot.failure_permanent && retry > 0 &&
-            s.frame >= slot.failed_frame + static_cast<std::uint64_t>(retry)) {
-            slot.failed = false;
-            slot.failed_level = 0;
-        }
-    }
+    s.retry_failed();
     s.group_cell_scale = view.cut_scale;
     s.plan(view);
     s.release_unwanted();

@@ -129,6 +129,18 @@ EvictionCandidate worst_candidate(const ChunkStreamer::State& state, bool allow_
 
 }  // namespace
 
+void ChunkStreamer::State::retry_failed() {
+    const int retry = settings.retry_failed_after_frames;
+    for (const std::size_t c : live) {  // a failed node stays live until retried
+        ChunkSlot& slot = chunks[c];
+        if (slot.failed && !slot.failure_permanent && retry > 0 &&
+            frame >= slot.failed_frame + static_cast<std::uint64_t>(retry)) {
+            slot.failed = false;
+            slot.failed_level = 0;
+        }
+    }
+}
+
 void ChunkStreamer::State::keep_live() {
     live.clear();
     for (const std::size_t k : work) {

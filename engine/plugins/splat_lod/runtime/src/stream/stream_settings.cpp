@@ -1,9 +1,10 @@
-// The chunk streamer's settings check (chunk_streamer.h, validate).
+// The chunk streamer's checks of its settings (chunk_streamer.h, validate) and of a frame's view.
 #include <cmath>
 #include <string>
 
 #include "engine/core/error.h"
 #include "splat_lod/stream/chunk_streamer.h"
+#include "stream_state.h"
 
 namespace splat_lod::world {
 namespace {
@@ -39,6 +40,20 @@ void validate(const StreamerSettings& s) {
         settings_error("group_grazing_deg must be between 0 (off) and 90 degrees");
     if (!(s.group_cell_px >= 0.0f) || !std::isfinite(s.group_cell_px))
         settings_error("group_cell_px must be 0 (no groups) or positive, and finite");
+}
+
+void check_view(const StreamView& view) {
+    const auto finite = [](const glm::vec3& v) {
+        return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+    };
+    const std::string where = "splat_lod::world::ChunkStreamer::update(): ";
+    if (!finite(view.camera_position)) engine::fail(where + "the camera position is not finite");
+    if (!finite(view.camera_velocity)) engine::fail(where + "the camera velocity is not finite");
+    if (!(view.focal_length_px > 0.0f) || !std::isfinite(view.focal_length_px))
+        engine::fail(where + "the focal length must be positive and finite, got " +
+                     std::to_string(view.focal_length_px));
+    if (!(view.cut_scale >= 1.0f) || !std::isfinite(view.cut_scale))
+        engine::fail(where + "the cut scale must be finite and at least 1, got " + std::to_string(view.cut_scale));
 }
 
 }  // namespace splat_lod::world

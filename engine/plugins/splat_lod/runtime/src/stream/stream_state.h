@@ -141,6 +141,7 @@ struct ChunkStreamer::State {
     void link_groups();                       // parents and children of the quadtree, the roots
     void touch(std::size_t k);                // k joins this update's work, with its distances
     void keep_live();                         // after an update: the live nodes; the rest idle
+    void retry_failed();                      // a failed node is tried again after the settings' frames
     void choose_cut(const StreamView& view);  // ChunkSlot::in_cut
     void decide_drawn();                      // ChunkSlot::drawn
 
@@ -165,5 +166,8 @@ struct ChunkStreamer::State {
 };
 
 std::string_view to_string(DropReason reason);
+// Throws engine::Error for a view update() cannot use: a camera position or velocity that is not finite,
+// a focal length that is not positive, a cut scale below 1 (stream_settings.cpp).
+void check_view(const StreamView& view);
 
 }  // namespace splat_lod::world
