@@ -29,38 +29,45 @@ using plugin_msgs::StreamEventType;
 
 namespace {
 
-// make_world() with chunk groups: 2 × 2 groups of depth 1 (cells of 0.5 m: drawn from 50 m at
-// f = 100 px and 1 px) and a root of depth 2 (1 m cells: from 100 m), 30 Gaussians each, all of
-// stream level 4.
-sw::WorldManifest make_grouped_world() {
-    sw::WorldManifest world = make_world();
-    const int count = sw::chunks_per_side(world);
-    for (sw::ChunkEntry& c : world.chunks) c.cell -= glm::ivec2(count / 2);  // cells from −count/2, as generated
-    for (int depth = 1; depth <= 2; ++depth) {
-        std::set<std::pair<int, int>> made;
+// A world of side × side chunks (side a power of 2, the chunks of make_world() when side is kGrid, with
+// cells from −side/2 as generated) under a full quadtree of groups: depth d pools cells of
+// 0.5 · 2^(d − 1) m (depth 1 drawn from 50 m at f = 100 px and 1 px, depth 2 from 100 m), 30 Gaussians
+// a group, all of stream level 4. Groups are listed by depth, each in the order of its first chunk.
+sw::WorldManifest make_deep_world(int side) {
+    sw::WorldManifest world;
+    world.size_m = static_cast<float>(side) * kChunkSize;
+    world.chunk_size_m = kChunkSize;
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) world.chunks.push_back(make_chunk(i, j));
+    for (sw::ChunkEntry& c : world.chunks) c.cell -= glm::ivec2(side / 2);
+    for (int depth = 1; (1 << depth) <= side; ++depth) {
+        std::map<std::pair<int, int>, std::size_t> made;  // cell → index in world.groups
         for (const sw::ChunkEntry& c : world.chunks) {
-            const glm::ivec2 g = sw::group_of_chunk(c.cell, count, depth);
-            if (!made.insert({g.x, g.y}).second) continue;
-            sw::ChunkEntry e = c;
-            e.id = sw::group_id(depth, g);
-            e.file = e.id + ".ply";
-            e.cell = g;
-            e.depth = depth;
-            e.cell_m = depth == 1 ? 0.5f : 1.0f;
-            e.bounds_min = glm::vec3(1e9f);
-            e.bounds_max = glm::vec3(-1e9f);
-            for (const sw::ChunkEntry& m : world.chunks)
-                if (sw::group_of_chunk(m.cell, count, depth) == g) {
-                    e.bounds_min = glm::min(e.bounds_min, m.bounds_min);
-                    e.bounds_max = glm::max(e.bounds_max, m.bounds_max);
-                }
-            e.prefix_count = {30, 30, 30, 30};
-            e.levels = {};
-            e.file_bytes = e.prefix_bytes(1);
-            world.groups.push_back(e);
+            const glm::ivec2 g = sw::group_of_chunk(c.cell, side, depth);
+            const auto [it, fresh] = made.try_emplace({g.x, g.y}, world.groups.size());
+            if (fresh) {
+                sw::ChunkEntry e = c;
+                e.id = sw::group_id(depth, g);
+                e.file = e.id + ".ply";
+                e.cell = g;
+                e.depth = depth;
+                e.cell_m = 0.5f * static_cast<float>(1 << (depth - 1));
+                e.prefix_count = {30, 30, 30, 30};
+                e.levels = {};
+                e.file_bytes = e.prefix_bytes(1);
+                world.groups.push_back(e);
+            }
+            sw::ChunkEntry& e = world.groups[it->second];
+            e.bounds_min = glm::min(e.bounds_min, c.bounds_min);
+            e.bounds_max = glm::max(e.bounds_max, c.bounds_max);
         }
     }
     return world;
+}
+
+// The 4 × 4 chunks of make_world() under 2 × 2 groups of depth 1 and a root of depth 2.
+sw::WorldManifest make_grouped_world() {
+    return make_deep_world(kGrid);
 }
 
 // Over every chunk, the opacities of the nodes on its path to the root (chunk_streamer.h, "fades"):
@@ -207,43 +214,6 @@ TEST(ChunkStreamerGroups, AtAGrazingAngleAFarGroupStandsInForItsChunks) {
     EXPECT_EQ(h.streamer.residency().drawn_chunks, 16u);
     for (const std::string& problem : coverage_problems(h, world, true)) ADD_FAILURE() << problem;
 }
-
-namespace {
-
-// A world of side × side chunks (side a power of 2) under a full quadtree of groups, as
-// make_grouped_world() builds its two depths: depth d pools cells of 0.5 · 2^(d − 1) m.
-sw::WorldManifest make_deep_world(int side) {
-    sw::WorldManifest world;
-    world.size_m = static_cast<float>(side) * kChunkSize;
-    world.chunk_size_m = kChunkSize;
-    for (int j = 0; j < side; ++j)
-        for (int i = 0; i < side; ++i) world.chunks.push_back(make_chunk(i, j));
-    for (sw::ChunkEntry& c : world.chunks) c.cell -= glm::ivec2(side / 2);  // cells from −side/2, as generated
-    for (int depth = 1; (1 << depth) <= side; ++depth) {
-        std::map<std::pair<int, int>, sw::ChunkEntry> made;
-        for (const sw::ChunkEntry& c : world.chunks) {
-            const glm::ivec2 g = sw::group_of_chunk(c.cell, side, depth);
-            auto [it, fresh] = made.try_emplace({g.x, g.y}, c);
-            sw::ChunkEntry& e = it->second;
-            if (fresh) {
-                e.id = sw::group_id(depth, g);
-                e.file = e.id + ".ply";
-                e.cell = g;
-                e.depth = depth;
-                e.cell_m = 0.5f * static_cast<float>(1 << (depth - 1));
-                e.prefix_count = {30, 30, 30, 30};
-                e.levels = {};
-                e.file_bytes = e.prefix_bytes(1);
-            }
-            e.bounds_min = glm::min(e.bounds_min, c.bounds_min);
-            e.bounds_max = glm::max(e.bounds_max, c.bounds_max);
-        }
-        for (auto& [cell, e] : made) world.groups.push_back(e);
-    }
-    return world;
-}
-
-}  // namespace
 
 // The update looks at the cut and what is live, not at the whole world: a world 64 times larger
 // (4,096 chunks under 1,365 groups against 64 under 21) costs it a few more nodes, those of the

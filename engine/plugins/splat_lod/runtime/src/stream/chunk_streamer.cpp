@@ -180,10 +180,10 @@ void ChunkStreamer::State::apply_pending_settings() {
 }
 
 void ChunkStreamer::State::report_construction_failures() {
-    if (permanent_failures[0] + permanent_failures[1] == 0 || stats.updates > 0) return;  // once, at the first update
-    for (ChunkSlot& slot : chunks) {
-        if (!slot.failure_permanent || slot.failure_reported) continue;
-        slot.failure_reported = true;
+    if (std::exchange(permanent_failures_reported, true)) return;
+    if (permanent_failures[0] + permanent_failures[1] == 0) return;
+    for (const ChunkSlot& slot : chunks) {
+        if (!slot.failure_permanent) continue;
         ++stats.failures;
         engine::log_warning("splat_lod: chunk " + slot.entry->id + " skipped: " + slot.failure);
         emit({slot.entry->id, StreamEventType::failed, 0, 0, slot.failure});

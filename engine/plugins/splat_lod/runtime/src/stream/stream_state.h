@@ -55,8 +55,7 @@ struct ChunkSlot {
     int finest_needed = kLevels;
     bool failed = false;
     bool failure_permanent = false;  // the manifest entry itself is wrong
-    bool failure_reported = false;
-    int failed_level = 0;  // levels ≤ this are not loaded while failed
+    int failed_level = 0;            // levels ≤ this are not loaded while failed
     std::uint64_t failed_frame = 0;
     std::string failure;
     // The quadtree of chunk groups (chunk_streamer.h, "the cut"); chunks have depth 0.
@@ -130,6 +129,7 @@ struct ChunkStreamer::State {
     std::uint64_t stamp = 0;                       // this update's mark in ChunkSlot::visited
     glm::vec3 eye{0.0f}, eye_ahead{0.0f};          // the camera now and as anticipated (plan)
     std::uint64_t permanent_failures[2] = {0, 0};  // wrong manifest entries: chunks, groups
+    bool permanent_failures_reported = false;      // once, by the first update
     std::unique_ptr<StreamReader> reader;          // last: destroyed (and joined) first
 
     // stream_plan.cpp
