@@ -12,13 +12,14 @@ using splat_lod::world::WorldTerrain;
 // Where the walk starts on a generated world: the x whose walk has the most forest beside the path
 // (10 and 20 m either side: what the walker sees), its canopy flight counting half, keeping clear of
 // the river (no bridge: the camera would stand in the water), and the nearer the centre the better.
-// Searched on a grid of size/256 between −0.25 and +0.15 world sizes.
+// Searched on a grid of F/256 between −0.25 and +0.15 F, F the terrain's feature scale (its size up
+// to a kilometre): a larger world walks where the world of its middle does.
 float choose_walk_start(const WorldTerrain& t, const WalkLengths& len) {
-    const float size = t.size();
+    const float size = t.size(), scale = t.feature_scale();
     const float stretch = len.walk + 1.6f * len.canopy;
-    const float lowest = -0.25f * size, highest = std::min(0.15f * size, 0.5f * size - stretch - 0.05f * size);
+    const float lowest = -0.25f * scale, highest = std::min(0.15f * scale, 0.5f * size - stretch - 0.05f * size);
     float best_x = lowest, best_score = -1e30f;
-    for (float x = lowest; x <= highest; x += size / 256.0f) {
+    for (float x = lowest; x <= highest; x += scale / 256.0f) {
         float score = 0.0f;
         for (int j = 0; j <= 16; ++j) {
             const float along = stretch * static_cast<float>(j) / 16.0f;
@@ -28,7 +29,7 @@ float choose_walk_start(const WorldTerrain& t, const WalkLengths& len) {
             for (const float offset : {10.0f, 20.0f}) beside += t.forest(xs, z + offset) + t.forest(xs, z - offset);
             score += (along <= len.walk ? 1.0f : 0.5f) * beside;
         }
-        score -= 12.0f * std::sqrt(x * x + t.path_z(x) * t.path_z(x)) / size;  // distance of the start from the centre
+        score -= 12.0f * std::sqrt(x * x + t.path_z(x) * t.path_z(x)) / scale;  // distance of the start from the centre
         if (score > best_score) {
             best_score = score;
             best_x = x;
@@ -44,7 +45,7 @@ WorldGround::WorldGround(const WorldTerrain& terrain) : terrain_(terrain), size_
 }
 
 WorldGround WorldGround::of(const splat_lod::world::WorldManifest& m) {
-    if (m.ground.empty()) return WorldGround(WorldTerrain(m.seed, m.size_m));
+    if (m.ground.empty()) return WorldGround(WorldTerrain(m.seed, m.size_m, m.feature_scale()));
     WorldGround ground;
     ground.grid_ = m.ground;
     ground.size_ = m.size_m;

@@ -115,7 +115,7 @@ TEST(CameraPath, RejectsKeysItCannotUse) {
 
 TEST_P(WorldPath, WalksOnTheGroundFliesOverItAndComesBack) {
     const WorldCase c = GetParam();
-    const WorldTerrain terrain(c.seed, c.size);
+    const WorldTerrain terrain(c.seed, c.size, WorldTerrain::feature_scale_for(c.size));
     const sample_game::WorldPathShape shape;
     const std::vector<PathPose> poses = sample_game::sample_world_path(terrain, 300, shape);
     ASSERT_EQ(poses.size(), 300u);

@@ -88,7 +88,7 @@ TEST_F(ReferenceTest, IsMadeCachedAndFoundAgain) {
     EXPECT_EQ(made.folder.parent_path(), world / kReferenceFolderName);
     const std::vector<PathPose> poses = [&] {
         const sw::WorldManifest m = sw::read_world_manifest(world / sw::kManifestFileName);
-        return sample_world_path(sw::WorldTerrain(m.seed, m.size_m), 20);
+        return sample_world_path(sw::WorldTerrain(m.seed, m.size_m, m.feature_scale()), 20);
     }();
     std::set<Segment> segments;
     const std::set<std::size_t> made_frames(made.frames.begin(), made.frames.end());

@@ -60,7 +60,7 @@ TEST(WorldGround, AnImportedWorldIsWalkedThroughItsDensestChunkAtItsScale) {
 }
 
 TEST(WorldGround, AGeneratedWorldKeepsItsTerrainPath) {
-    const sw::WorldTerrain terrain(3, 256.0f);
+    const sw::WorldTerrain terrain(3, 256.0f, 256.0f);
     sw::WorldManifest m;
     m.seed = 3;
     m.size_m = 256.0f;
@@ -71,9 +71,30 @@ TEST(WorldGround, AGeneratedWorldKeepsItsTerrainPath) {
     EXPECT_FLOAT_EQ(from_terrain[0].eye.y, terrain.height(from_terrain[0].eye.x, from_terrain[0].eye.z) + 1.7f);
 }
 
+// A world larger than its feature scale is walked where the world of its middle is: the same start
+// and the same ground frames (the flyout, the overview and the return grow with the world).
+TEST(WorldGround, ALargerWorldIsWalkedWhereItsMiddleIs) {
+    const float middle = sw::WorldTerrain::kFeatureScaleMax;
+    const sw::WorldTerrain small(5, middle, middle), large(5, 3.0f * middle, middle);
+    EXPECT_EQ(sample_game::WorldGround(small).walk_start(), sample_game::WorldGround(large).walk_start());
+    const auto a = sample_game::sample_world_path(small, 100), b = sample_game::sample_world_path(large, 100);
+    ASSERT_EQ(a.size(), b.size());
+    int ground = 0;
+    for (std::size_t i = 0; i < a.size() && a[i].segment == sample_game::Segment::ground; ++i, ++ground) {
+        EXPECT_EQ(a[i].eye, b[i].eye) << i;
+        EXPECT_EQ(b[i].segment, sample_game::Segment::ground) << i;
+    }
+    EXPECT_GT(ground, 10);
+    sw::WorldManifest m;
+    m.seed = 5;
+    m.size_m = 3.0f * middle;
+    m.feature_m = middle;  // what the generator writes for such a world
+    EXPECT_EQ(sample_game::WorldGround::of(m).walk_start(), sample_game::WorldGround(large).walk_start());
+}
+
 TEST(PathFile, PosesAreTakenAsGivenKeysAreSampledAndBadEntriesNamed) {
     const auto dir = engine::test::output_dir("path_file");
-    const sw::WorldTerrain terrain(5, 128.0f);
+    const sw::WorldTerrain terrain(5, 128.0f, 128.0f);
     const auto poses = sample_game::sample_world_path(terrain, 40);
     sample_game::write_path_file(dir / "poses.json", poses);
     const auto back = sample_game::read_path_file(dir / "poses.json", 999);

@@ -5,6 +5,7 @@
 
 #include "splat_lod/synth/world_terrain.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/core/error.h"
@@ -20,8 +21,8 @@ constexpr float kHillWavelength[3] = {240.0f, 97.0f, 37.0f};
 constexpr float kHillWeight[3] = {0.55f, 0.30f, 0.15f};
 constexpr float kHillHeight = 26.0f;
 
-// The river's centre line x(z) = offset + Σ a·size·sin(2π z / (λ·size) + φ): one wide bend across
-// the world and a shorter meander on it.
+// The river's centre line x(z) = offset + Σ a·F·sin(2π z / (λ·F) + φ), F the feature scale: one wide
+// bend across a world of size F and a shorter meander on it.
 constexpr float kRiverAmplitude[2] = {0.12f, 0.025f};
 constexpr float kRiverWavelength[2] = {0.8f, 0.3f};
 constexpr float kPathAmplitude[2] = {0.10f, 0.025f};
@@ -44,9 +45,17 @@ float cosine(double angle) {
 
 }  // namespace
 
-WorldTerrain::WorldTerrain(std::uint64_t seed, float size_m) : size_(size_m) {
+float WorldTerrain::feature_scale_for(float size_m) {
+    return std::min(size_m, kFeatureScaleMax);
+}
+
+WorldTerrain::WorldTerrain(std::uint64_t seed, float size_m, float feature_m) : size_(size_m), feature_(feature_m) {
     if (!(std::isfinite(size_m) && size_m > 0.0f))
         engine::fail("splat_lod::world::WorldTerrain: the size must be a positive number of metres");
+    if (!(std::isfinite(feature_m) && feature_m > 0.0f && feature_m <= size_m))
+        engine::fail(
+            "splat_lod::world::WorldTerrain: the feature scale must be a positive number of metres, at most "
+            "the size");
     synth::Rng rng(seed, stream_id(StreamKind::terrain, 0, 0));
     for (auto& s : hill_seed_) s = rng.next_u64();
     for (auto& s : forest_seed_) s = rng.next_u64();
@@ -56,9 +65,9 @@ WorldTerrain::WorldTerrain(std::uint64_t seed, float size_m) : size_(size_m) {
     path_.wavelength = kPathWavelength;
     for (auto& phase : river_.phase) phase = rng.uniform(0.0f, synth::kTwoPiF);
     for (auto& phase : path_.phase) phase = rng.uniform(0.0f, synth::kTwoPiF);
-    // Offsets keep both lines well inside the world, whatever its size.
-    river_.offset = size_ * rng.uniform(-0.15f, 0.15f);
-    path_.offset = size_ * rng.uniform(-0.2f, 0.2f);
+    // Offsets keep both lines well inside the middle square of the feature scale.
+    river_.offset = feature_ * rng.uniform(-0.15f, 0.15f);
+    path_.offset = feature_ * rng.uniform(-0.2f, 0.2f);
 }
 
 float WorldTerrain::hills(float x, float z) const {
@@ -68,30 +77,31 @@ float WorldTerrain::hills(float x, float z) const {
     return kHillHeight * (sum - 0.5f);
 }
 
-float WorldTerrain::CentreLine::across(float along, float size) const {
+float WorldTerrain::CentreLine::across(float along, float scale) const {
     float value = offset;
-    for (int k = 0; k < 2; ++k) value += amplitude[k] * size * sine(kTwoPi * along / (wavelength[k] * size) + phase[k]);
+    for (int k = 0; k < 2; ++k)
+        value += amplitude[k] * scale * sine(kTwoPi * along / (wavelength[k] * scale) + phase[k]);
     return value;
 }
 
-float WorldTerrain::CentreLine::slope(float along, float size) const {
+float WorldTerrain::CentreLine::slope(float along, float scale) const {
     float value = 0.0f;
     for (int k = 0; k < 2; ++k)
         value += static_cast<float>(kTwoPi) * amplitude[k] / wavelength[k] *
-                 cosine(kTwoPi * along / (wavelength[k] * size) + phase[k]);
+                 cosine(kTwoPi * along / (wavelength[k] * scale) + phase[k]);
     return value;
 }
 
-float WorldTerrain::CentreLine::distance(float across_value, float along, float size) const {
-    const float s = slope(along, size);
-    return std::abs(across_value - across(along, size)) / std::sqrt(1.0f + s * s);
+float WorldTerrain::CentreLine::distance(float across_value, float along, float scale) const {
+    const float s = slope(along, scale);
+    return std::abs(across_value - across(along, scale)) / std::sqrt(1.0f + s * s);
 }
 
 float WorldTerrain::river_x(float z) const {
-    return river_.across(z, size_);
+    return river_.across(z, feature_);
 }
 float WorldTerrain::river_distance(float x, float z) const {
-    return river_.distance(x, z, size_);
+    return river_.distance(x, z, feature_);
 }
 
 float WorldTerrain::water_level(float z) const {
@@ -99,14 +109,14 @@ float WorldTerrain::water_level(float z) const {
 }
 
 float WorldTerrain::path_z(float x) const {
-    return path_.across(x, size_);
+    return path_.across(x, feature_);
 }
 float WorldTerrain::path_distance(float x, float z) const {
-    return path_.distance(z, x, size_);
+    return path_.distance(z, x, feature_);
 }
 
 glm::vec2 WorldTerrain::path_direction(float x) const {
-    const float slope = path_.slope(x, size_);
+    const float slope = path_.slope(x, feature_);
     return glm::vec2(1.0f, slope) / std::sqrt(1.0f + slope * slope);
 }
 

@@ -180,6 +180,7 @@ WorldManifest manifest_without_chunks(const WorldOptions& o, const WorldLayout& 
     m.seed = o.seed;
     m.size_m = o.size_m;
     m.chunk_size_m = o.chunk_size_m;
+    m.feature_m = WorldTerrain::feature_scale_for(o.size_m);
     m.density = o.density;
     m.generator = generator_settings(o);
     m.stream_levels = stream_level_rule(o);

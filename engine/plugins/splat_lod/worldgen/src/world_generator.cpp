@@ -74,7 +74,7 @@ bool groups_current(const WorldManifest& m, const WorldOptions& o, std::string* 
 WorldSummary count_world_content(const WorldOptions& o) {
     validate(o);
     const auto start = Clock::now();
-    const WorldTerrain terrain(o.seed, o.size_m);
+    const WorldTerrain terrain(o.seed, o.size_m, WorldTerrain::feature_scale_for(o.size_m));
     const WorldLayout layout = make_world_layout(terrain, o.seed);
     const ContentContext context = content_context(o, terrain, layout);
     const std::vector<ChunkSlot> slots = chunk_slots(o);
@@ -103,7 +103,7 @@ namespace {
 WorldManifest build_world(const WorldOptions& o, const fs::path& generation, Clock::time_point start, WorldSummary& s) {
     auto stage_start = Clock::now();
     if (o.progress) o.progress({"meshes", 0, 0, 0, seconds_since(start), -1.0});
-    const WorldTerrain terrain(o.seed, o.size_m);
+    const WorldTerrain terrain(o.seed, o.size_m, WorldTerrain::feature_scale_for(o.size_m));
     const WorldLayout layout = make_world_layout(terrain, o.seed);
     write_prop_meshes(o.output / generation);
     if (o.terrain_mesh) write_terrain_mesh(o.output / generation, terrain);

@@ -57,10 +57,11 @@ struct LayoutBuilder {
         layout.props.push_back({mesh, at, glm::vec3(0.0f, yaw_deg, 0.0f), scale});
     }
 
+    // Each places its props along the stretch [from, to) of x.
     bool try_house(float x, synth::Rng& rng);
-    void houses(synth::Rng& rng);
-    void posts();
-    void fence_runs(synth::Rng& rng);
+    void houses(float from, float to, synth::Rng& rng);
+    void posts(float from, float to);
+    void fence_runs(float from, float to, synth::Rng& rng);
 };
 
 bool LayoutBuilder::try_house(float x, synth::Rng& rng) {
@@ -96,15 +97,15 @@ bool LayoutBuilder::try_house(float x, synth::Rng& rng) {
     return true;
 }
 
-void LayoutBuilder::houses(synth::Rng& rng) {
-    for (float x = -half + 30.0f + rng.uniform(0.0f, 60.0f); x < half - 30.0f;
+void LayoutBuilder::houses(float from, float to, synth::Rng& rng) {
+    for (float x = from + 30.0f + rng.uniform(0.0f, 60.0f); x < to - 30.0f;
          x += kHouseSpacing + rng.uniform(-30.0f, 30.0f))
         try_house(x, rng);
 }
 
-void LayoutBuilder::posts() {
+void LayoutBuilder::posts(float from, float to) {
     float side = 1.0f;
-    for (float x = -half + 10.0f; x < half - 10.0f; x += kPostSpacing, side = -side) {
+    for (float x = from + 10.0f; x < to - 10.0f; x += kPostSpacing, side = -side) {
         const glm::vec2 at = beside_path(x, side, WorldTerrain::kPathHalfWidth + 0.9f);
         if (!inside(at, 2.0f) || terrain.river_distance(at.x, at.y) < WorldTerrain::kRiverHalfWidth + 3.0f ||
             layout.blocked(at, 1.0f))
@@ -115,13 +116,13 @@ void LayoutBuilder::posts() {
 }
 
 // Runs of 6–14 fence segments beside the path, each segment a chord between two points beside it.
-void LayoutBuilder::fence_runs(synth::Rng& rng) {
-    float x = -half + 20.0f + rng.uniform(0.0f, 80.0f);
-    while (x < half - 20.0f) {
+void LayoutBuilder::fence_runs(float from, float to, synth::Rng& rng) {
+    float x = from + 20.0f + rng.uniform(0.0f, 80.0f);
+    while (x < to - 20.0f) {
         const int segments = rng.uniform_int(6, 14);
         const float side = rng.chance(0.5f) ? 1.0f : -1.0f;
         const float offset = WorldTerrain::kPathHalfWidth + 2.2f;
-        for (int k = 0; k < segments && x < half - 20.0f; ++k) {
+        for (int k = 0; k < segments && x < to - 20.0f; ++k) {
             const float next = x + kFenceSegment * terrain.path_direction(x).x;
             const glm::vec2 a = beside_path(x, side, offset), b = beside_path(next, side, offset);
             x = next;
@@ -152,12 +153,22 @@ bool WorldLayout::blocked(const glm::vec2& p, float margin) const {
 }
 
 WorldLayout make_world_layout(const WorldTerrain& terrain, std::uint64_t seed) {
-    LayoutBuilder builder{terrain, {}, 0.5f * terrain.size()};
+    const float half = 0.5f * terrain.size(), middle = 0.5f * terrain.feature_scale();
+    LayoutBuilder builder{terrain, {}, half};
+    // From the west edge of the feature scale's middle square (world_terrain.h) to the east edge of the
+    // world, then, in a larger world, the stretch west of that square from streams of their own: the
+    // middle square has the props of a world of the feature scale's size, save at its east end, where
+    // the larger world goes on.
     synth::Rng house_rng(seed, stream_id(StreamKind::layout, 0, 0));
-    builder.houses(house_rng);
-    builder.posts();
+    builder.houses(-middle, half, house_rng);
+    synth::Rng west_house_rng(seed, stream_id(StreamKind::layout, 2, 0));
+    builder.houses(-half, -middle, west_house_rng);
+    builder.posts(-middle, half);
+    builder.posts(-half, -middle);
     synth::Rng fence_rng(seed, stream_id(StreamKind::layout, 1, 0));
-    builder.fence_runs(fence_rng);
+    builder.fence_runs(-middle, half, fence_rng);
+    synth::Rng west_fence_rng(seed, stream_id(StreamKind::layout, 3, 0));
+    builder.fence_runs(-half, -middle, west_fence_rng);
     return std::move(builder.layout);
 }
 

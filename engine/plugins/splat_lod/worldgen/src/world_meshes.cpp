@@ -209,8 +209,10 @@ std::uint64_t write_prop_meshes(const std::filesystem::path& folder) {
 }
 
 std::uint64_t write_terrain_mesh(const std::filesystem::path& folder, const WorldTerrain& terrain) {
+    // Cells of 1/128 of the feature scale (at least 4 m): a larger world keeps the cell of its middle.
     const float size = terrain.size();
-    const int cells = std::max(1, static_cast<int>(std::floor(size / std::max(4.0f, size / 128.0f))));
+    const int cells =
+        std::max(1, static_cast<int>(std::floor(size / std::max(4.0f, terrain.feature_scale() / 128.0f))));
     const float step = size / static_cast<float>(cells);
     Part ground{"ground", {0.16f, 0.20f, 0.08f, 1.0f}};
     for (int j = 0; j <= cells; ++j)

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "splat_lod/synth/world_terrain.h"
 #include "splat_lod/worldgen/world_generator.h"
 
 namespace splat_lod::world {
@@ -81,6 +82,10 @@ std::string generator_settings(const WorldOptions& o) {
       << (o.terrain_mesh ? "yes" : "no") << "; stream reach " << number(o.stream_reach_min[0]) << "/"
       << number(o.stream_reach_min[1]) << "/" << number(o.stream_reach_min[2]) << "; chunk files "
       << (o.chunk_codec == ChunkCodec::compact ? "compact" : "ply");
+    // Worlds up to the largest feature scale have the feature scale of their size, and worlds larger
+    // than that were once made with their own: only the larger ones say which they have.
+    if (const float feature = WorldTerrain::feature_scale_for(o.size_m); feature != o.size_m)
+        s << "; features " << number(feature) << " m";
     return s.str();
 }
 

@@ -206,7 +206,7 @@ WorldResult bake_world_shard(const WorldOptions& o, const WorldShard& shard) {
     WorldResult result;
     WorldSummary& s = result.summary;
     s.cache_note = cache_note;
-    const WorldTerrain terrain(o.seed, o.size_m);
+    const WorldTerrain terrain(o.seed, o.size_m, WorldTerrain::feature_scale_for(o.size_m));
     const WorldLayout layout = make_world_layout(terrain, o.seed);
     std::vector<ChunkSlot> slots;
     for (const std::size_t k : shard_chunk_indices(all.size(), shard)) slots.push_back(all[k]);
@@ -260,7 +260,7 @@ WorldResult merge_world_shards(const WorldOptions& o) {
     // Everything that needs all chunks goes here, after the check (chunk groups' coarse levels).
     stage_start = Clock::now();
     if (o.progress) o.progress({"meshes", 0, 0, 0, seconds_since(start), -1.0});
-    const WorldTerrain terrain(o.seed, o.size_m);
+    const WorldTerrain terrain(o.seed, o.size_m, WorldTerrain::feature_scale_for(o.size_m));
     const WorldLayout layout = make_world_layout(terrain, o.seed);
     stage_meshes(o, staging, terrain, staged);
     s.stages.push_back({"layout and meshes", seconds_since(stage_start)});

@@ -136,6 +136,40 @@ TEST(WorldGroups, ChunkBordersDoNotCutCells) {
     EXPECT_EQ(sw::pool_group(std::vector<SplatCloud>{left, right}, glm::vec3(1.0f, 0.0f, 0.0f), 2.0f).size(), 2u);
 }
 
+// A group reads its members when it needs them, one at a time and twice each, in order (what lets a
+// group of a whole world pool in the memory of one chunk), and pools them to the same bytes as one
+// member holding them all in the same order: every sum runs in the same order.
+TEST(WorldGroups, MembersAreReadOneAtATimeTwiceInOrderToTheSameBytes) {
+    std::vector<SplatCloud> members(3);
+    SplatCloud all;
+    for (std::size_t m = 0; m < members.size(); ++m)
+        for (int k = 0; k < 40; ++k) {
+            const float t = static_cast<float>(m * 40 + static_cast<std::size_t>(k));
+            const glm::vec3 p(std::fmod(t * 0.37f, 5.0f), std::fmod(t * 0.61f, 3.0f), std::fmod(t * 0.23f, 4.0f));
+            const glm::vec3 s(k % 9 == 0 ? 1.5f : 0.05f + 0.01f * static_cast<float>(k % 5));  // some kept
+            const glm::vec3 c(0.1f * static_cast<float>(k % 7), 0.5f, 0.05f * static_cast<float>(m));
+            add(members[m], p, s, 0.3 + 0.01 * k, c);
+            add(all, p, s, 0.3 + 0.01 * k, c);
+        }
+    std::vector<std::size_t> reads;
+    const auto read = [&](std::size_t m) {
+        reads.push_back(m);
+        return members[m];
+    };
+    const SplatCloud streamed = sw::pool_group(members.size(), read, glm::vec3(0.0f), 1.0f, 1.5f);
+    const SplatCloud whole = sw::pool_group(std::vector<SplatCloud>{all}, glm::vec3(0.0f), 1.0f, 1.5f);
+    EXPECT_EQ(reads, (std::vector<std::size_t>{0, 1, 2, 0, 1, 2}));
+    ASSERT_EQ(streamed.size(), whole.size());
+    EXPECT_GT(streamed.size(), 20u);
+    for (std::size_t i = 0; i < whole.size(); ++i) {
+        EXPECT_EQ(streamed.positions[i], whole.positions[i]) << i;
+        EXPECT_EQ(streamed.log_scales[i], whole.log_scales[i]) << i;
+        EXPECT_EQ(streamed.opacity_logits[i], whole.opacity_logits[i]) << i;
+        EXPECT_EQ(streamed.sh_dc[i], whole.sh_dc[i]) << i;
+        EXPECT_EQ(streamed.rotations[i].w, whole.rotations[i].w) << i;
+    }
+}
+
 TEST(WorldGroups, LargeKeptCoarseAndBadLeftOut) {
     SplatCloud cloud;
     add(cloud, {0.5f, 0.5f, 0.5f}, {2.0f, 0.1f, 2.0f}, 0.9, {0.5f, 0.5f, 0.5f});  // larger than the cell: kept

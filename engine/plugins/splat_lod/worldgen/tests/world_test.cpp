@@ -114,6 +114,13 @@ TEST(WorldManifest, RoundTripKeepsEveryField) {
     EXPECT_EQ(r.props[0].rotation_euler_deg, m.props[0].rotation_euler_deg);
     EXPECT_EQ(r.props[0].scale, m.props[0].scale);
     EXPECT_EQ(chunk_id({3, -2}), "chunk_+003_-002");
+    // The feature scale: left out where it is the size (and read back as the size), kept where less.
+    EXPECT_EQ(r.feature_scale(), m.size_m);
+    EXPECT_EQ(json::parse(engine::read_text_file(path)).count("feature_m"), 0u);
+    WorldManifest larger = sample_manifest();
+    larger.feature_m = 32.0f;
+    write_world_manifest(path, larger);
+    EXPECT_EQ(read_world_manifest(path).feature_scale(), 32.0f);
 }
 
 TEST(WorldManifest, EveryBadInputNamesTheFileAndTheKey) {
@@ -139,6 +146,8 @@ TEST(WorldManifest, EveryBadInputNamesTheFileAndTheKey) {
         {"missing", [](json& j) { j.erase("seed"); }, "seed: missing"},
         {"wrong_type", [](json& j) { j["size_m"] = "large"; }, "size_m"},
         {"negative_size", [](json& j) { j["chunk_size_m"] = -64; }, "chunk_size_m"},
+        {"feature_zero", [](json& j) { j["feature_m"] = 0; }, "feature_m"},
+        {"feature_larger", [](json& j) { j["feature_m"] = 256; }, "feature_m: is larger than size_m"},
         {"negative_count", [](json& j) { j["chunks"][0]["header_bytes"] = -1; }, "chunks[0].header_bytes"},
         {"nan", [](json& j) { j["chunks"][0]["bounds_min"][1] = nullptr; }, "chunks[0].bounds_min[1]"},
         {"nan_extent", [](json& j) { j["chunks"][0]["levels"][2]["extent_max"] = nullptr; },

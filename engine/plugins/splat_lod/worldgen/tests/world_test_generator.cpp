@@ -255,7 +255,7 @@ TEST(WorldGenerator, SecondRunReusesTheCacheAndATruncatedChunkInvalidatesIt) {
 TEST(WorldGenerator, PropMeshesLoadThroughTheEngineLoader) {
     const fs::path dir = engine::test::output_dir("world");
     write_prop_meshes(dir);
-    write_terrain_mesh(dir, WorldTerrain(2, 128.0f));
+    write_terrain_mesh(dir, WorldTerrain(2, 128.0f, 128.0f));
     for (const char* mesh : {kHouseMesh, kFenceMesh, kPostMesh, kTerrainMesh}) {
         const engine::MeshAsset asset = engine::load_gltf(dir / mesh);
         EXPECT_GT(asset.triangle_count(), 10u) << mesh;
@@ -274,11 +274,11 @@ TEST(WorldGenerator, PropsStandOnTheGroundAndNothingButGroundIsInsideAHouse) {
     // The first seed whose 192 m world has a house (the layout alone is cheap).
     std::uint64_t seed = 1;
     for (; seed < 50; ++seed) {
-        const WorldLayout layout = make_world_layout(WorldTerrain(seed, 192.0f), seed);
+        const WorldLayout layout = make_world_layout(WorldTerrain(seed, 192.0f, 192.0f), seed);
         if (std::any_of(layout.props.begin(), layout.props.end(), [](const Prop& p) { return p.mesh == kHouseMesh; }))
             break;
     }
-    const WorldTerrain terrain(seed, 192.0f);
+    const WorldTerrain terrain(seed, 192.0f, 192.0f);
     const WorldLayout layout = make_world_layout(terrain, seed);
     const auto house =
         std::find_if(layout.props.begin(), layout.props.end(), [](const Prop& p) { return p.mesh == kHouseMesh; });
@@ -310,4 +310,44 @@ TEST(WorldGenerator, PropsStandOnTheGroundAndNothingButGroundIsInsideAHouse) {
     EXPECT_GT(inside, 10u) << "the ground under the house";
     EXPECT_GT(counts.ground, 1000u);
     EXPECT_GT(counts.fences, 100u) << "the garden's picket fence";
+}
+
+// A world larger than the largest feature scale is the world of its middle with more land around it:
+// the same ground and the same props inside the middle square (but at its east end, where the larger
+// world's props go on), props beyond it on both sides, and a generator string that says so.
+TEST(WorldGenerator, ALargerWorldKeepsTheWorldOfItsMiddle) {
+    constexpr std::uint64_t seed = 7;
+    const float middle = WorldTerrain::kFeatureScaleMax, size = 2.0f * middle;
+    EXPECT_EQ(WorldTerrain::feature_scale_for(size), middle);
+    EXPECT_EQ(WorldTerrain::feature_scale_for(256.0f), 256.0f);
+    const WorldTerrain small(seed, middle, middle), large(seed, size, middle);
+    for (float z = -0.5f * middle; z <= 0.5f * middle; z += 37.0f)
+        for (float x = -0.5f * middle; x <= 0.5f * middle; x += 41.0f) {
+            ASSERT_EQ(small.height(x, z), large.height(x, z)) << x << ", " << z;
+            ASSERT_EQ(small.forest(x, z), large.forest(x, z)) << x << ", " << z;
+            ASSERT_EQ(small.path_z(x), large.path_z(x)) << x;
+        }
+    const auto props_between = [](const WorldLayout& layout, float from, float to) {
+        std::vector<Prop> props;
+        for (const Prop& p : layout.props)
+            if (p.translation.x >= from && p.translation.x < to) props.push_back(p);
+        return props;
+    };
+    const WorldLayout a = make_world_layout(small, seed), b = make_world_layout(large, seed);
+    const float east = 0.5f * middle - 60.0f;  // clear of the props the larger world adds past the end
+    const std::vector<Prop> pa = props_between(a, -0.5f * middle, east), pb = props_between(b, -0.5f * middle, east);
+    ASSERT_EQ(pa.size(), pb.size());
+    EXPECT_GT(pa.size(), 20u);
+    for (std::size_t k = 0; k < pa.size(); ++k) {
+        EXPECT_EQ(pa[k].mesh, pb[k].mesh) << k;
+        EXPECT_EQ(pa[k].translation, pb[k].translation) << k;
+        EXPECT_EQ(pa[k].rotation_euler_deg, pb[k].rotation_euler_deg) << k;
+    }
+    EXPECT_GT(props_between(b, -0.5f * size, -0.5f * middle).size(), 10u);  // the west
+    EXPECT_GT(props_between(b, 0.5f * middle, 0.5f * size).size(), 10u);    // the east
+    WorldOptions o;
+    o.size_m = size;
+    EXPECT_NE(generator_settings(o).find("; features 1024 m"), std::string::npos) << generator_settings(o);
+    o.size_m = middle;
+    EXPECT_EQ(generator_settings(o).find("features"), std::string::npos) << generator_settings(o);
 }

@@ -1,5 +1,6 @@
 // world.json: reading with a check of every value, and the atomic writer (world/world_manifest.h).
-//   { "version": 5, "seed": 7, "size_m": 1024, "chunk_size_m": 64, "up": [0, 1, 0],
+//   { "version": 5, "seed": 7, "size_m": 1024, "chunk_size_m": 64, "feature_m": 1024 (left out when equal to size_m),
+//     "up": [0, 1, 0],
 //     "gaussians": 10400000, "density": 1, "generator": "…",
 //     "stream_levels": { "size_threshold_px": 2, "rel_min": 0.5, "reach_min": [0.4, 0.12, 0.04] },
 //     "chunks": [ { "id": "chunk_-008_-008", "file": "gen-1/chunks/chunk_-008_-008.lod.ply", "cell": [-8, -8],
@@ -15,8 +16,8 @@
 // File paths are relative to the manifest's folder; the generator puts each run's files in its own
 // gen-<n>/ folder (world_generator.h: output safety), worlds of earlier versions have chunks/ and
 // meshes/ beside world.json. Both read the same way. The reader is strict (unknown keys are errors,
-// so a typo never passes as a default); "up", "density", "generator", "props" and "terrain_mesh"
-// may be left out.
+// so a typo never passes as a default); "feature_m", "up", "density", "generator", "props" and
+// "terrain_mesh" may be left out.
 #include "splat_lod/core/world_manifest.h"
 
 #include <algorithm>
@@ -328,8 +329,8 @@ WorldManifest ManifestReader::manifest(const json& document) const {
     if (version >= 4)
         only_keys(
             document, "",
-            {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density", "generator", "stream_levels",
-             "chunks", "props", "terrain_mesh", "groups", "group_generator", "ground", "capture"});
+            {"version", "seed", "size_m", "chunk_size_m", "feature_m", "up", "gaussians", "density", "generator",
+             "stream_levels", "chunks", "props", "terrain_mesh", "groups", "group_generator", "ground", "capture"});
     else
         only_keys(document, "",
                   {"version", "seed", "size_m", "chunk_size_m", "up", "gaussians", "density", "generator",
@@ -339,6 +340,10 @@ WorldManifest ManifestReader::manifest(const json& document) const {
     m.size_m = positive(member(document, "", "size_m"), "size_m");
     m.chunk_size_m = positive(member(document, "", "chunk_size_m"), "chunk_size_m");
     if (m.chunk_size_m > m.size_m) error("chunk_size_m", "is larger than size_m");
+    if (document.contains("feature_m")) {
+        m.feature_m = positive(document["feature_m"], "feature_m");
+        if (m.feature_m > m.size_m) error("feature_m", "is larger than size_m");
+    }
     if (document.contains("up")) m.up = vec3(document["up"], "up");
     if (!(glm::length(m.up) > 0.0f)) error("up", "must not be the zero vector");
     m.gaussians = whole(member(document, "", "gaussians"), "gaussians");
@@ -458,6 +463,7 @@ json manifest_json(const WorldManifest& m) {
                 {"terrain_mesh", m.terrain_mesh.generic_string()},
                 {"groups", groups},
                 {"group_generator", m.group_generator}};
+    if (m.feature_scale() != m.size_m) out["feature_m"] = m.feature_scale();
     if (!m.ground.empty()) out["ground"] = ground_grid_json(m.ground);
     if (!m.capture.empty()) out["capture"] = capture_origin_json(m.capture);
     return out;

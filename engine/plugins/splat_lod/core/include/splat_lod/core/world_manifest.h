@@ -136,6 +136,11 @@ struct WorldManifest {
     std::uint64_t seed = 1;
     float size_m = 1024.0f;  // the world spans [−size/2, size/2] in x and z
     float chunk_size_m = 64.0f;
+    // The scale of a generated world's river and path (world_terrain.h, "the feature scale"), at most
+    // size_m; 0 stands for size_m. The file has it only where it is less than size_m: every world
+    // generated before larger worlds kept the scale of their middle has the scale of its size.
+    float feature_m = 0.0f;
+    float feature_scale() const { return feature_m > 0.0f ? feature_m : size_m; }
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     std::uint64_t gaussians = 0;  // over all chunks
     // What the world was made with beyond seed and sizes: the Gaussian count scale and the

@@ -78,6 +78,10 @@ float group_cell_size(const GroupOptions& options, int depth);
 // cells. Gaussians that are not drawable (non-finite values, zero rotation, opacity ≤ 1/255) are
 // left out. Empty when no member has a drawable level-1 Gaussian.
 SplatCloud pool_group(std::span<const SplatCloud> members, const glm::vec3& origin, float cell_m, float fill = 1.0f);
+// The same bytes from members read when needed: read_member(k) for k = 0 … count − 1 in order, twice
+// over, so that only one member is in memory at a time (build_groups reads each from its file).
+SplatCloud pool_group(std::size_t count, const std::function<SplatCloud(std::size_t)>& read_member,
+                      const glm::vec3& origin, float cell_m, float fill = 1.0f);
 
 struct GroupProgress {
     int depth = 0;
