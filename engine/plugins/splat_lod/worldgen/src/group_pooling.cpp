@@ -158,8 +158,7 @@ SplatCloud GroupPooling::finish(double fill) {
         if (glm::determinant(vectors[k]) < 0.0) vectors[k][2] = -vectors[k][2];
         for (int axis = 0; axis < 3; ++axis)
             if (values[k][axis] > 0.01 * cell_m_ * cell_m_) values[k][axis] *= fill * fill;
-        const glm::dmat3 widened = vectors[k] *
-                                   glm::dmat3(values[k].x, 0, 0, 0, values[k].y, 0, 0, 0, values[k].z) *
+        const glm::dmat3 widened = vectors[k] * glm::dmat3(values[k].x, 0, 0, 0, values[k].y, 0, 0, 0, values[k].z) *
                                    glm::transpose(vectors[k]);
         area[k] = std::max(projected_area(widened), 1e-30);
     }

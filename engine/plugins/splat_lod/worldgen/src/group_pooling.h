@@ -45,8 +45,7 @@ private:
         std::size_t operator()(const glm::i64vec3& c) const;
     };
     // Calls visit(i, cell, keep) for each drawable level-1 Gaussian i of `member`.
-    void each_entry(const SplatCloud& member,
-                    const std::function<void(std::size_t, std::uint32_t, bool)>& visit);
+    void each_entry(const SplatCloud& member, const std::function<void(std::size_t, std::uint32_t, bool)>& visit);
     void write_pooled(const Cell& cell, const glm::dvec3& values, const glm::dmat3& vectors, SplatCloud& to,
                       std::size_t out) const;
 
