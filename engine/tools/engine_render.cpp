@@ -1,11 +1,13 @@
 // engine_render: renders a scene file to PNG, headless.
 //   engine_render --scene content/scenes/helmet.json --out helmet.png [--width 960 --height 540]
 //                 [--camera NODE | --eye X,Y,Z --target X,Y,Z [--up X,Y,Z] [--fov-y DEG]]
-//                 [--plugin LIB.so ...] [--frames N] [--settle SECONDS]
+//                 [--plugin LIB.so ...] [--frames N] [--settle SECONDS] [--depth-png FILE]
 // Static plugins built with the engine (e.g. splat_lod) are always started; --plugin loads more.
 // --settle: before the N frames, renders frames while a plugin reports background work
 // (plugin_msgs::BackgroundWork: a drop-in LOD baking or importing a capture), printing its lines as they
 // change, for at most SECONDS; the output is then the finished picture (an error if the work is not done).
+// --depth-png: also writes the frame's view depth (engine::depth_image: grey by inverse depth) as the
+// passes after the plugins see it: the meshes' depth merged with what plugins wrote (the splats' depth).
 // Prints the GL renderer and the per-pass CPU/GPU times of the last frame.
 #include <chrono>
 #include <cstdio>
@@ -27,7 +29,7 @@
 namespace {
 
 struct Options {
-    std::string scene, out, camera_node, eye, target, up = "0,1,0";
+    std::string scene, out, camera_node, eye, target, up = "0,1,0", depth_png;
     std::vector<std::string> plugins;
     int width = 960, height = 540, frames = 1;
     float fov_y_deg = 50.0f;
@@ -94,6 +96,8 @@ int run(const Options& o) {
     if (o.settle_seconds > 0.0) settle(engine, *scene, camera, target, o.settle_seconds);
     for (int i = 0; i < o.frames; ++i) engine.renderer().render(*scene, camera, target);
     engine::write_png(o.out, target.read_color());
+    if (!o.depth_png.empty())
+        engine::write_png(o.depth_png, engine::depth_image(target.read_view_depth(), o.width, o.height));
 
     engine.renderer().timers().wait_all();
     std::printf("%s: %dx%d on %s\n", o.out.c_str(), o.width, o.height, context->info().renderer.c_str());
@@ -127,6 +131,7 @@ int main(int argc, char** argv) {
     app.add_option("--fov-y", o.fov_y_deg, "vertical field of view in degrees")->check(CLI::Range(1.0f, 179.0f));
     app.add_option("--plugin", o.plugins, "shared-library plugin to load (repeatable)");
     app.add_option("--frames", o.frames, "frames to render (timings are from the last)")->check(CLI::Range(1, 100000));
+    app.add_option("--depth-png", o.depth_png, "also write the view depth (meshes and splats) as a grey PNG");
     app.add_option("--settle", o.settle_seconds,
                    "first render while plugins report background work (a drop-in LOD), at most this many seconds")
         ->check(CLI::Range(0.0, 1e6));

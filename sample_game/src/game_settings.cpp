@@ -12,6 +12,7 @@ void validate(const GameSettings& s) {
     if (!(s.fov_y_deg > 1.0f && s.fov_y_deg < 170.0f))
         engine::fail("sample_game: the vertical field of view must be in (1, 170) degrees, got " +
                      std::to_string(s.fov_y_deg));
+    if (const std::string error = engine::check_fog(s.fog); !error.empty()) engine::fail("sample_game: " + error);
     // The streamer checks budgets, SH degree and distances and names the setting.
     splat_lod::world::validate(streamer_settings(s));
 }

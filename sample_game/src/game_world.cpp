@@ -9,6 +9,7 @@
 
 #include "engine/assets/mesh_asset.h"
 #include "engine/core/error.h"
+#include "engine/render/fog_pass.h"
 #include "engine/render/render_target.h"
 #include "engine/scene/builtin_components.h"
 #include "sample_game/world_path.h"
@@ -71,6 +72,7 @@ GameWorld::GameWorld(engine::Engine& engine, const std::filesystem::path& folder
     validate(settings_);
     pass_.emplace(engine.renderer());
     scene_->background = {0.62f, 0.74f, 0.86f};  // a pale sky (display space)
+    if (settings_.fog.enabled) engine.renderer().add_pass(std::make_shared<engine::FogPass>(settings_.fog));
     add_light(*scene_, "sun", engine::LightComponent::Kind::directional, {-50.0f, 30.0f, 0.0f}, 2.0f);
     add_light(*scene_, "sky", engine::LightComponent::Kind::ambient, {0.0f, 0.0f, 0.0f}, 0.5f);
     load_meshes();
@@ -90,6 +92,7 @@ std::vector<PathPose> GameWorld::path(int frames) const {
 
 GameWorld::~GameWorld() {
     streamer_.reset();
+    if (settings_.fog.enabled) engine_.renderer().remove_pass("fog");
 }
 
 void GameWorld::load_meshes() {

@@ -18,7 +18,7 @@ namespace {
 
 struct CommandLine : sample_game::cli::GameCommandLine {
     int path_frames = 1800;
-    bool no_ui = false;
+    bool no_ui = false, no_fog = false;
     std::string screenshot, offscreen, write_path;
 };
 
@@ -33,6 +33,10 @@ void add_options(CLI::App& app, CommandLine& c) {
     app.add_option("--screenshot", c.screenshot, "After the last --frames frame, write the window as PNG");
     app.add_option("--offscreen", c.offscreen, "Also write the frame without overlay as PNG");
     app.add_flag("--no-ui", c.no_ui, "Start with the overlay hidden (F1 toggles it)");
+    app.add_flag("--no-fog", c.no_fog, "No distance fog (on by default: meshes and splats by the frame's depth)");
+    app.add_option("--fog-density", c.settings.fog.density, "Distance fog per metre (half fog at ln 2 / density)")
+        ->check(CLI::Range(0.0, 10.0))
+        ->capture_default_str();
 }
 
 int run_window(const CommandLine& c) {
@@ -41,6 +45,7 @@ int run_window(const CommandLine& c) {
     o.width = c.width > 0 ? c.width : 1280;
     o.height = c.height > 0 ? c.height : 720;
     o.settings = c.settings;
+    o.settings.fog.enabled = !c.no_fog;
     o.path_frames = c.path_frames;
     o.frames = c.frames > 0 ? c.frames : 0;
     o.screenshot = c.screenshot;

@@ -75,6 +75,8 @@ void add_profile_options(CLI::App& app, CommandLine& c) {
         ->capture_default_str();
     app.add_flag("--no-preload", c.no_preload,
                  "Profile: start the walk cold instead of streaming the first view first");
+    app.add_flag("--fog", c.settings.fog.enabled,
+                 "Draw the windowed game's distance fog too (its GPU time is the CSV's gpu_fog_ms)");
 }
 
 void add_options(CLI::App& app, CommandLine& c) {

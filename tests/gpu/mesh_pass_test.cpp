@@ -2,7 +2,9 @@
 
 #include <plugin_msgs/frame_statistics.h>
 
+#include "engine/core/error.h"
 #include "engine/engine.h"
+#include "engine/render/fog_pass.h"
 #include "engine/render/render_target.h"
 #include "engine/render/scene_camera.h"
 #include "engine/scene/scene_loader.h"
@@ -92,6 +94,44 @@ TEST_F(MeshPassTest, WritesViewDepthAndKeepsTheImageUpright) {
     EXPECT_EQ(bottom[0], std::lround(0.2 * 255));
     EXPECT_EQ(bottom[2], std::lround(0.4 * 255));
     EXPECT_GT(top[1], top[2]);  // the green material
+}
+
+// Distance fog (engine/render/fog_pass.h) over the same quad at 4 m: its pixels move toward the fog
+// colour by 1 − exp(−density · 4) in linear light, the background (no depth) keeps its colour, and
+// settings that make no sense are refused.
+TEST_F(MeshPassTest, FogMixesByViewDepthAndLeavesTheBackground) {
+    const auto scene = scene_with((engine::test::repo_dir() / "content/meshes/ground.gltf").string());
+    auto& model = *scene->find_node("model");
+    model.transform().rotation = glm::quat(glm::radians(glm::vec3(90.0f, 0.0f, 0.0f)));
+    model.transform().scale = glm::vec3(2.0f);
+    model.transform().translation = glm::vec3(0.0f, 1.0f, 0.0f);
+    const int w = 64, h = 48;
+    const auto camera =
+        engine::make_look_at_camera({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), w, h, 0.1f, 100.0f);
+    engine::RenderTarget target(w, h);
+    engine.renderer().render(*scene, camera, target);
+    const auto clear = target.read_color();
+    engine::FogSettings fog;
+    fog.colour = {1.0f, 1.0f, 1.0f};
+    fog.density = 0.25f;
+    const auto pass = std::make_shared<engine::FogPass>(fog);
+    engine.renderer().add_pass(pass);
+    engine.renderer().render(*scene, camera, target);
+    const auto foggy = target.read_color();
+    const auto linear = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
+    const auto encoded = [](double c) { return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055; };
+    const double f = 1.0 - std::exp(-0.25 * 4.0);
+    const auto* before = clear.pixel(w / 2, h / 4);
+    const auto* after = foggy.pixel(w / 2, h / 4);
+    for (int c = 0; c < 3; ++c) {
+        const double expected = encoded(linear(before[c] / 255.0) * (1.0 - f) + f) * 255.0;
+        EXPECT_NEAR(after[c], expected, 1.0) << "channel " << c;
+    }
+    for (int c = 0; c < 4; ++c) EXPECT_EQ(foggy.pixel(w / 2, 3 * h / 4)[c], clear.pixel(w / 2, 3 * h / 4)[c]);
+    pass->settings.density = -1.0f;
+    EXPECT_THROW(engine.renderer().render(*scene, camera, target), engine::Error);
+    EXPECT_NE(engine::check_fog(pass->settings).find("density"), std::string::npos);
+    engine.renderer().remove_pass("fog");
 }
 
 TEST_F(MeshPassTest, PublishesFrameStatisticsWithGpuTimesLater) {

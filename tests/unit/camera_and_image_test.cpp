@@ -1,3 +1,5 @@
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "engine/core/error.h"
@@ -91,6 +93,20 @@ TEST(Image, CorruptPngIsAClearError) {
     } catch (const engine::Error& e) {
         EXPECT_NE(std::string(e.what()).find("corrupt.png: cannot decode image"), std::string::npos) << e.what();
     }
+}
+
+// Depth for looking at: white at the nearest depth, dark grey at the farthest, by inverse depth
+// between (in a 1–4 m range 2 m is a third of the way from 1/4 to 1), black where nothing is; a wrong
+// size is an error.
+TEST(Image, DepthImageGreysByInverseDepth) {
+    const float inf = std::numeric_limits<float>::infinity();
+    const engine::Image image = engine::depth_image({1.0f, 4.0f, 2.0f, inf}, 2, 2);
+    EXPECT_EQ(image.pixel(0, 0)[0], 255);
+    EXPECT_EQ(image.pixel(1, 0)[0], 48);
+    EXPECT_EQ(image.pixel(0, 1)[0], 48 + 69);  // 48 + 207 · (1/2 − 1/4) / (1 − 1/4)
+    EXPECT_EQ(image.pixel(1, 1)[0], 0);
+    EXPECT_EQ(image.pixel(1, 1)[3], 255);
+    EXPECT_THROW(engine::depth_image({1.0f, 2.0f}, 2, 2), engine::Error);
 }
 
 TEST(FileIo, AtomicWriteReplacesAndLeavesNoTemporaries) {

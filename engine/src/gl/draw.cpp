@@ -60,6 +60,10 @@ void set_uniform(const Uniform& u, int value) {
     glProgramUniform1i(u.program->id(), u.location, value);
 }
 
+void set_uniform(const Uniform& u, float value) {
+    glProgramUniform1f(u.program->id(), u.location, value);
+}
+
 RasterScope::RasterScope(const Program& program, const Framebuffer& framebuffer, int width, int height,
                          bool clockwise_front) {
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());

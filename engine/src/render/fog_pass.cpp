@@ -43,8 +43,8 @@ void FogPass::execute(FrameContext& frame) {
     const auto height = static_cast<std::uint32_t>(frame.target.height());
     gl::run({.program = &program,
              .groups = {gl::groups_for(width, 8), gl::groups_for(height, 8), 1},
-             .barrier = GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-                        GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT});
+             .barrier = GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT |
+                        GL_TEXTURE_UPDATE_BARRIER_BIT});
     gl::end_steps();
 }
 

@@ -1,8 +1,10 @@
 #include "engine/render/image.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <string>
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -63,6 +65,28 @@ ImageDifference compare_images(const Image& a, const Image& b, int threshold) {
     d.psnr_db = mse > 0.0 ? -10.0 * std::log10(mse) : std::numeric_limits<double>::infinity();
     d.fraction_over_threshold = pixels ? double(over) / double(pixels) : 0.0;
     return d;
+}
+
+Image depth_image(const std::vector<float>& depth, int width, int height) {
+    if (width < 0 || height < 0 || depth.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+        fail("engine::depth_image: " + std::to_string(depth.size()) + " depths for " + std::to_string(width) + "x" +
+             std::to_string(height) + " pixels");
+    float nearest = std::numeric_limits<float>::infinity(), farthest = 0.0f;
+    for (const float d : depth)
+        if (std::isfinite(d) && d > 0.0f) {
+            nearest = std::min(nearest, d);
+            farthest = std::max(farthest, d);
+        }
+    Image image{width, height, std::vector<std::uint8_t>(depth.size() * 4, 0)};
+    const double lo = 1.0 / farthest, hi = 1.0 / nearest;
+    for (std::size_t p = 0; p < depth.size(); ++p) {
+        image.rgba[4 * p + 3] = 255;
+        if (!(std::isfinite(depth[p]) && depth[p] > 0.0f)) continue;
+        const double t = hi > lo ? (1.0 / depth[p] - lo) / (hi - lo) : 1.0;
+        const auto grey = static_cast<std::uint8_t>(std::lround(48.0 + 207.0 * t));
+        image.rgba[4 * p] = image.rgba[4 * p + 1] = image.rgba[4 * p + 2] = grey;
+    }
+    return image;
 }
 
 }  // namespace engine

@@ -32,6 +32,7 @@ void record_spans(engine::Engine& engine, FrameRecord& r) {
                         : span.name == "splat.ranges"  ? &r.gpu_ranges_ms
                         : span.name == "splat.raster"  ? &r.gpu_raster_ms
                         : span.name == "splat.upscale" ? &r.gpu_upscale_ms
+                        : span.name == "fog"           ? &r.gpu_fog_ms
                                                        : nullptr;
         if (field) *field = span.milliseconds;
     }

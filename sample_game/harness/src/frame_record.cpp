@@ -190,6 +190,8 @@ std::vector<FrameColumn> make_columns() {
                      [level](R r) { return integer(r.chunks.finest_resident[static_cast<std::size_t>(level)]); }});
     c.push_back({"chunks_failed", "chunks marked failed", [](R r) { return integer(r.chunks.failed); }});
     c.push_back({"failures_total", "chunk failures reported so far", [](R r) { return integer(r.failures_total); }});
+    c.push_back({"gpu_fog_ms", "GPU timer: the distance fog post pass (with --fog)",
+                 [](R r) { return milliseconds(r.gpu_fog_ms); }});
     return c;
 }
 

@@ -79,6 +79,24 @@ void budget_checks(const std::vector<FrameRecord>& lod, ProfileSummary& s) {
         s.frames);
 }
 
+void fog_check(const std::vector<FrameRecord>& lod, ProfileSummary& s) {
+    std::vector<double> fog, frame;
+    for (const auto& r : lod)
+        if (r.gpu_fog_ms >= 0.0) {
+            fog.push_back(r.gpu_fog_ms);
+            frame.push_back(r.frame_ms);
+        }
+    s.fog.measured = !fog.empty();
+    if (!s.fog.measured) {
+        s.fog.text = "fog: not drawn (run with --fog)";
+        return;
+    }
+    const double share = median_of(fog) / median_of(frame);
+    s.fog.pass = share <= kMaxFogShare;
+    s.fog.text = formatted("fog: median %.2f ms of a median frame of %.1f ms, %.2f%% (bar %.0f%%)", median_of(fog),
+                           median_of(frame), 100.0 * share, 100.0 * kMaxFogShare);
+}
+
 void overview_check(const std::vector<FrameRecord>& lod, const std::vector<FrameRecord>& baseline, ProfileSummary& s) {
     std::map<int, double> lod_ms;
     for (const auto& r : lod) lod_ms[r.frame] = r.frame_ms;
@@ -371,6 +389,7 @@ ProfileSummary summarize(const std::vector<FrameRecord>& lod, const std::vector<
     s.upload_budget_bytes = upload_budget_bytes;
     segment_times(lod, baseline, s);
     budget_checks(lod, s);
+    fog_check(lod, s);
     overview_check(lod, baseline, s);
     s.reference_frames = reference_frames(lod, baseline);
     s.lod_temporal = temporal_errors(lod);
@@ -406,7 +425,7 @@ std::string format_summary(const ProfileSummary& s, const SummaryContext& contex
            verdict(s.overview);
     out += "  " + verdict(s.reference_loss) + "  " + verdict(s.reference_overview) + "  " + verdict(s.reference_seams);
     out += "  " + verdict(s.scale_time) + "  " + verdict(s.scale_density) + "  " + verdict(s.scale_culling) + "  " +
-           verdict(s.scale_memory) + "  " + verdict(s.splat_budget);
+           verdict(s.scale_memory) + "  " + verdict(s.splat_budget) + "  " + verdict(s.fog);
     out += formatted("\nwall time: %.0f s", context.wall_seconds);
     out += context.timing.empty() ? std::string("\n") : " (" + context.timing + ")\n";
     if (!context.outputs.empty()) {

@@ -39,6 +39,7 @@ void set_uniform(const Uniform& uniform, const glm::vec4& value);
 void set_uniform(const Uniform& uniform, const glm::vec3& value);
 void set_uniform(const Uniform& uniform, std::span<const glm::vec3> values);
 void set_uniform(const Uniform& uniform, int value);
+void set_uniform(const Uniform& uniform, float value);
 // Once, by name.
 template <class T>
 void set_uniform(const Program& program, const char* name, const T& value) {

@@ -15,8 +15,8 @@ namespace engine {
 struct FogSettings {
     bool enabled = true;
     glm::vec3 colour{0.62f, 0.72f, 0.82f};  // display space (sRGB-encoded), like the target's colour
-    float density = 0.002f;                  // per metre: half fog at ln 2 / density beyond the start (347 m)
-    float start_m = 0.0f;                    // metres of clear air in front of the camera
+    float density = 0.002f;                 // per metre: half fog at ln 2 / density beyond the start (347 m)
+    float start_m = 0.0f;                   // metres of clear air in front of the camera
 };
 
 // What is wrong with the settings (a colour outside [0, 1], a negative or non-finite density or start),

@@ -32,4 +32,9 @@ struct ImageDifference {
 // Compares RGB of two images of the same size (throws if sizes differ).
 ImageDifference compare_images(const Image& a, const Image& b, int threshold = 8);
 
+// A view depth image (z = −z_view per pixel, rows top first, +inf where nothing is) for looking at:
+// grey by inverse depth between the nearest and the farthest finite depth (white the nearest, dark grey
+// the farthest), black where nothing is. Throws when `depth` does not hold width × height values.
+Image depth_image(const std::vector<float>& depth, int width, int height);
+
 }  // namespace engine

@@ -1,7 +1,9 @@
 #pragma once
 // The offscreen frame every pass draws into: display-space colour (RGBA8, sRGB-encoded values),
 // a depth buffer, and the view-space depth z = −z_view of the nearest mesh surface per pixel
-// (R32F, +inf where no mesh), which splat passes read to stop at meshes.
+// (R32F, +inf where no mesh), which splat passes read to stop at meshes; a plugin pass that draws
+// surfaces of its own leaves there the nearer of the two per pixel (the splat pass: where its splats'
+// accumulated opacity first exceeds ½), so the passes after it (post, UI) see every surface's depth.
 // Texel row 0 is the TOP image row (camera.h's image space), so compute passes index texels by
 // pixel (i, j) directly; raster passes flip Y in their projection (flip_y_for_target()) and
 // presenting to a window flips once in the blit.

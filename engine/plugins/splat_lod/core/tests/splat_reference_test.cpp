@@ -2,6 +2,7 @@
 // per-pixel loop written here. The §7 hard cases are in splat_reference_hard_cases_test.cpp.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -301,6 +302,44 @@ TEST(ReferenceRenderer, OverlappingGaussiansBlendFrontToBackWhateverTheStorageOr
     const std::vector<ref::ReferenceInstance> instances{{&back_only, glm::dmat4(1.0)}, {&front_only, glm::dmat4(1.0)}};
     const auto c = ref::render_reference(instances, camera, {});
     EXPECT_LT(max_difference(a, c), 1e-15);
+}
+
+// The splats' depth (docs/algorithms.md §1, "Depth") in closed form at the centre pixel of two
+// Gaussians centred on it at depths 4 and 6 (α there is the opacity): the median is the depth of the
+// splat with which A = 1 − T first exceeds ½, the expected depth Σ dᵢαᵢTᵢ / A; a mesh hides what is
+// behind it from both.
+TEST(ReferenceRenderer, DepthIsWhereOpacityPassesAHalfAndItsWeightedMean) {
+    const auto camera = axis_camera(33, 33);
+    const auto two = [](double front, double back) {
+        splat_lod::SplatCloud cloud;
+        add_gaussian(cloud, {0, 0, -6}, -2.0f, back, {0, 0, 1});
+        add_gaussian(cloud, {0, 0, -4}, -2.0f, front, {1, 0, 0});
+        return cloud;
+    };
+    const auto at_centre = [](const ref::ReferenceImage& image) {
+        const std::size_t p = image.pixel_index(16, 16);
+        return std::pair(image.depth_median[p], image.depth_expected[p]);
+    };
+    const splat_lod::SplatCloud opaque = two(0.6, 0.7), faint = two(0.3, 0.3);
+    const double of = sigmoid(opaque.opacity_logits[1]), ob = sigmoid(opaque.opacity_logits[0]);
+    const auto [median, expected] = at_centre(render_cloud(opaque, camera));
+    EXPECT_EQ(median, 4.0);  // T = 0.4 after the front one
+    EXPECT_NEAR(expected, (4.0 * of + 6.0 * ob * (1.0 - of)) / (1.0 - (1.0 - of) * (1.0 - ob)), 1e-12);
+    const double f = sigmoid(faint.opacity_logits[1]);
+    const auto [faint_median, faint_expected] = at_centre(render_cloud(faint, camera));
+    EXPECT_EQ(faint_median, 6.0);  // T = 0.7, then 0.49
+    EXPECT_NEAR(faint_expected, (4.0 * f + 6.0 * f * (1.0 - f)) / (1.0 - (1.0 - f) * (1.0 - f)), 1e-12);
+    // A mesh at depth 5 hides the back one: A = 0.3 never passes ½, the expected depth is the front's.
+    ref::MeshLayer mesh{33, 33, std::vector<double>(33 * 33, 5.0), std::vector<glm::dvec3>(33 * 33, glm::dvec3(0.0))};
+    const ref::ReferenceInstance instance{&faint, glm::dmat4(1.0)};
+    const auto [hidden_median, hidden_expected] =
+        at_centre(ref::render_reference(std::span(&instance, 1), camera, {}, &mesh));
+    EXPECT_EQ(hidden_median, std::numeric_limits<double>::infinity());
+    EXPECT_NEAR(hidden_expected, 4.0, 1e-12);
+    // No splat: neither.
+    const auto empty = render_cloud(splat_lod::SplatCloud{}, camera);
+    EXPECT_EQ(empty.depth_median[0], std::numeric_limits<double>::infinity());
+    EXPECT_EQ(empty.depth_expected[0], std::numeric_limits<double>::infinity());
 }
 
 TEST(ReferenceRenderer, ModelMatrixPlacesAndScalesTheCloud) {

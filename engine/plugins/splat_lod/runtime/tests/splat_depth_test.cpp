@@ -31,7 +31,8 @@ struct DepthError {
     double relative() const { return range > 0.0 ? mean / range : 0.0; }
 };
 
-DepthError depth_error(const std::vector<float>& gpu, const std::vector<double>& cpu, const std::vector<double>& alpha) {
+DepthError depth_error(const std::vector<float>& gpu, const std::vector<double>& cpu,
+                       const std::vector<double>& alpha) {
     DepthError e;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0.0;
     for (std::size_t p = 0; p < cpu.size(); ++p) {

@@ -245,12 +245,12 @@ TEST_F(SplatUpscaleTest, MeshesHideSplatsWithSharpEdges) {
     };
     const engine::Image native = render_frame(*full, 1.0f);
     const engine::Image upscaled = render_frame(*full, 1.0f / 3.0f);
-    const std::vector<float> depth = target.read_view_depth();
 
     auto meshes_only = engine.load_scene(scene_file);
     meshes_only->find_node("biker")->find_component<splat_lod::SplatComponent>()->cloud =
         std::make_shared<const splat_lod::SplatCloud>();
     const engine::Image meshes = render_frame(*meshes_only, 1.0f);
+    const std::vector<float> depth = target.read_view_depth();  // the meshes' alone
 
     // Pixels where native shows the mesh untouched (a mesh nearer than every splat there) and
     // whose 5×5 neighbourhood is the same kind: the upscaled frame must equal the mesh there.

@@ -28,7 +28,7 @@ struct FrameRecord {
     double cpu_record_ms = 0.0;     // the renderer's CPU time recording the frame (FrameStatistics)
     // GPU timer spans of the frame (GL_TIMESTAMP; on llvmpipe also CPU work), −1 when absent.
     double gpu_mesh_ms = -1.0, gpu_splat_ms = -1.0, gpu_project_ms = -1.0, gpu_scan_ms = -1.0, gpu_bin_ms = -1.0,
-           gpu_sort_ms = -1.0, gpu_ranges_ms = -1.0, gpu_raster_ms = -1.0, gpu_upscale_ms = -1.0;
+           gpu_sort_ms = -1.0, gpu_ranges_ms = -1.0, gpu_raster_ms = -1.0, gpu_upscale_ms = -1.0, gpu_fog_ms = -1.0;
     int redraws = 0;  // frames drawn again because the key buffer overflowed (it grows after each)
 
     std::uint64_t considered = 0, visible = 0, skipped = 0, tile_splat_pairs = 0;

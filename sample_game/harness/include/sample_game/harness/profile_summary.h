@@ -25,7 +25,9 @@
 //  11. with a splat budget, no frame draws more than it;
 // and of the splat pass's own GPU memory:
 //  12. its peak (the scene's buffers and the per-frame buffers) is at most kMaxPassMemoryRatio× the peak
-//      resident scene (pages in use).
+//      resident scene (pages in use);
+// and with --fog (the windowed game's distance fog):
+//  13. the fog pass's median GPU time is at most kMaxFogShare of the median frame.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -46,6 +48,7 @@ inline constexpr double kMaxOverviewGaussiansPerPixel = 1.5;
 inline constexpr double kMaxPathGaussiansPerPixel = 2.5;
 inline constexpr double kMinGroundCulledShare = 0.6;
 inline constexpr double kMaxOverviewResidentShare = 0.15;
+inline constexpr double kMaxFogShare = 0.03;
 
 // What the scale checks (7–11) need beyond the rows; zeros leave those checks unmeasured.
 struct WorldScale {
@@ -112,6 +115,7 @@ struct ProfileSummary {
     Check reference_loss, reference_overview, reference_seams;
     Check scale_time, scale_density, scale_culling, scale_memory, splat_budget;
     Check pass_memory;
+    Check fog;
     int reselected_frames = 0;  // frames whose steps 1–2 ran twice (FrameRecord::selection_runs)
 };
 

@@ -158,6 +158,8 @@ struct PixelResult {
     glm::dvec3 colour{0.0};
     double transmittance = 1.0;
     std::uint32_t contributors = 0;
+    double depth_sum = 0.0;                                   // Σ dᵢαᵢTᵢ
+    double median = std::numeric_limits<double>::infinity();  // where T first falls below ½
 };
 
 // One splat's term of Niedermayr et al. Eqs. 8–14 in the accumulated-alpha form of docs/algorithms.md §5, taken
@@ -205,6 +207,8 @@ PixelResult blend_pixel(std::span<const std::uint32_t> ids, const std::vector<Dr
         if (next < kMinTransmittance) break;
         if constexpr (kGradients) accumulate_derivatives(*derivatives, s, d, alpha, result.transmittance);
         result.colour += s.colour * (alpha * result.transmittance);
+        result.depth_sum += s.depth * (alpha * result.transmittance);
+        if (result.transmittance >= 0.5 && next < 0.5) result.median = s.depth;
         result.transmittance = next;
         ++result.contributors;
     }
@@ -261,6 +265,8 @@ void rasterise_band(const RasterInputs& in, int band, ReferenceImage& image) {
                 image.rgb[3 * p + 2] = c.z;
                 image.alpha[p] = 1.0 - r.transmittance;
                 image.contributors[p] = r.contributors;
+                image.depth_median[p] = r.median;
+                if (r.contributors > 0) image.depth_expected[p] = r.depth_sum / (1.0 - r.transmittance);
             }
     }
 }
@@ -295,6 +301,8 @@ ReferenceImage render_reference(std::span<const ReferenceInstance> instances, co
     image.rgb.assign(3 * pixels, 0.0);
     image.alpha.assign(pixels, 0.0);
     image.contributors.assign(pixels, 0);
+    image.depth_median.assign(pixels, std::numeric_limits<double>::infinity());
+    image.depth_expected.assign(pixels, std::numeric_limits<double>::infinity());
     if (settings.gradients)
         for (std::vector<double>* channel : {&image.splat, &image.splat_dx, &image.splat_dy, &image.splat_dxy})
             channel->assign(4 * pixels, 0.0);

@@ -2,7 +2,8 @@
 // The runtime's public face for tools, games and tests: the splat pass that the plugin adds to an
 // engine's renderer, seen through a small handle. Its settings, the statistics of the latest frame
 // it read back, the GPU memory of its scene (pages of Gaussians), reserving that memory up front,
-// and the low-resolution image of the upscaler (for tests that check it against the CPU reference).
+// the low-resolution image of the upscaler and the splats' depth (for tests that check them against the
+// CPU reference).
 // The pass itself stays private to the plugin.
 #include <cstdint>
 #include <optional>
@@ -76,6 +77,20 @@ struct SplatPassSettings {
     // Gaussian plus 8 or 16 bytes of higher SH bands, or full floats where every trained bit must
     // reach the screen. A change re-uploads the scene.
     GpuStorage gpu_storage = GpuStorage::compact;
+    // Keep the splats' own depths of each frame, the median and the expected depth (SplatDepth), in an
+    // image at the output size that read_splat_depth() returns: 8 bytes a pixel. The target's view depth
+    // gets the median depth merged with the meshes' either way (docs/algorithms.md §1, "Depth").
+    bool splat_depth = false;
+};
+
+// The splats' view depths z = −z_view of a frame, per output pixel, rows top first, +inf where there is
+// none (docs/algorithms.md §1, "Depth"): `median`, the depth of the splat with which the accumulated
+// opacity first exceeds ½ (what the target's view depth gets, merged with the meshes'), and `expected`,
+// Σ dᵢαᵢTᵢ / A over the splats blended. Splats behind a mesh are not blended and count for neither.
+// Below render scale 1 each output pixel has the depths of the low-resolution texel it falls in.
+struct SplatDepth {
+    int width = 0, height = 0;
+    std::vector<float> median, expected;
 };
 
 // The GPU memory of the pass's scene: Gaussians live in fixed-size pages (docs/world_lod.md).
@@ -129,6 +144,9 @@ public:
     // analytic gradients and the front depth (tests and evaluation; waits for the GPU).
     upscale::GradientImage read_low_res_image() const;
     std::vector<float> read_low_res_front_depth() const;
+    // The splats' depths of the latest frame drawn with settings().splat_depth (waits for the GPU);
+    // empty before one.
+    SplatDepth read_splat_depth() const;
 
 private:
     SplatPass* pass_;

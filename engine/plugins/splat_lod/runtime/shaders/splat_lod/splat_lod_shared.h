@@ -70,6 +70,14 @@ using mat4 = glm::mat4;
 #define SPLAT_UNIFORM_FRAME 0       // FrameUniforms (uniform block binding)
 #define SPLAT_IMAGE_COLOR 0         // the frame's display-space colour (rgba8), read and written
 #define SPLAT_TEXTURE_VIEW_DEPTH 1  // the mesh pass's view depth (r32f), +inf where no mesh
+// The same texture as an image: the step that writes the output pixels (the raster at render scale 1,
+// else the upscale) reads its pixel's mesh depth there and leaves the nearer of it and the splats'
+// depth (the depth at which their accumulated opacity first exceeds ½), for the passes after.
+#define SPLAT_IMAGE_VIEW_DEPTH 7
+// With SplatPassSettings::splat_depth (the SPLAT_DEPTH_IMAGE define): the splats' own depths at the
+// output size (rg32f): x that median depth, y the expected depth Σ dᵢαᵢTᵢ / A; +inf where none.
+#define SPLAT_IMAGE_SPLAT_DEPTH 6
+#define SPLAT_INFINITY uintBitsToFloat(0x7f800000u)
 // Buffer textures over the projected splats (rgba32f, 3 texels a splat) and the sorted values (r32ui),
 // read by the raster with SplatPassSettings::raster_fetch = texel.
 #define SPLAT_TEXTURE_PROJECTED 2
@@ -88,9 +96,10 @@ using mat4 = glm::mat4;
 // codecs (rgba32ui, 5 texels each).
 #define SPLAT_TEXTURE_PAGE_CODECS 10
 // Below render scale 1 (docs/algorithms.md §5) the raster writes these low-resolution images (rgba32f:
-// premultiplied colour C and alpha A, and their ∂/∂x, ∂/∂y, ∂²/∂x∂y per low-res pixel; r32f: the
-// view depth where the transmittance first falls below ½, else the depth the texel was cut at),
-// which the upscale pass reads.
+// premultiplied colour C and alpha A, and their ∂/∂x, ∂/∂y, ∂²/∂x∂y per low-res pixel; the front
+// image, rgba32f: x the view depth where the transmittance first falls below ½, else the depth the
+// texel was cut at, y that depth or +inf where it never fell below ½, z the expected depth
+// Σ dᵢαᵢTᵢ / A or +inf where no splat was blended), which the upscale pass reads.
 #define SPLAT_IMAGE_LOW_VALUE 1
 #define SPLAT_IMAGE_LOW_DX 2
 #define SPLAT_IMAGE_LOW_DY 3

@@ -21,6 +21,11 @@
 // ∂²/∂x∂y (Niedermayr et al. Eqs. 8–14) and a front depth for the upscale pass. A texel is cut at the FARTHEST
 // mesh depth among the output pixels it stands for, so no splat is lost where any of them would
 // show it; the upscale pass decides per output pixel, with the front depth, where the mesh wins.
+//
+// Depth (docs/algorithms.md §1, "Depth"): per pixel the depth dₘ of the splat with which the
+// accumulated opacity first exceeds ½ and the expected depth Σ dᵢαᵢTᵢ / A. At render scale 1 the pass
+// leaves min(mesh depth, dₘ) in the target's view depth for the passes after it (and with
+// SPLAT_DEPTH_IMAGE both depths in their own image); below it, both go to the front image.
 #include "common_splat_bindings.glsl"
 
 #ifndef RASTER_TILE_SIZE
@@ -41,7 +46,7 @@ layout(binding = SPLAT_IMAGE_LOW_VALUE, rgba32f) uniform writeonly image2D low_v
 layout(binding = SPLAT_IMAGE_LOW_DX, rgba32f) uniform writeonly image2D low_dx;
 layout(binding = SPLAT_IMAGE_LOW_DY, rgba32f) uniform writeonly image2D low_dy;
 layout(binding = SPLAT_IMAGE_LOW_DXY, rgba32f) uniform writeonly image2D low_dxy;
-layout(binding = SPLAT_IMAGE_LOW_FRONT, r32f) uniform writeonly image2D low_front;
+layout(binding = SPLAT_IMAGE_LOW_FRONT, rgba32f) uniform writeonly image2D low_front;
 
 // The farthest mesh depth over the output pixels whose sample point rounds to this texel: those
 // with (x + 0.5)·s − 0.5 in [i − 0.5, i + 0.5), i.e. x in [i/s − 0.5, (i + 1)/s − 0.5).
@@ -59,6 +64,10 @@ float footprint_mesh_depth(ivec2 texel) {
 }
 #else
 layout(binding = SPLAT_IMAGE_COLOR, rgba8) uniform coherent image2D color_image;
+layout(binding = SPLAT_IMAGE_VIEW_DEPTH, r32f) uniform coherent image2D view_depth_image;
+#ifdef SPLAT_DEPTH_IMAGE
+layout(binding = SPLAT_IMAGE_SPLAT_DEPTH, rg32f) uniform writeonly image2D splat_depth;
+#endif
 #endif
 
 // What the blend of one splat needs (ProjectedSplat without its tile rectangle).
@@ -73,10 +82,11 @@ vec2 g_centre;
 float g_mesh_depth;
 vec3 g_color = vec3(0.0);
 float g_transmittance = 1.0;
+float g_depth_sum = 0.0;  // Σ dᵢαᵢTᵢ
+float g_median;           // the depth at which T first falls below ½ (+inf before)
 #ifdef SPLAT_GRADIENTS
 // ∂x, ∂y, ∂²xy of (C, A) (docs/algorithms.md §5); .w holds the accumulated alpha's derivatives.
 vec4 g_grad_x = vec4(0.0), g_grad_y = vec4(0.0), g_grad_xy = vec4(0.0);
-float g_front;
 #endif
 
 // Blends one splat into the pixel; false once the pixel is done (behind the mesh or saturated).
@@ -103,9 +113,10 @@ bool blend(RasterSplat s) {
     g_grad_x += weight * (alpha_x * t - alpha * g_grad_x.w);
     g_grad_y += weight * (alpha_y * t - alpha * g_grad_y.w);
     g_grad_xy += weight * k_xy;
-    if (t >= 0.5 && next < 0.5) g_front = md.z;
 #endif
     g_color += s.color * (alpha * g_transmittance);
+    g_depth_sum += md.z * (alpha * g_transmittance);
+    if (g_transmittance >= 0.5 && next < 0.5) g_median = md.z;
     g_transmittance = next;
     return true;
 }
@@ -158,11 +169,11 @@ void main() {
     bool inside = all(lessThan(pixel, size));
     uint tile = gl_WorkGroupID.y * frame.tiles.x + gl_WorkGroupID.x;
     g_centre = vec2(pixel) + 0.5;
+    g_median = SPLAT_INFINITY;
 #ifdef SPLAT_GRADIENTS
     g_mesh_depth = inside ? footprint_mesh_depth(pixel) : 0.0;
-    g_front = g_mesh_depth;
 #else
-    g_mesh_depth = inside ? texelFetch(view_depth, pixel, 0).r : 0.0;
+    g_mesh_depth = inside ? imageLoad(view_depth_image, pixel).r : 0.0;
 #endif
 #if defined(RASTER_FETCH_SHARED)
     walk(ranges[tile], inside);  // every invocation stages splats, inside the image or not
@@ -170,14 +181,21 @@ void main() {
     if (inside) walk(ranges[tile]);  // outside the image: no loads
 #endif
     if (!inside) return;
+    float accumulated = 1.0 - g_transmittance;
+    float expected = accumulated > 0.0 ? g_depth_sum / accumulated : SPLAT_INFINITY;
 #ifdef SPLAT_GRADIENTS
-    imageStore(low_value, pixel, vec4(g_color, 1.0 - g_transmittance));
+    imageStore(low_value, pixel, vec4(g_color, accumulated));
     imageStore(low_dx, pixel, g_grad_x);
     imageStore(low_dy, pixel, g_grad_y);
     imageStore(low_dxy, pixel, g_grad_xy);
-    imageStore(low_front, pixel, vec4(g_front));
+    float front = g_median < SPLAT_INFINITY ? g_median : g_mesh_depth;
+    imageStore(low_front, pixel, vec4(front, g_median, expected, 0.0));
 #else
     vec3 behind = imageLoad(color_image, pixel).rgb;  // mesh colour or background
     imageStore(color_image, pixel, vec4(g_color + g_transmittance * behind, 1.0));
+    imageStore(view_depth_image, pixel, vec4(min(g_mesh_depth, g_median)));
+#ifdef SPLAT_DEPTH_IMAGE
+    imageStore(splat_depth, pixel, vec4(g_median, expected, 0.0, 0.0));
+#endif
 #endif
 }

@@ -10,6 +10,12 @@
 // is nearer than the splats' front depth (where their transmittance fell below ½) at all four
 // surrounding texels, the mesh hides them and the pixel keeps the mesh colour; mesh edges are
 // therefore as sharp as the mesh pass drew them.
+//
+// Depth is not interpolated like colour: between a near and a far surface an interpolated depth lies
+// where there is nothing. Where the upscaled opacity reaches ½ the pixel takes the median depth of the
+// nearest of the four texels around it that has one in front of its mesh (the expected depth likewise
+// where the opacity is above 0), and leaves min(its mesh depth, that median) in the view depth for the
+// passes after it (docs/algorithms.md §1, "Depth").
 // The CPU twin is splat_lod/core/upscale.h (upscale_image); the tests compare the two.
 #include "common_splat_bindings.glsl"
 
@@ -18,13 +24,16 @@
 #endif
 
 layout(local_size_x = SPLAT_UPSCALE_WORKGROUP_SIZE, local_size_y = SPLAT_UPSCALE_WORKGROUP_SIZE) in;
-layout(binding = SPLAT_TEXTURE_VIEW_DEPTH) uniform sampler2D view_depth;
 layout(binding = SPLAT_IMAGE_COLOR, rgba8) uniform coherent image2D color_image;
 layout(binding = SPLAT_IMAGE_LOW_VALUE, rgba32f) uniform readonly image2D low_value;
 layout(binding = SPLAT_IMAGE_LOW_DX, rgba32f) uniform readonly image2D low_dx;
 layout(binding = SPLAT_IMAGE_LOW_DY, rgba32f) uniform readonly image2D low_dy;
 layout(binding = SPLAT_IMAGE_LOW_DXY, rgba32f) uniform readonly image2D low_dxy;
-layout(binding = SPLAT_IMAGE_LOW_FRONT, r32f) uniform readonly image2D low_front;
+layout(binding = SPLAT_IMAGE_LOW_FRONT, rgba32f) uniform readonly image2D low_front;
+layout(binding = SPLAT_IMAGE_VIEW_DEPTH, r32f) uniform coherent image2D view_depth_image;
+#ifdef SPLAT_DEPTH_IMAGE
+layout(binding = SPLAT_IMAGE_SPLAT_DEPTH, rg32f) uniform writeonly image2D splat_depth;
+#endif
 
 // The low-resolution image's size (the raster's image size).
 #define low_size ivec2(frame.raster_size)
@@ -117,12 +126,35 @@ void main() {
     ivec2 i = max(min(ivec2(floor(uv)), low_size - 2), ivec2(0));
     vec2 t = uv - vec2(i);
 
-    float front = min(min(imageLoad(low_front, i).r, imageLoad(low_front, min(i + ivec2(1, 0), low_size - 1)).r),
-                      min(imageLoad(low_front, min(i + ivec2(0, 1), low_size - 1)).r,
-                          imageLoad(low_front, min(i + 1, low_size - 1)).r));
-    if (texelFetch(view_depth, pixel, 0).r < front) return;  // the mesh hides the splats here
-
-    vec4 splat = clamp(sample_low(uv, i, t), 0.0, 1.0);
-    vec3 behind = imageLoad(color_image, pixel).rgb;
-    imageStore(color_image, pixel, vec4(splat.rgb + (1.0 - splat.a) * behind, 1.0));
+    float mesh = imageLoad(view_depth_image, pixel).r;
+    vec4 depths[4];  // the four texels around uv: x front, y median, z expected depth
+    float front = SPLAT_INFINITY;
+    for (int k = 0; k < 4; ++k) {
+        depths[k] = imageLoad(low_front, min(i + ivec2(k & 1, k >> 1), low_size - 1));
+        front = min(front, depths[k].x);
+    }
+    vec2 median_expected = vec2(SPLAT_INFINITY);
+    if (mesh >= front) {  // else the mesh hides the splats here
+        vec4 splat = clamp(sample_low(uv, i, t), 0.0, 1.0);
+        vec3 behind = imageLoad(color_image, pixel).rgb;
+        imageStore(color_image, pixel, vec4(splat.rgb + (1.0 - splat.a) * behind, 1.0));
+        // Depth: each from the nearest of the four texels that has one in front of this pixel's mesh,
+        // the median only where the upscaled opacity reaches ½.
+        float nearest_median = 4.0, nearest_expected = 4.0;
+        for (int k = 0; k < 4; ++k) {
+            float d = dot(uv - vec2(i + ivec2(k & 1, k >> 1)), uv - vec2(i + ivec2(k & 1, k >> 1)));
+            if (splat.a >= 0.5 && depths[k].y < mesh && d < nearest_median) {
+                nearest_median = d;
+                median_expected.x = depths[k].y;
+            }
+            if (splat.a > 0.0 && depths[k].z < mesh && d < nearest_expected) {
+                nearest_expected = d;
+                median_expected.y = depths[k].z;
+            }
+        }
+    }
+    imageStore(view_depth_image, pixel, vec4(min(mesh, median_expected.x)));
+#ifdef SPLAT_DEPTH_IMAGE
+    imageStore(splat_depth, pixel, vec4(median_expected, 0.0, 0.0));
+#endif
 }

@@ -78,4 +78,8 @@ std::vector<float> SplatRenderer::read_low_res_front_depth() const {
     return pass_->read_low_res_front_depth();
 }
 
+SplatDepth SplatRenderer::read_splat_depth() const {
+    return pass_->read_splat_depth();
+}
+
 }  // namespace splat_lod

@@ -92,13 +92,13 @@ void LowResImages::ensure(int w, int h) {
     if (width == w && height == h) return;
     const char* labels[] = {"splat low-res value", "splat low-res dx", "splat low-res dy", "splat low-res dxy"};
     for (int k = 0; k < 4; ++k) images[k] = engine::gl::texture_2d(GL_RGBA32F, w, h, labels[k]);
-    front = engine::gl::texture_2d(GL_R32F, w, h, "splat low-res front depth");
+    front = engine::gl::texture_2d(GL_RGBA32F, w, h, "splat low-res front depth");
     width = w;
     height = h;
 }
 
 std::uint64_t LowResImages::bytes() const {
-    return std::uint64_t(width) * std::uint64_t(height) * (4 * 16 + 4);
+    return std::uint64_t(width) * std::uint64_t(height) * (5 * 16);
 }
 
 upscale::GradientImage LowResImages::read_image() const {
@@ -121,6 +121,34 @@ std::vector<float> LowResImages::read_front_depth() const {
     if (depth.empty()) return depth;
     engine::gl::memory_barrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
     engine::gl::read_texture(front, GL_RED, depth.size(), depth.data());
+    return depth;
+}
+
+void SplatDepthImage::ensure(int w, int h) {
+    if (width == w && height == h) return;
+    image = engine::gl::texture_2d(GL_RG32F, w, h, "splat depth");
+    width = w;
+    height = h;
+}
+
+std::uint64_t SplatDepthImage::bytes() const {
+    return std::uint64_t(width) * std::uint64_t(height) * 8;
+}
+
+SplatDepth SplatDepthImage::read() const {
+    SplatDepth depth;
+    if (width == 0) return depth;
+    depth.width = width;
+    depth.height = height;
+    std::vector<float> both(std::size_t(width) * std::size_t(height) * 2);
+    engine::gl::memory_barrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    engine::gl::read_texture(image, GL_RG, both.size(), both.data());
+    depth.median.resize(both.size() / 2);
+    depth.expected.resize(both.size() / 2);
+    for (std::size_t i = 0; i < depth.median.size(); ++i) {
+        depth.median[i] = both[2 * i];
+        depth.expected[i] = both[2 * i + 1];
+    }
     return depth;
 }
 

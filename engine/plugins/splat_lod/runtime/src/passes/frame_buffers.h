@@ -8,6 +8,7 @@
 
 #include "engine/gl/objects.h"
 #include "splat_lod/core/upscale.h"
+#include "splat_lod/splat_renderer.h"
 
 namespace splat_lod {
 
@@ -43,8 +44,8 @@ struct FrameBuffers {
     std::uint64_t bytes() const;
 };
 
-// The raster's output below render scale 1: value, d/dx, d/dy, d²/dxdy (RGBA32F) and the front depth
-// (R32F), kept while the raster size stays the same.
+// The raster's output below render scale 1: value, d/dx, d/dy, d²/dxdy (RGBA32F) and the front depths
+// (RGBA32F: front, median and expected depth), kept while the raster size stays the same.
 struct LowResImages {
     int width = 0, height = 0;
     std::array<engine::gl::Texture, 4> images{
@@ -57,6 +58,17 @@ struct LowResImages {
     // Read back, blocking: the image with its derivatives (rows top first) and the front depths.
     upscale::GradientImage read_image() const;
     std::vector<float> read_front_depth() const;
+};
+
+// With SplatPassSettings::splat_depth: the splats' own depths at the output size (RG32F: median,
+// expected), kept while the output size stays the same.
+struct SplatDepthImage {
+    int width = 0, height = 0;
+    engine::gl::Texture image{engine::gl::NoCreate};
+
+    void ensure(int w, int h);
+    std::uint64_t bytes() const;
+    SplatDepth read() const;  // blocking; empty when there is none
 };
 
 }  // namespace splat_lod

@@ -2,6 +2,7 @@
 #include "passes/frame_steps.h"
 
 #include <array>
+#include <vector>
 
 #include "engine/gl/compute_step.h"
 #include "engine/render/render_target.h"
@@ -26,15 +27,17 @@ void FrameSteps::bind_all() const {
                                                  {SPLAT_BINDING_BUDGET, &b.budget},
                                                  {SPLAT_BINDING_PAGE_CODECS, &scene.page_codecs()},
                                                  {SPLAT_BINDING_CLUSTER_SPLATS, &b.cluster_splats}};
-    const engine::gl::ImageBinding images[] = {{SPLAT_IMAGE_COLOR, &frame.target.color(), GL_RGBA8},
-                                               {SPLAT_IMAGE_LOW_VALUE + 0, &low.images[0], GL_RGBA32F},
-                                               {SPLAT_IMAGE_LOW_VALUE + 1, &low.images[1], GL_RGBA32F},
-                                               {SPLAT_IMAGE_LOW_VALUE + 2, &low.images[2], GL_RGBA32F},
-                                               {SPLAT_IMAGE_LOW_VALUE + 3, &low.images[3], GL_RGBA32F},
-                                               {SPLAT_IMAGE_LOW_FRONT, &low.front, GL_R32F}};
+    std::vector<engine::gl::ImageBinding> images{{SPLAT_IMAGE_COLOR, &frame.target.color(), GL_RGBA8},
+                                                 {SPLAT_IMAGE_VIEW_DEPTH, &frame.target.view_depth(), GL_R32F}};
+    if (low.width > 0)
+        images.insert(images.end(), {{SPLAT_IMAGE_LOW_VALUE + 0, &low.images[0], GL_RGBA32F},
+                                     {SPLAT_IMAGE_LOW_VALUE + 1, &low.images[1], GL_RGBA32F},
+                                     {SPLAT_IMAGE_LOW_VALUE + 2, &low.images[2], GL_RGBA32F},
+                                     {SPLAT_IMAGE_LOW_VALUE + 3, &low.images[3], GL_RGBA32F},
+                                     {SPLAT_IMAGE_LOW_FRONT, &low.front, GL_RGBA32F}});
+    if (depth.width > 0) images.push_back({SPLAT_IMAGE_SPLAT_DEPTH, &depth.image, GL_RG32F});
     const engine::gl::TextureBinding textures[] = {{SPLAT_TEXTURE_VIEW_DEPTH, &frame.target.view_depth()}};
-    const std::size_t image_count = low.width > 0 ? std::size(images) : 1;  // the colour alone at render scale 1
-    engine::gl::bind({storage, std::span(images, image_count), textures});
+    engine::gl::bind({storage, images, textures});
 }
 
 const engine::gl::Program& FrameSteps::program(const char* file, const std::vector<std::string>& defines) const {

@@ -35,14 +35,19 @@ struct FrameSteps {
     const gpu::GpuScene& scene;
     FrameBuffers& buffers;
     const LowResImages& low;
+    const SplatDepthImage& depth;  // none unless SplatPassSettings::splat_depth
     TexelViews& texels;
     RasterFetch fetch;
     engine::gl::PrefixScan& scan;
     engine::gl::RadixSort& sort;
 
-    // Binds the uniforms, the scene's and the frame's buffers, the target's colour and view depth and
-    // the low-resolution images when there are any.
+    // Binds the uniforms, the scene's and the frame's buffers, the target's colour and view depth, and
+    // the low-resolution images and the splat depth image when there are any.
     void bind_all() const;
+    // The defines of the steps that write the output's depth: SPLAT_DEPTH_IMAGE with a splat depth image.
+    std::vector<std::string> depth_defines() const {
+        return depth.width > 0 ? std::vector<std::string>{"SPLAT_DEPTH_IMAGE"} : std::vector<std::string>{};
+    }
     // A program of the plugin's shaders, with `defines`.
     const engine::gl::Program& program(const char* file, const std::vector<std::string>& defines = {}) const;
     // A program that reads the scene's Gaussians (common_splat_storage.glsl): SPLAT_COMPACT_STORAGE

@@ -17,7 +17,8 @@ void record_raster(const FrameSteps& steps) {
        //    render scale 1, C and A with their derivatives at low resolution
         GpuTimerScope t(steps.frame.timers, "splat.raster");
         steps.bind_all();
-        std::vector<std::string> defines{"RASTER_TILE_SIZE=" + std::to_string(raster.tile_size)};
+        std::vector<std::string> defines = steps.depth_defines();
+        defines.push_back("RASTER_TILE_SIZE=" + std::to_string(raster.tile_size));
         if (raster.upscaled) defines.push_back("SPLAT_GRADIENTS");
         if (steps.fetch == RasterFetch::shared)
             defines.push_back("RASTER_FETCH_SHARED");
@@ -33,11 +34,12 @@ void record_raster(const FrameSteps& steps) {
         const auto method = static_cast<int>(steps.lod.upscaler);
         const auto width = static_cast<std::uint32_t>(steps.frame.target.width());
         const auto height = static_cast<std::uint32_t>(steps.frame.target.height());
-        engine::gl::run(
-            {.program = &steps.program("splat_upscale.comp.glsl", {"UPSCALE_METHOD=" + std::to_string(method)}),
-             .groups = {groups_for(width, SPLAT_UPSCALE_WORKGROUP_SIZE),
-                        groups_for(height, SPLAT_UPSCALE_WORKGROUP_SIZE), 1},
-             .barrier = kImageBarrier});
+        std::vector<std::string> defines = steps.depth_defines();
+        defines.push_back("UPSCALE_METHOD=" + std::to_string(method));
+        engine::gl::run({.program = &steps.program("splat_upscale.comp.glsl", defines),
+                         .groups = {groups_for(width, SPLAT_UPSCALE_WORKGROUP_SIZE),
+                                    groups_for(height, SPLAT_UPSCALE_WORKGROUP_SIZE), 1},
+                         .barrier = kImageBarrier});
     }
 }
 

@@ -36,6 +36,10 @@ void SplatPass::execute(engine::FrameContext& frame) {
         low_.ensure(raster.width, raster.height);
     else if (low_.width > 0)
         low_ = LowResImages{};  // back at native resolution: nothing keeps them
+    if (settings.splat_depth)
+        depth_.ensure(frame.target.width(), frame.target.height());
+    else if (depth_.width > 0)
+        depth_ = SplatDepthImage{};
     // Step 1 walks the scene's n Gaussian slots, a cluster of them per workgroup. The dense splat array
     // starts at what the last frame projected; the keys are sized by what this one needs.
     buffers_.ensure(engine::gl::groups_for(n, SPLAT_PROJECT_WORKGROUP_SIZE), raster.tile_count());
@@ -43,7 +47,8 @@ void SplatPass::execute(engine::FrameContext& frame) {
     fetch_in_use_ =
         texels_.resolve(settings.raster_fetch, buffers_.splat_capacity, buffers_.key_capacity, scene_, fetch_in_use_);
     gpu::FrameUniforms uniforms = frame_uniforms(settings, lod_, frame, raster, scene_);
-    FrameSteps steps{frame, settings, lod_, raster, scene_, buffers_, low_, texels_, fetch_in_use_, *scan_, *sort_};
+    FrameSteps steps{frame, settings, lod_,    raster,        scene_, buffers_,
+                     low_,  depth_,   texels_, fetch_in_use_, *scan_, *sort_};
     last_counts_ = select_splats(steps, uniforms, n);  // 1. a–d: cull, skip, project, the budget; 2. scan
     buffers_.ensure_keys(last_counts_.pairs, steps.one_word_keys() ? 1 : 2);
     fetch_in_use_ =
@@ -65,7 +70,8 @@ void SplatPass::execute(engine::FrameContext& frame) {
 }
 
 std::uint64_t SplatPass::frame_bytes() const {
-    return buffers_.bytes() + low_.bytes() + (scan_ ? scan_->bytes() : 0) + (sort_ ? sort_->bytes() : 0);
+    return buffers_.bytes() + low_.bytes() + depth_.bytes() + (scan_ ? scan_->bytes() : 0) +
+           (sort_ ? sort_->bytes() : 0);
 }
 
 // The readback waits for each copy, so reading with `wait` blocks until every frame's is done.

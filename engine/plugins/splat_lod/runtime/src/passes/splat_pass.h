@@ -57,12 +57,15 @@ public:
     // front depths, read back blocking; empty at render scale 1. For tools and tests.
     upscale::GradientImage read_low_res_image() const { return low_.read_image(); }
     std::vector<float> read_low_res_front_depth() const { return low_.read_front_depth(); }
+    // The last frame's splat depths when settings.splat_depth was on (SplatDepth), read back blocking.
+    SplatDepth read_splat_depth() const { return depth_.read(); }
 
 private:
     plugin_msgs::LodSettings lod_;
     gpu::GpuScene scene_;
     FrameBuffers buffers_;
     LowResImages low_;
+    SplatDepthImage depth_;
     TexelViews texels_;
     FrameStatistics statistics_;
     std::unique_ptr<engine::gl::PrefixScan> scan_;

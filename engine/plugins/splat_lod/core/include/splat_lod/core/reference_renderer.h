@@ -154,6 +154,12 @@ struct ReferenceImage {
     std::vector<double> rgb;                  // 3 per pixel, row-major, top row first
     std::vector<double> alpha;                // A = 1 − T
     std::vector<std::uint32_t> contributors;  // splats blended into the pixel
+    // The splats' view depth z = −z_view per pixel, +inf where there is none: `depth_median` is the
+    // depth of the splat with which the accumulated opacity first reaches ½ (none where it never
+    // does), `depth_expected` the opacity-weighted mean Σ dᵢαᵢTᵢ / A over the splats blended (none
+    // where none was). Splats behind the mesh layer are not blended, so neither sees them.
+    std::vector<double> depth_median{};
+    std::vector<double> depth_expected{};
     // With ReferenceSettings::gradients only (empty otherwise), 4 per pixel as (r, g, b, A): the
     // splat-only premultiplied colour C = Σ cᵢαᵢTᵢ and alpha A = 1 − T, before the background or
     // the mesh colour is added, and their derivatives in pixels of this image (x right, y down).
