@@ -27,6 +27,20 @@ protected:
                                        engine.components(), engine.assets());
     }
 
+    // The ground quad (unit, in XZ) turned to face +Z and scaled to 2x2, centred 1 unit above the
+    // origin, and a camera 4 units in front of it looking at the origin.
+    std::unique_ptr<engine::Scene> facing_quad() {
+        auto scene = scene_with((engine::test::repo_dir() / "content/meshes/ground.gltf").string());
+        auto& model = *scene->find_node("model");
+        model.transform().rotation = glm::quat(glm::radians(glm::vec3(90.0f, 0.0f, 0.0f)));
+        model.transform().scale = glm::vec3(2.0f);
+        model.transform().translation = glm::vec3(0.0f, 1.0f, 0.0f);
+        return scene;
+    }
+    static engine::CameraView quad_camera(int w, int h) {
+        return engine::make_look_at_camera({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), w, h, 0.1f, 100.0f);
+    }
+
     engine::Image render(const engine::Scene& scene, int w, int h) {
         engine::RenderTarget target(w, h);
         engine.renderer().render(scene, engine::framing_camera(scene, w, h, glm::radians(40.0f)), target);
@@ -71,16 +85,9 @@ TEST_F(MeshPassTest, ThreeBoxVariantsRenderIdentically) {
 
 // A ground quad facing the camera at a known distance: colour, depth and orientation.
 TEST_F(MeshPassTest, WritesViewDepthAndKeepsTheImageUpright) {
-    const auto ground = (engine::test::repo_dir() / "content/meshes/ground.gltf").string();
-    // The quad (unit, in XZ) turned to face +Z and scaled to 2x2, centred 1 unit above the origin.
-    const auto scene = scene_with(ground);
-    auto& model = *scene->find_node("model");
-    model.transform().rotation = glm::quat(glm::radians(glm::vec3(90.0f, 0.0f, 0.0f)));
-    model.transform().scale = glm::vec3(2.0f);
-    model.transform().translation = glm::vec3(0.0f, 1.0f, 0.0f);
+    const auto scene = facing_quad();
     const int w = 64, h = 48;
-    const auto camera =
-        engine::make_look_at_camera({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), w, h, 0.1f, 100.0f);
+    const auto camera = quad_camera(w, h);
     engine::RenderTarget target(w, h);
     engine.renderer().render(*scene, camera, target);
     const auto image = target.read_color();
@@ -100,14 +107,9 @@ TEST_F(MeshPassTest, WritesViewDepthAndKeepsTheImageUpright) {
 // colour by 1 − exp(−density · 4) in linear light, the background (no depth) keeps its colour, and
 // settings that make no sense are refused.
 TEST_F(MeshPassTest, FogMixesByViewDepthAndLeavesTheBackground) {
-    const auto scene = scene_with((engine::test::repo_dir() / "content/meshes/ground.gltf").string());
-    auto& model = *scene->find_node("model");
-    model.transform().rotation = glm::quat(glm::radians(glm::vec3(90.0f, 0.0f, 0.0f)));
-    model.transform().scale = glm::vec3(2.0f);
-    model.transform().translation = glm::vec3(0.0f, 1.0f, 0.0f);
+    const auto scene = facing_quad();
     const int w = 64, h = 48;
-    const auto camera =
-        engine::make_look_at_camera({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, glm::radians(60.0f), w, h, 0.1f, 100.0f);
+    const auto camera = quad_camera(w, h);
     engine::RenderTarget target(w, h);
     engine.renderer().render(*scene, camera, target);
     const auto clear = target.read_color();
