@@ -87,7 +87,8 @@ struct SplatPassSettings {
 // none (docs/algorithms.md §1, "Depth"): `median`, the depth of the splat with which the accumulated
 // opacity first exceeds ½ (what the target's view depth gets, merged with the meshes'), and `expected`,
 // Σ dᵢαᵢTᵢ / A over the splats blended. Splats behind a mesh are not blended and count for neither.
-// Below render scale 1 each output pixel has the depths of the low-resolution texel it falls in.
+// Below render scale 1 each output pixel has the depths of the nearest low-resolution texel around it
+// that has them, the median where the upscaled opacity reaches ½ (docs/algorithms.md §1, "Depth").
 struct SplatDepth {
     int width = 0, height = 0;
     std::vector<float> median, expected;
