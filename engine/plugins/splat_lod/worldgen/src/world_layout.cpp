@@ -57,8 +57,8 @@ struct LayoutBuilder {
         layout.props.push_back({mesh, at, glm::vec3(0.0f, yaw_deg, 0.0f), scale});
     }
 
-    // Each places its props along the stretch [from, to) of x.
     bool try_house(float x, synth::Rng& rng);
+    // Each of these places its props along the stretch [from, to) of x.
     void houses(float from, float to, synth::Rng& rng);
     void posts(float from, float to);
     void fence_runs(float from, float to, synth::Rng& rng);
