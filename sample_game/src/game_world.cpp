@@ -72,7 +72,11 @@ GameWorld::GameWorld(engine::Engine& engine, const std::filesystem::path& folder
     validate(settings_);
     pass_.emplace(engine.renderer());
     scene_->background = {0.62f, 0.74f, 0.86f};  // a pale sky (display space)
-    if (settings_.fog.enabled) engine.renderer().add_pass(std::make_shared<engine::FogPass>(settings_.fog));
+    if (settings_.fog.enabled) {                 // the far field fades into the sky
+        engine::FogSettings fog = settings_.fog;
+        fog.colour = scene_->background;
+        engine.renderer().add_pass(std::make_shared<engine::FogPass>(fog));
+    }
     add_light(*scene_, "sun", engine::LightComponent::Kind::directional, {-50.0f, 30.0f, 0.0f}, 2.0f);
     add_light(*scene_, "sky", engine::LightComponent::Kind::ambient, {0.0f, 0.0f, 0.0f}, 0.5f);
     load_meshes();

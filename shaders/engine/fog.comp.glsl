@@ -7,7 +7,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba8) uniform coherent image2D u_color;  // display space (sRGB-encoded values)
 layout(binding = 1) uniform sampler2D u_view_depth;            // z = −z_view, +inf where nothing is
 
-uniform vec3 u_fog_linear;  // the fog colour in linear light
+uniform vec3 u_fog;        // the fog colour, display space
 uniform float u_density;    // per metre
 uniform float u_start;      // metres before the fog begins
 
@@ -18,5 +18,5 @@ void main() {
     if (isinf(z) || isnan(z)) return;
     float f = 1.0 - exp(-u_density * max(z - u_start, 0.0));
     vec3 c = srgb_to_linear(imageLoad(u_color, pixel).rgb);
-    imageStore(u_color, pixel, vec4(linear_to_srgb(mix(c, u_fog_linear, f)), 1.0));
+    imageStore(u_color, pixel, vec4(linear_to_srgb(mix(c, srgb_to_linear(u_fog), f)), 1.0));
 }

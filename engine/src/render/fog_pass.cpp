@@ -10,14 +10,6 @@
 #include "engine/render/render_target.h"
 
 namespace engine {
-namespace {
-
-// The sRGB transfer function's inverse (IEC 61966-2-1), as the shader's srgb_to_linear.
-float srgb_to_linear(float c) {
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
-}  // namespace
 
 std::string check_fog(const FogSettings& s) {
     for (int k = 0; k < 3; ++k)
@@ -31,9 +23,7 @@ void FogPass::execute(FrameContext& frame) {
     if (!settings.enabled) return;
     if (const std::string problem = check_fog(settings); !problem.empty()) fail(problem);
     const gl::Program& program = frame.shaders.program({"engine/fog.comp.glsl"});
-    const glm::vec3 linear(srgb_to_linear(settings.colour.x), srgb_to_linear(settings.colour.y),
-                           srgb_to_linear(settings.colour.z));
-    gl::set_uniform(program, "u_fog_linear", linear);
+    gl::set_uniform(program, "u_fog", settings.colour);
     gl::set_uniform(program, "u_density", settings.density);
     gl::set_uniform(program, "u_start", settings.start_m);
     const gl::ImageBinding images[] = {{0, &frame.target.color(), GL_RGBA8}};

@@ -52,10 +52,10 @@ struct GameSettings {
     float fov_y_deg = 60.0f;
     // The walkthrough's poses or keys from this file (path_file.h) instead of the world's own path.
     std::filesystem::path path_file;
-    // Distance fog over meshes and splats by the frame's view depth (engine/render/fog_pass.h), in the
-    // sky's colour: on in the windowed game (sample_game --no-fog turns it off), off in the harness
-    // unless asked for (--fog), so that the walkthrough's numbers are the splats' own.
-    engine::FogSettings fog{.enabled = false, .colour = {0.62f, 0.74f, 0.86f}, .density = 0.0015f, .start_m = 0.0f};
+    // Distance fog over meshes and splats by the frame's view depth (engine/render/fog_pass.h): on in
+    // the windowed game (sample_game --no-fog turns it off), off in the harness unless asked for (--fog),
+    // so that the walkthrough's numbers are the splats' own. GameWorld gives it the sky's colour.
+    engine::FogSettings fog{.enabled = false, .density = 0.0015f};
 };
 
 // Throws engine::Error naming the first bad setting ("sample_game: lod_settings.rel_min: ...").

@@ -142,7 +142,8 @@ void main() {
         // the median only where the upscaled opacity reaches ½.
         float nearest_median = 4.0, nearest_expected = 4.0;
         for (int k = 0; k < 4; ++k) {
-            float d = dot(uv - vec2(i + ivec2(k & 1, k >> 1)), uv - vec2(i + ivec2(k & 1, k >> 1)));
+            vec2 offset = uv - vec2(i + ivec2(k & 1, k >> 1));
+            float d = dot(offset, offset);
             if (splat.a >= 0.5 && depths[k].y < mesh && d < nearest_median) {
                 nearest_median = d;
                 median_expected.x = depths[k].y;
