@@ -1,5 +1,7 @@
 #include "engine/gl/gpu_timers.h"
 
+#include <string>
+
 #include "engine/core/error.h"
 
 namespace engine::gl {
@@ -42,6 +44,7 @@ void GpuTimers::begin_frame() {
     }
     if (free_.empty()) {
         current_ = std::make_unique<Frame>();
+        fill(*current_);
     } else {
         current_ = std::move(free_.back());
         free_.pop_back();
@@ -54,13 +57,23 @@ void GpuTimers::begin_frame() {
 int GpuTimers::begin(const std::string& name) {
     if (!current_) fail("engine::gl::GpuTimers::begin(): called outside begin_frame()/end_frame()");
     Frame& frame = *current_;
-    if (frame.used == frame.start.size()) {
-        frame.start.emplace_back(GL_TIMESTAMP, "timer start " + name);
-        frame.stop.emplace_back(GL_TIMESTAMP, "timer stop " + name);
+    if (frame.used == spans_) {
+        ++spans_;
+        fill(frame);
+        for (auto& f : pending_) fill(*f);
+        for (auto& f : free_) fill(*f);
     }
     frame.names.push_back(name);
     glQueryCounter(frame.start[frame.used].id(), GL_TIMESTAMP);
     return static_cast<int>(frame.used++);
+}
+
+void GpuTimers::fill(Frame& frame) const {
+    while (frame.start.size() < spans_) {
+        const std::string number = std::to_string(frame.start.size());
+        frame.start.emplace_back(GL_TIMESTAMP, "timer start " + number);
+        frame.stop.emplace_back(GL_TIMESTAMP, "timer stop " + number);
+    }
 }
 
 void GpuTimers::end(int span) {

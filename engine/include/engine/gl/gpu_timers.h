@@ -48,6 +48,10 @@ private:
     };
     // Reads the frame's results; false when they are not available yet and `wait` is off.
     bool collect(Frame& frame, bool wait);
+    // Gives `frame` the queries of `spans_` spans. Every frame holds as many (a new frame gets them,
+    // and a frame with more spans than any before adds one to every frame), so that the query objects
+    // depend on the most spans a frame has had, not on which frame objects served those frames.
+    void fill(Frame& frame) const;
     void collect_ready();
 
     std::deque<std::unique_ptr<Frame>> pending_;  // oldest first; the driver completes them in order
@@ -55,6 +59,7 @@ private:
     std::unique_ptr<Frame> current_;
     std::uint64_t frame_counter_ = 0;
     std::uint64_t waited_ = 0;
+    std::size_t spans_ = 0;  // the most spans a frame has had
     std::optional<std::vector<GpuSpan>> latest_;
     std::int64_t latest_frame_ = -1;
 };
