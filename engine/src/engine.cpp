@@ -8,7 +8,8 @@ namespace engine {
 
 Engine::Engine() : renderer_(bus_, assets_), plugins_(plugin_context()) {
     register_builtin_components(components_);
-    renderer_.add_pass(std::make_shared<MeshPass>());
+    renderer_.add_pass(std::make_shared<MeshPass>(MeshStage::early));
+    renderer_.add_pass(std::make_shared<MeshPass>(MeshStage::late));
 }
 
 Engine::~Engine() {

@@ -1,17 +1,22 @@
 // engine_render: renders a scene file to PNG, headless.
 //   engine_render --scene content/scenes/helmet.json --out helmet.png [--width 960 --height 540]
 //                 [--camera NODE | --eye X,Y,Z --target X,Y,Z [--up X,Y,Z] [--fov-y DEG]]
-//                 [--plugin LIB.so ...] [--frames N] [--settle SECONDS] [--depth-png FILE]
+//                 [--plugin LIB.so ...] [--frames N] [--settle SECONDS] [--depth-png FILE] [--pick X,Y ...]
 // Static plugins built with the engine (e.g. splat_lod) are always started; --plugin loads more.
 // --settle: before the N frames, renders frames while a plugin reports background work
 // (plugin_msgs::BackgroundWork: a drop-in LOD baking or importing a capture), printing its lines as they
 // change, for at most SECONDS; the output is then the finished picture (an error if the work is not done).
 // --depth-png: also writes the frame's view depth (engine::depth_image: grey by inverse depth) as the
 // passes after the plugins see it: the meshes' depth merged with what plugins wrote (the splats' depth).
+// --pick X,Y: what the last frame drew under pixel (X, Y) (engine/render/picking.h: the nearest mesh or
+// the point where the splats' accumulated opacity first passes ½), printed with its node and world
+// point, and marked in the output PNG with a cross (white on black). Repeatable.
 // Prints the GL renderer and the per-pass CPU/GPU times of the last frame.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
+#include <utility>
 
 #include <plugin_msgs/background_work.h>
 #include <plugin_msgs/frame_statistics.h>
@@ -23,14 +28,17 @@
 #include "engine/platform/gl_context.h"
 #include "engine/plugin/static_plugins.h"
 #include "engine/render/image.h"
+#include "engine/render/picking.h"
 #include "engine/render/render_target.h"
+#include "engine/render/renderer.h"
 #include "engine/render/scene_camera.h"
+#include "engine/scene/node.h"
 
 namespace {
 
 struct Options {
     std::string scene, out, camera_node, eye, target, up = "0,1,0", depth_png;
-    std::vector<std::string> plugins;
+    std::vector<std::string> plugins, picks;
     int width = 960, height = 540, frames = 1;
     float fov_y_deg = 50.0f;
     double settle_seconds = 0.0;
@@ -85,6 +93,40 @@ void settle(engine::Engine& engine, const engine::Scene& scene, const engine::Ca
     }
 }
 
+// A cross of 2·reach + 1 pixels centred on `p`, white with a black outline.
+void mark(engine::Image& image, glm::ivec2 p, int reach) {
+    const auto put = [&](int x, int y, std::uint8_t v) {
+        if (x < 0 || y < 0 || x >= image.width || y >= image.height) return;
+        std::uint8_t* q = image.pixel(x, y);
+        q[0] = q[1] = q[2] = v;
+    };
+    for (const std::uint8_t v : {std::uint8_t{0}, std::uint8_t{255}})
+        for (int d = -reach; d <= reach; ++d) {
+            const int w = v == 0 ? 1 : 0;  // the outline one pixel wider
+            for (int o = -w; o <= w; ++o) {
+                put(p.x + d, p.y + o, v);
+                put(p.x + o, p.y + d, v);
+            }
+        }
+}
+
+// Prints the answer of each --pick and marks its pixel in `image`.
+void report_picks(engine::Engine& engine, const std::vector<std::pair<glm::ivec2, std::uint64_t>>& picks,
+                  engine::Image& image) {
+    for (const auto& [pixel, ticket] : picks) {
+        const engine::PickResult result = engine.renderer().pick_result(ticket, true);
+        if (!result.hit) {
+            std::printf("pick %d,%d: nothing\n", pixel.x, pixel.y);
+            continue;
+        }
+        const engine::PickHit& hit = *result.hit;
+        std::printf("pick %d,%d: node '%s' (%s) at %.4f, %.4f, %.4f, depth %.4f\n", pixel.x, pixel.y,
+                    hit.node->name().c_str(), std::string(hit.component->type_name()).c_str(), hit.position.x,
+                    hit.position.y, hit.position.z, hit.depth);
+        mark(image, pixel, std::max(3, image.height / 60));
+    }
+}
+
 int run(const Options& o) {
     auto context = engine::HeadlessGlContext::create();
     engine::Engine engine;
@@ -94,8 +136,21 @@ int run(const Options& o) {
     const engine::CameraView camera = choose_camera(*scene, o);
     engine::RenderTarget target(o.width, o.height);
     if (o.settle_seconds > 0.0) settle(engine, *scene, camera, target, o.settle_seconds);
-    for (int i = 0; i < o.frames; ++i) engine.renderer().render(*scene, camera, target);
-    engine::write_png(o.out, target.read_color());
+    std::vector<std::pair<glm::ivec2, std::uint64_t>> picks;
+    for (int i = 0; i < o.frames; ++i) {
+        if (i + 1 == o.frames)  // the last frame answers them, at most kMaxPicksPerFrame
+            for (const auto& text : o.picks) {
+                const glm::ivec2 p = engine::parse_pixel(text, "--pick");
+                if (p.x >= o.width || p.y >= o.height)
+                    engine::fail("--pick " + text + ": outside the " + std::to_string(o.width) + "x" +
+                                 std::to_string(o.height) + " image");
+                picks.emplace_back(p, engine.renderer().pick(p));
+            }
+        engine.renderer().render(*scene, camera, target);
+    }
+    engine::Image image = target.read_color();
+    report_picks(engine, picks, image);
+    engine::write_png(o.out, image);
     if (!o.depth_png.empty())
         engine::write_png(o.depth_png, engine::depth_image(target.read_view_depth(), o.width, o.height));
 
@@ -135,7 +190,12 @@ int main(int argc, char** argv) {
     app.add_option("--settle", o.settle_seconds,
                    "first render while plugins report background work (a drop-in LOD), at most this many seconds")
         ->check(CLI::Range(0.0, 1e6));
+    app.add_option("--pick", o.picks, "print and mark what is under pixel X,Y (repeatable, at most 16)");
     CLI11_PARSE(app, argc, argv);
+    if (o.picks.size() > engine::kMaxPicksPerFrame) {
+        std::fprintf(stderr, "engine_render: at most %zu --pick\n", engine::kMaxPicksPerFrame);
+        return 1;
+    }
     try {
         return run(o);
     } catch (const std::exception& e) {

@@ -3,7 +3,8 @@
 // Each frame renders offscreen through Engine::renderer() (the same path as the headless tools
 // and tests), blits that frame to the window and draws the overlay on top.
 // Controls: W/A/S/D move, E/Q up/down, Shift faster, right mouse button + drag turns, the
-// wheel scales the speed, F1 toggles the overlay, Escape quits.
+// wheel scales the speed, a left click picks what is under the cursor (its node, component and world
+// point in the "Pick" panel, a cross on screen), F1 toggles the overlay, Escape quits.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -31,6 +32,7 @@
 #include "engine/ui/fly_camera.h"
 #include "engine/ui/fly_camera_input.h"
 #include "engine/ui/overlay.h"
+#include "engine/ui/pick_tool.h"
 
 namespace {
 
@@ -100,6 +102,7 @@ private:
     engine::Engine engine_;
     std::unique_ptr<engine::Scene> scene_;
     std::unique_ptr<engine::UiOverlay> overlay_;
+    std::unique_ptr<engine::PickTool> pick_;
     std::unique_ptr<engine::RenderTarget> target_;
     std::optional<ViewerCamera> camera_;
     bool show_ui_;
@@ -115,6 +118,7 @@ Viewer::Viewer(const Options& options) : options_(options), show_ui_(!options.no
     camera_.emplace(initial_view(*scene_, options.width, options.height));
     overlay_ = std::make_unique<engine::UiOverlay>(*window_, engine_.bus());
     overlay_->set_scene(scene_.get());
+    pick_ = std::make_unique<engine::PickTool>(engine_.renderer(), *overlay_);
     for (const std::string& name : engine_.plugins().names())
         engine_.plugins().find(name)->add_ui_panels(*overlay_, engine_.bus());
 }
@@ -127,6 +131,7 @@ void Viewer::update_camera(float seconds) {
     const engine::FlyCameraInput input = engine::read_fly_camera_input(*window_, show_ui_ && overlay_->wants_mouse(),
                                                                        show_ui_ && overlay_->wants_keyboard());
     camera_->fly.update(input, seconds);
+    pick_->update(*window_, show_ui_ && overlay_->wants_mouse());
     camera_->moved = camera_->moved || changes_view(input);
 }
 
@@ -140,6 +145,7 @@ bool Viewer::draw_frame(bool last) {
     const engine::CameraView view =
         engine::make_camera(camera_->camera_to_world(), lens.fov_y, size.x, size.y, lens.znear, lens.zfar);
     engine_.renderer().render(*scene_, view, *target_);
+    pick_->after_frame(view);
     engine::present_to_window(*target_, size);
     if (show_ui_) {
         overlay_->new_frame();

@@ -5,8 +5,10 @@
 #include "engine/core/error.h"
 #include "engine/engine.h"
 #include "engine/render/fog_pass.h"
+#include "engine/render/picking.h"
 #include "engine/render/render_target.h"
 #include "engine/render/scene_camera.h"
+#include "engine/scene/builtin_components.h"
 #include "engine/scene/scene_loader.h"
 #include "gpu_fixture.h"
 #include "test_support.h"
@@ -101,6 +103,43 @@ TEST_F(MeshPassTest, WritesViewDepthAndKeepsTheImageUpright) {
     EXPECT_EQ(bottom[0], std::lround(0.2 * 255));
     EXPECT_EQ(bottom[2], std::lround(0.4 * 255));
     EXPECT_GT(top[1], top[2]);  // the green material
+}
+
+// Picking meshes (engine/render/picking.h): on every pixel of the quad the renderer's answer, ready with
+// the frame, is the mesh node at the depth the mesh pass wrote, its point projecting back to the pixel's
+// centre; below the quad it is nothing. A late quad (drawn after the plugins) is picked as well.
+TEST_F(MeshPassTest, PickingFindsTheMeshWhereItsDepthIs) {
+    for (const bool late : {false, true}) {
+        SCOPED_TRACE(late);
+        const auto scene = facing_quad();
+        scene->find_node("model")->find_component<engine::MeshComponent>()->late = late;
+        const int w = 32, h = 24;
+        const auto camera = quad_camera(w, h);
+        std::vector<std::uint64_t> tickets;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) tickets.push_back(engine.renderer().pick({x, y}));
+        EXPECT_FALSE(engine.renderer().pick_result(tickets.front()).ready);
+        engine::RenderTarget target(w, h);
+        for (std::size_t frame = 0; frame * engine::kMaxPicksPerFrame < tickets.size(); ++frame)
+            engine.renderer().render(*scene, camera, target);
+        const auto depth = target.read_view_depth();
+        std::size_t hits = 0;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const std::size_t p = static_cast<std::size_t>(y * w + x);
+                const engine::PickResult result = engine.renderer().pick_result(tickets[p]);
+                ASSERT_TRUE(result.ready);
+                ASSERT_EQ(result.hit.has_value(), std::isfinite(depth[p])) << x << ", " << y;
+                if (!result.hit) continue;
+                ++hits;
+                EXPECT_EQ(result.hit->node, scene->find_node("model"));
+                EXPECT_NEAR(result.hit->depth, depth[p], 1e-5 * depth[p]);
+                const glm::vec3 back = camera.project_to_pixel(glm::vec3(result.hit->position));
+                EXPECT_NEAR(back.x, x + 0.5f, 1e-3f);
+                EXPECT_NEAR(back.y, y + 0.5f, 1e-3f);
+            }
+        EXPECT_GT(hits, 80u);  // the quad is about 10 pixels square
+    }
 }
 
 // Distance fog (engine/render/fog_pass.h) over the same quad at 4 m: its pixels move toward the fog

@@ -94,6 +94,9 @@ TEST_F(SceneLoaderTest, WrongValuesNameTheirKeys) {
     EXPECT_NE(error_of(R"({"nodes": [{"components": [{"type": "light", "kind": "spot"}]}]})")
                   .find("unknown light kind 'spot'"),
               std::string::npos);
+    EXPECT_NE(error_of(R"({"nodes": [{"components": [{"type": "mesh", "asset": "a.glb", "late": "yes"}]}]})")
+                  .find("nodes[0].components[0].late: expected true or false"),
+              std::string::npos);
     EXPECT_NE(error_of(R"({"nodes": [{"rotation": [0, 0, 0, 0]}]})").find("nodes[0].rotation: zero quaternion"),
               std::string::npos);
     EXPECT_NE(error_of(R"({"nodes": [{"transltion": [0, 0, 0]}]})").find("nodes[0].transltion: unknown key"),

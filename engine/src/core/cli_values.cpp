@@ -18,6 +18,15 @@ glm::vec3 parse_vec3(const std::string& text, const std::string& option) {
     return v;
 }
 
+glm::ivec2 parse_pixel(const std::string& text, const std::string& option) {
+    glm::ivec2 p(-1);
+    char comma = 0;
+    std::istringstream in(text);
+    if (!(in >> p.x >> comma >> p.y) || comma != ',' || !(in >> std::ws).eof() || p.x < 0 || p.y < 0)
+        fail(option + ": expected a pixel X,Y (two whole numbers, not negative), got '" + text + "'");
+    return p;
+}
+
 std::uint64_t parse_u64(const std::string& text, const std::string& option) {
     std::uint64_t value = 0;
     const char* end = text.data() + text.size();

@@ -51,6 +51,10 @@ Texture texture_2d(GLenum internal_format, int width, int height, std::string_vi
     return texture;
 }
 
+void copy_texture(const Texture& from, const Texture& to, int width, int height) {
+    glCopyImageSubData(from.id(), GL_TEXTURE_2D, 0, 0, 0, 0, to.id(), GL_TEXTURE_2D, 0, 0, 0, 0, width, height, 1);
+}
+
 void read_texture(const Texture& texture, GLenum format, std::size_t floats, float* out) {
     glGetTextureImage(texture.id(), 0, format, GL_FLOAT, static_cast<GLsizei>(floats * sizeof(float)), out);
 }

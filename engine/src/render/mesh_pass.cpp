@@ -3,6 +3,7 @@
 #include <engine/mesh_shared.h>  // shaders/engine/mesh_shared.h, shared with GLSL
 
 #include "engine/assets/mesh_asset.h"
+#include "engine/gl/compute_step.h"
 #include "engine/gl/draw.h"
 #include "engine/gl/gpu_timers.h"
 #include "engine/gl/objects.h"
@@ -79,8 +80,19 @@ Lighting gather_lights(const Scene& scene) {
 
 }  // namespace
 
-MeshPass::MeshPass() = default;
+MeshPass::MeshPass(MeshStage stage) : stage_(stage) {}
 MeshPass::~MeshPass() = default;
+
+const gl::Texture& MeshPass::surface_depth(const RenderTarget& target) {
+    const glm::ivec2 size(target.width(), target.height());
+    if (!surface_depth_ || surface_depth_size_ != size) {
+        surface_depth_ =
+            std::make_unique<gl::Texture>(gl::texture_2d(GL_R32F, size.x, size.y, "late mesh surface depth"));
+        surface_depth_size_ = size;
+    }
+    gl::copy_texture(target.view_depth(), *surface_depth_, size.x, size.y);
+    return *surface_depth_;
+}
 
 const GpuMesh& MeshPass::gpu_mesh(const std::shared_ptr<const MeshAsset>& asset) {
     auto it = meshes_.find(asset.get());
@@ -95,9 +107,26 @@ const GpuMesh& MeshPass::gpu_mesh(const std::shared_ptr<const MeshAsset>& asset)
     return *slot.second;
 }
 
+PickResult MeshPass::pick_answer(std::uint64_t ticket, bool) {
+    return {true, answers_.find(ticket)};
+}
+
 void MeshPass::execute(FrameContext& frame) {
     std::erase_if(meshes_, [](const auto& entry) { return entry.second.first.expired(); });
-    const auto& program = frame.shaders.program({"engine/mesh.vert.glsl", "engine/mesh.frag.glsl"});
+    const bool late = stage_ == MeshStage::late;
+    for (const PickRequest& request : frame.picks)
+        answers_.add(request.ticket, pick_meshes(frame.scene, frame.camera, request.pixel, late));
+    std::vector<const MeshComponent*> components;
+    for (const auto* component : frame.scene.components<MeshComponent>())
+        if (component->mesh && component->late == late) components.push_back(component);
+    if (components.empty()) return;
+    if (late) {
+        const gl::TextureBinding surfaces[] = {{MESH_SURFACE_DEPTH_TEXTURE_UNIT, &surface_depth(frame.target)}};
+        gl::bind({{}, {}, surfaces});
+    }
+    const auto& program =
+        frame.shaders.program({"engine/mesh.vert.glsl", "engine/mesh.frag.glsl"},
+                              late ? std::vector<std::string>{"MESH_LATE"} : std::vector<std::string>{});
     const Lighting lights = gather_lights(frame.scene);
     gl::set_uniform(program, "u_view", frame.camera.view);
     gl::set_uniform(program, "u_projection", flip_y_for_target(frame.camera.projection));
@@ -112,8 +141,7 @@ void MeshPass::execute(FrameContext& frame) {
     // The target's Y flip reverses winding (render_target.h): clockwise fronts.
     const gl::RasterScope raster(program, frame.target.framebuffer(), frame.target.width(), frame.target.height(),
                                  true);
-    for (const auto* component : frame.scene.components<MeshComponent>()) {
-        if (!component->mesh) continue;
+    for (const auto* component : components) {
         const GpuMesh& gpu = gpu_mesh(component->mesh);
         const glm::mat4 node_world = component->node()->world_matrix();
         for (const auto& prim : gpu.primitives) {

@@ -78,6 +78,28 @@ void Renderer::add_shader_root(const std::filesystem::path& root) {
     if (shaders_) shaders_->add_root(root);
 }
 
+std::uint64_t Renderer::pick(glm::ivec2 pixel) {
+    picks_.push_back({++tickets_, pixel});
+    return tickets_;
+}
+
+PickResult Renderer::pick_result(std::uint64_t ticket, bool wait, RenderPass* only) const {
+    if (ticket == 0 || ticket > tickets_) fail("Renderer::pick_result(): no pick has ticket " + std::to_string(ticket));
+    if (ticket > drawn_tickets_) {
+        if (wait) fail("Renderer::pick_result(): pick " + std::to_string(ticket) + " is not drawn yet: render a frame");
+        return {false, std::nullopt};
+    }
+    PickResult result{true, std::nullopt};
+    for (const auto& pass : passes_) {
+        if (only != nullptr && pass.get() != only) continue;
+        const PickResult answer = pass->pick_answer(ticket, wait);
+        result.ready = result.ready && answer.ready;
+        if (answer.hit && (!result.hit || answer.hit->depth < result.hit->depth)) result.hit = answer.hit;
+    }
+    if (!result.ready) result.hit.reset();
+    return result;
+}
+
 void Renderer::render(const Scene& scene, const CameraView& camera, RenderTarget& target) {
     if (camera.width != target.width() || camera.height != target.height())
         fail("Renderer::render(): camera is " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
@@ -92,7 +114,13 @@ void Renderer::render(const Scene& scene, const CameraView& camera, RenderTarget
 
     timers_.begin_frame();
     target.clear(scene.background.x, scene.background.y, scene.background.z);
-    FrameContext frame{scene, camera, target, shaders(), timers_, bus_, assets_, frame_index_};
+    std::vector<PickRequest> picks;
+    while (!picks_.empty() && picks.size() < kMaxPicksPerFrame) {
+        picks.push_back(picks_.front());
+        picks_.pop_front();
+    }
+    if (!picks.empty()) drawn_tickets_ = picks.back().ticket;
+    FrameContext frame{scene, camera, target, shaders(), timers_, bus_, assets_, frame_index_, picks};
     for (const auto& pass : std::vector(passes_)) {  // a copy: passes may not change the list mid-frame
         const auto start = std::chrono::steady_clock::now();
         {

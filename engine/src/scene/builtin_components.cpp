@@ -24,9 +24,10 @@ std::unique_ptr<Component> make_camera(const nlohmann::json& spec, const Compone
 }
 
 std::unique_ptr<Component> make_mesh(const nlohmann::json& spec, const ComponentLoadContext& ctx) {
-    jf::only_keys(spec, {"type", "asset"}, ctx);
+    jf::only_keys(spec, {"type", "asset", "late"}, ctx);
     auto mesh = std::make_unique<MeshComponent>();
     mesh->asset = ctx.resolve(jf::required_string(spec, "asset", ctx));
+    mesh->late = jf::boolean(spec, "late", false, ctx);
     if (ctx.assets == nullptr) fail("engine::make_mesh(): no asset cache");
     try {
         mesh->mesh = ctx.assets->mesh(mesh->asset);

@@ -69,6 +69,8 @@ void read_buffer(const Buffer& buffer, std::size_t offset, std::size_t bytes, vo
 // A 2D texture with one level of `internal_format` storage; level 0 read back as floats of `format`
 // (GL_RGBA, GL_RED), `floats` of them (waits for the GPU).
 Texture texture_2d(GLenum internal_format, int width, int height, std::string_view label);
+// Copies level 0 of `from` into `to`, two 2D textures of the same size and format.
+void copy_texture(const Texture& from, const Texture& to, int width, int height);
 void read_texture(const Texture& texture, GLenum format, std::size_t floats, float* out);
 
 // What a pass may choose by: the GL renderer's name, whether it is a CPU rasteriser (llvmpipe,

@@ -1,4 +1,6 @@
 #pragma once
+#include <cstdint>
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,6 +36,14 @@ public:
     // its shaders folder at startup, before or after the first frame).
     void add_shader_root(const std::filesystem::path& root);
     gl::GpuTimers& timers() { return timers_; }
+
+    // Picking (picking.h): asks what the next frame draws under `pixel` (image space, top-left origin);
+    // returns the ticket of the answer. A frame answers at most kMaxPicksPerFrame, the oldest first.
+    std::uint64_t pick(glm::ivec2 pixel);
+    // The nearest of the passes' answers: not ready before a frame has drawn the ticket's pixel or while
+    // a pass's answer is on its way (`wait`: reads them back now, blocking; throws engine::Error
+    // when no frame has drawn it yet). Never blocks without `wait`. With `only`, that pass's answer alone.
+    PickResult pick_result(std::uint64_t ticket, bool wait = false, RenderPass* only = nullptr) const;
     unsigned long long frame_index() const { return frame_index_; }
 
 private:
@@ -44,6 +54,9 @@ private:
     gl::GpuTimers timers_;
     std::vector<std::shared_ptr<RenderPass>> passes_;
     unsigned long long frame_index_ = 0;
+    std::deque<PickRequest> picks_;    // asked, not drawn yet
+    std::uint64_t tickets_ = 0;        // the last ticket handed out
+    std::uint64_t drawn_tickets_ = 0;  // tickets up to this one were drawn
 };
 
 }  // namespace engine

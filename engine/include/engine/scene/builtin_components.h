@@ -25,6 +25,11 @@ struct MeshComponent : Component {
     std::optional<Bounds> local_bounds() const override;
     std::filesystem::path asset;
     std::shared_ptr<const MeshAsset> mesh;
+    // Drawn after the plugin passes (the late mesh pass, mesh_pass.h) instead of before them: hidden
+    // behind every surface they left in the view depth (a splat where its accumulated opacity passes ½)
+    // and drawn over what is in front of that. For what is drawn after a plugin's own surfaces: gizmos,
+    // markers, effects. A mesh that splats must be seen through stays early (JSON "late", default false).
+    bool late = false;
 };
 
 // A directional light shines along its node's −Z axis; an ambient light lights from everywhere.

@@ -7,8 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "engine/render/image.h"
 #include "engine/render/render_target.h"
 #include "engine/render/scene_camera.h"
+#include "engine/scene/builtin_components.h"
 #include "engine/scene/scene_loader.h"
 #include "gpu_fixture.h"
 #include "splat_lod/core/reference_renderer.h"
@@ -140,4 +142,54 @@ TEST_F(SplatDepthTest, ViewDepthIsTheNearerOfMeshAndSplats) {
         }
     }
     harness.edit_lod([](plugin_msgs::LodSettings& lod) { lod.render_scale = 1.0f; });
+}
+
+// A mesh drawn after the splats (MeshComponent::late) is hidden where the splats' median depth is nearer
+// and drawn over them elsewhere: every pixel of the frame is either the frame without the late boxes
+// or the boxes alone, by which of the two depths is nearer, and the view depth is the nearer one.
+// The boxes of biker_with_boxes, one in front of the biker and one behind him, made late.
+TEST_F(SplatDepthTest, ALateMeshIsHiddenBehindTheSplatsInFrontOfIt) {
+    auto& engine = harness.engine();
+    const auto scene_file = engine::test::repo_dir() / "content/scenes/biker_with_boxes.json";
+    const int w = 192, h = 144;
+    const auto load = [&](bool splats, bool ground, bool boxes, bool late) {
+        auto scene = engine.load_scene(scene_file);
+        if (!splats)
+            scene->find_node("biker")->find_component<splat_lod::SplatComponent>()->cloud =
+                std::make_shared<const splat_lod::SplatCloud>();
+        if (!ground) scene->find_node("ground")->find_component<engine::MeshComponent>()->mesh = nullptr;
+        for (const char* name : {"box_front", "box_behind"}) {
+            auto* box = scene->find_node(name)->find_component<engine::MeshComponent>();
+            box->late = late;
+            if (!boxes) box->mesh = nullptr;
+        }
+        return scene;
+    };
+    const auto full = load(true, true, true, true);
+    const auto camera = *engine::scene_camera(*full, "", w, h);
+    engine::RenderTarget target(w, h);
+    engine.renderer().render(*load(true, true, false, false), camera, target);  // before the late pass
+    const engine::Image before = target.read_color();
+    const std::vector<float> surfaces = target.read_view_depth();
+    engine.renderer().render(*load(false, false, true, false), camera, target);  // the boxes alone
+    const engine::Image boxes = target.read_color();
+    const std::vector<float> box_depth = target.read_view_depth();
+    engine.renderer().render(*full, camera, target);
+    const engine::Image frame = target.read_color();
+    const std::vector<float> depth = target.read_view_depth();
+
+    std::size_t drawn = 0, hidden = 0;
+    for (std::size_t p = 0; p < depth.size(); ++p) {
+        if (std::isfinite(box_depth[p]) && std::abs(box_depth[p] - surfaces[p]) <= 1e-4f * box_depth[p]) continue;
+        const bool box_nearer = box_depth[p] < surfaces[p];
+        const engine::Image& expected = box_nearer ? boxes : before;
+        for (std::size_t c = 0; c < 4; ++c) ASSERT_EQ(frame.rgba[4 * p + c], expected.rgba[4 * p + c]) << "pixel " << p;
+        ASSERT_EQ(depth[p], box_nearer ? box_depth[p] : surfaces[p]) << "pixel " << p;
+        drawn += box_nearer ? 1 : 0;
+        hidden += std::isfinite(box_depth[p]) && !box_nearer ? 1 : 0;
+    }
+    // Both boxes are partly in front of the biker's splats and partly behind them or the ground.
+    EXPECT_GT(drawn, depth.size() / 50);
+    EXPECT_GT(hidden, depth.size() / 50);
+    EXPECT_TRUE(engine::test::matches_golden(frame, "splat_late_mesh_biker_boxes"));
 }

@@ -7,8 +7,11 @@
 // The pass itself stays private to the plugin.
 #include <cstdint>
 #include <optional>
+
+#include <glm/glm.hpp>
 #include <vector>
 
+#include "engine/render/picking.h"
 #include "splat_lod/msgs/lod_settings.h"
 #include "splat_lod/msgs/splat_statistics.h"
 
@@ -149,7 +152,19 @@ public:
     // empty before one.
     SplatDepth read_splat_depth() const;
 
+    // Picking the splats alone (docs/picking.md; engine::Renderer::pick picks meshes too): asks what the
+    // next frame's splats put under `pixel` (image space, top-left origin), the point on the pixel's ray
+    // where their accumulated opacity first passes ½ before any mesh, with the component and node of the
+    // splat that makes it pass. pick_result() is not ready until the GPU has answered, a frame or more
+    // after the pixel was drawn, and never waits for it; with `wait` it reads the answer back now
+    // (blocking, for tools; throws engine::Error when no frame has drawn the pixel yet).
+    std::uint64_t pick(glm::ivec2 pixel);
+    engine::PickResult pick_result(std::uint64_t ticket, bool wait = false) const;
+    // Pick readbacks still in flight (never more than four).
+    std::size_t picks_in_flight() const;
+
 private:
+    engine::Renderer* renderer_;
     SplatPass* pass_;
 };
 

@@ -39,6 +39,8 @@ uint trim(uint cluster, uint entry) {
     // The footprint shrinks with the opacity; one that holds no pixel centre any more draws nothing.
     uint tiles = splat_tile_count(projected[entry].mean_depth.xy, projected[entry].conic, opacity);
     projected[entry].mean_depth.w = tiles > 0u ? opacity : 0.0;
+    // The coverage is read: the instance takes its place, for picking (ProjectedSplat::color).
+    projected[entry].color.w = uintBitsToFloat(SPLAT_BUDGET_PACK_FLAG | floatBitsToUint(load_gaussian(index).covariance_b.w));
     if (tiles > 0u) {
         atomicAdd(stats.visible, 1u);
         atomicAdd(stats.per_level[level - 1u], 1u);

@@ -66,6 +66,7 @@ using mat4 = glm::mat4;
 // uvec2[C]: per projected cluster, its first splat in SPLAT_BINDING_PROJECTED and how many it wrote
 // there (0 when they did not fit: the CPU then grows the array and runs steps 1 and 2 again).
 #define SPLAT_BINDING_CLUSTER_SPLATS 14
+#define SPLAT_BINDING_PICKS 15      // SplatPicks: the pixels picked this frame and their answers
 #define SPLAT_COMPACT_WORDS 5       // 32-bit words of one compact record
 #define SPLAT_UNIFORM_FRAME 0       // FrameUniforms (uniform block binding)
 #define SPLAT_IMAGE_COLOR 0         // the frame's display-space colour (rgba8), read and written
@@ -184,7 +185,9 @@ SPLAT_LOD_STRUCT(GpuCluster) {
 SPLAT_LOD_STRUCT(ProjectedSplat) {
     vec4 mean_depth;  // x, y image position (top-left origin), z view depth, w opacity
     vec4 conic;       // inverse of the dilated 2D covariance: xx, xy, yy; w its first key (below)
-    vec4 color;       // rgb (SH + 0.5, clamped at 0), w the coverage S (output px) of the selection
+    vec4 color;       // rgb (SH + 0.5, clamped at 0); w the instance index with SPLAT_BUDGET_PACK_FLAG
+                      // set (as float bits), under a budget the coverage S (output px) until step 1d
+                      // has read it and put the instance there
 };
 
 // The frame's parameters (uniform block SPLAT_UNIFORM_FRAME, std140). Laid out so that std140 and
@@ -245,6 +248,17 @@ SPLAT_LOD_STRUCT(FrameCounters) {
                         // would have drawn without the budget, w unused
     uvec4 depth_range;  // x: the float bits of the largest view depth projected, y: ~(those of the
                         // smallest), both by atomicMax from 0; z, w unused
+};
+
+// Picking (SplatRenderer::pick): the pixels asked this frame and, per pixel, what splat_pick.comp.glsl
+// found along its ray.
+#define SPLAT_MAX_PICKS 16
+SPLAT_LOD_STRUCT(SplatPicks) {
+    uvec4 count;                     // x: pixels asked (at most SPLAT_MAX_PICKS); yzw unused
+    uvec4 pixels[SPLAT_MAX_PICKS];   // xy: the raster pixel, zw: the output pixel
+    uvec4 answers[SPLAT_MAX_PICKS];  // x: float bits of the view depth where the accumulated opacity first
+                                     // passes ½ (+inf: never, before the mesh); y: the instance index of
+                                     // the splat that makes it pass; zw unused
 };
 
 // The splat budget's per-frame state (SPLAT_BINDING_BUDGET), cleared by the CPU each frame.

@@ -142,8 +142,10 @@ uint project(uint index, out ProjectedSplat p) {
     }
     atomicMax(stats.depth_range.x, floatBitsToUint(z));  // positive floats order like their bits
     atomicMax(stats.depth_range.y, ~floatBitsToUint(z));
-    // color.w: the coverage, from which the budget's trim computes the weight at its β.
-    p = ProjectedSplat(vec4(mean, z, opacity), conic, vec4(color, coverage));
+    // color.w: under a budget the coverage, from which the trim computes the weight at its β (and puts
+    // the instance there); otherwise the instance, for picking.
+    float instance = uintBitsToFloat(SPLAT_BUDGET_PACK_FLAG | floatBitsToUint(g.covariance_b.w));
+    p = ProjectedSplat(vec4(mean, z, opacity), conic, vec4(color, budgeted ? coverage : instance));
     return tiles;
 }
 

@@ -27,6 +27,7 @@
 // leaves min(mesh depth, dₘ) in the target's view depth for the passes after it (and with
 // SPLAT_DEPTH_IMAGE both depths in their own image); below it, both go to the front image.
 #include "common_splat_bindings.glsl"
+#include "common_splat_alpha.glsl"
 
 #ifndef RASTER_TILE_SIZE
 #define RASTER_TILE_SIZE SPLAT_TILE_SIZE
@@ -95,8 +96,7 @@ bool blend(RasterSplat s) {
     if (md.z >= g_mesh_depth) return false;  // sorted by depth: everything after is behind the mesh too
     vec2 d = g_centre - md.xy;
     vec4 q = s.conic;
-    float power = -0.5 * (q.x * d.x * d.x + 2.0 * q.y * d.x * d.y + q.z * d.y * d.y);
-    float alpha = min(0.99, md.w * exp(power));
+    float alpha = splat_alpha(d, q, md.w);
     if (alpha < 1.0 / 255.0) return true;
     float next = g_transmittance * (1.0 - alpha);
     if (next < 1e-4) return false;  // stop before T would fall below 1e-4

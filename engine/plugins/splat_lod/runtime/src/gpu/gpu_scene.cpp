@@ -408,8 +408,10 @@ void GpuScene::tally_slots(bool changed) {
 void GpuScene::upload_instances(const std::vector<const SplatComponent*>& components,
                                 const std::vector<std::int64_t>& slot_of) {
     std::vector<GpuInstance> instances(slots_.size());  // free instance indices keep count 0
+    instance_components_.assign(slots_.size(), nullptr);
     for (std::size_t i = 0; i < components.size(); ++i) {
         const Slot& slot = slots_[static_cast<std::size_t>(slot_of[i])];
+        instance_components_[static_cast<std::size_t>(slot_of[i])] = components[i];
         GpuInstance& inst = instances[static_cast<std::size_t>(slot_of[i])];
         inst.model = components[i]->node()->world_matrix();
         inst.rotation_inverse = inverse_rotation(inst.model);

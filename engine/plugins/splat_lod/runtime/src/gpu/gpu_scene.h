@@ -84,6 +84,8 @@ public:
     const engine::gl::Buffer& gaussians() const { return gaussians_; }
     const engine::gl::Buffer& sh() const { return sh_; }
     const engine::gl::Buffer& instances() const { return instances_; }
+    // This frame's component of each instance index (null for a free index), as update() placed them.
+    const std::vector<const SplatComponent*>& instance_components() const { return instance_components_; }
     const engine::gl::Buffer& clusters() const { return clusters_; }
     const engine::gl::Buffer& page_codecs() const { return codecs_; }  // compact storage only
 
@@ -120,6 +122,7 @@ private:
                           const std::vector<std::int64_t>& slot_of);
 
     std::vector<Slot> slots_;
+    std::vector<const SplatComponent*> instance_components_;
     std::vector<std::uint32_t> free_;  // free pages below the end, sorted descending (lowest at the back)
     std::uint32_t capacity_ = 0;       // Gaussian slots the buffers hold (whole pages)
     std::uint32_t gaussian_count_ = 0;

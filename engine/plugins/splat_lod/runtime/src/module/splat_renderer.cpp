@@ -7,7 +7,7 @@
 
 namespace splat_lod {
 
-SplatRenderer::SplatRenderer(engine::Renderer& renderer) : pass_(find_splat_pass(renderer)) {
+SplatRenderer::SplatRenderer(engine::Renderer& renderer) : renderer_(&renderer), pass_(find_splat_pass(renderer)) {
     if (pass_ == nullptr) engine::fail("splat_lod: the plugin is not started in this renderer (no splat pass)");
 }
 
@@ -35,6 +35,18 @@ std::uint32_t SplatRenderer::key_capacity() const {
 
 RasterFetch SplatRenderer::raster_fetch_in_use() const {
     return pass_->raster_fetch_in_use();
+}
+
+std::uint64_t SplatRenderer::pick(glm::ivec2 pixel) {
+    return renderer_->pick(pixel);
+}
+
+engine::PickResult SplatRenderer::pick_result(std::uint64_t ticket, bool wait) const {
+    return renderer_->pick_result(ticket, wait, pass_);
+}
+
+std::size_t SplatRenderer::picks_in_flight() const {
+    return pass_->picks_in_flight();
 }
 
 const char* to_string(RasterFetch fetch) {

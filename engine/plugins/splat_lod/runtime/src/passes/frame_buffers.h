@@ -24,6 +24,7 @@ struct FrameBuffers {
     engine::gl::Buffer cluster_splats{engine::gl::NoCreate};  // per cluster, its run of projected splats
     engine::gl::Buffer tile_ranges{engine::gl::NoCreate};     // per tile, its range of sorted keys
     engine::gl::Buffer keys{engine::gl::NoCreate}, values{engine::gl::NoCreate};  // tile-splat pairs
+    engine::gl::Buffer picks{engine::gl::NoCreate};  // gpu::SplatPicks, made on the first pick
     std::uint32_t splat_capacity = 0;
     std::uint32_t key_capacity = 0;
     std::uint32_t key_words = 2;  // 32-bit words of a key (RadixSort's SortJob::key_words)

@@ -6,6 +6,7 @@
 //   2–5 sort      scan of the clusters' pair counts; then, once the CPU has read the frame's splat and
 //                 pair counts back and sized the buffers, bin into (depth, tile) keys, radix sort,
 //                 tile ranges                                                      (sort_steps.cpp)
+//   5½ picking    with pixels picked this frame: each one's tile walked as the raster will (raster_steps.cpp)
 //   6–7 raster    per-tile front-to-back raster composited over the mesh pass; below render scale 1 at
 //                 low resolution with derivatives, then the upscale to the output  (raster_steps.cpp)
 // Every step binds the frame's whole set of resources (the sort and the scan bind their own between).
@@ -93,6 +94,8 @@ void record_scan(const FrameSteps& steps, std::uint32_t clusters);
 // the splats did not fit, the array grows to hold them and steps 1–2 run again.
 FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms, std::uint32_t gaussians);
 void record_sort(const FrameSteps& steps);
+// 5½: answers the frame's picks (gpu::SplatPicks, uploaded) into the same buffer.
+void record_picks(const FrameSteps& steps);
 void record_raster(const FrameSteps& steps);
 
 }  // namespace splat_lod

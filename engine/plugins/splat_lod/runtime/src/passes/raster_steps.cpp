@@ -1,4 +1,5 @@
-// Steps 6 and 7 of the splat frame (frame_steps.h): the tile raster and, below render scale 1, the upscale.
+// Steps 5½ to 7 of the splat frame (frame_steps.h): picking, the tile raster and, below render scale 1, the
+// upscale.
 #include <string>
 #include <vector>
 
@@ -8,6 +9,15 @@
 #include "passes/frame_steps.h"
 
 namespace splat_lod {
+
+void record_picks(const FrameSteps& steps) {
+    engine::gl::GpuTimerScope t(steps.frame.timers, "splat.pick");
+    steps.bind_all();
+    engine::gl::run({.program = &steps.program("splat_pick.comp.glsl",
+                                               {"RASTER_TILE_SIZE=" + std::to_string(steps.raster.tile_size)}),
+                     .groups = {1, 1, 1},
+                     .barrier = kStepBarrier});
+}
 
 void record_raster(const FrameSteps& steps) {
     using engine::gl::GpuTimerScope;

@@ -56,7 +56,11 @@ void SplatPass::execute(engine::FrameContext& frame) {
     steps.fetch = fetch_in_use_;  // the buffers may have outgrown the driver's buffer textures
     uniforms.key_capacity = buffers_.key_capacity;
     buffers_.uniforms.upload(0, sizeof(uniforms), &uniforms);
-    record_sort(steps);    // 3–5. bin, sort, tile ranges
+    record_sort(steps);  // 3–5. bin, sort, tile ranges
+    if (picks_.upload(frame.picks, raster.scale, {raster.width, raster.height}, buffers_.picks)) {
+        record_picks(steps);  // 5½. the splats under the pixels picked
+        picks_.record(buffers_.picks, frame.camera, scene_.instance_components());
+    }
     record_raster(steps);  // 6. raster; 7. upscale below render scale 1
     engine::gl::end_steps();
 

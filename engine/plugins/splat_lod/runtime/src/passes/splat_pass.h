@@ -13,6 +13,7 @@
 #include "engine/render/render_pass.h"
 #include "gpu/gpu_scene.h"
 #include "passes/frame_buffers.h"
+#include "passes/frame_picks.h"
 #include "passes/frame_statistics.h"
 #include "passes/frame_steps.h"
 #include "passes/texel_views.h"
@@ -33,6 +34,10 @@ public:
     std::string name() const override { return "splat"; }
     int order() const override { return engine::pass_order::plugin; }
     void execute(engine::FrameContext& frame) override;
+    // The splats under a picked pixel (frame_picks.h), a frame or more after it was drawn.
+    engine::PickResult pick_answer(std::uint64_t ticket, bool wait) override { return picks_.answer(ticket, wait); }
+    // Pick readbacks in flight (a test's count: answering never waits on them unless asked to).
+    std::size_t picks_in_flight() const { return picks_.in_flight(); }
 
     SplatPassSettings settings;
     // Takes a LodSettings message whole, as the bus delivers it (the only way LOD settings arrive).
@@ -68,6 +73,7 @@ private:
     SplatDepthImage depth_;
     TexelViews texels_;
     FrameStatistics statistics_;
+    FramePicks picks_;
     std::unique_ptr<engine::gl::PrefixScan> scan_;
     std::unique_ptr<engine::gl::RadixSort> sort_;
     RasterFetch fetch_in_use_ = RasterFetch::automatic;
