@@ -1,10 +1,13 @@
 // engine_view: opens a window on a scene file, with a fly camera and the ImGui overlay.
 //   engine_view --scene FILE [--width W --height H] [--frames N --screenshot OUT.png] [--no-ui]
+//               [--stereo [--ipd M]]
 // Each frame renders offscreen through Engine::renderer() (the same path as the headless tools
 // and tests), blits that frame to the window and draws the overlay on top.
 // Controls: W/A/S/D move, E/Q up/down, Shift faster, right mouse button + drag turns, the
 // wheel scales the speed, a left click picks what is under the cursor (its node, component and world
 // point in the "Pick" panel, a cross on screen), F1 toggles the overlay, Escape quits.
+// --stereo: the left and right eyes (engine::stereo_eyes, --ipd apart, one selection) side by side, each
+// half the window wide with the window's vertical field of view; picking is off.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -44,6 +47,8 @@ struct Options {
     std::filesystem::path screenshot;
     std::filesystem::path offscreen;
     bool no_ui = false;
+    bool stereo = false;
+    float ipd = 0.063f;
 };
 
 // Where the view starts and the lens it keeps; scene_size scales the fly speed.
@@ -103,7 +108,7 @@ private:
     std::unique_ptr<engine::Scene> scene_;
     std::unique_ptr<engine::UiOverlay> overlay_;
     std::unique_ptr<engine::PickTool> pick_;
-    std::unique_ptr<engine::RenderTarget> target_;
+    std::unique_ptr<engine::RenderTarget> target_, right_target_;  // the right eye's with --stereo
     std::optional<ViewerCamera> camera_;
     bool show_ui_;
     bool f1_was_down_ = false;
@@ -131,22 +136,33 @@ void Viewer::update_camera(float seconds) {
     const engine::FlyCameraInput input = engine::read_fly_camera_input(*window_, show_ui_ && overlay_->wants_mouse(),
                                                                        show_ui_ && overlay_->wants_keyboard());
     camera_->fly.update(input, seconds);
-    pick_->update(*window_, show_ui_ && overlay_->wants_mouse());
+    if (!options_.stereo) pick_->update(*window_, show_ui_ && overlay_->wants_mouse());
     camera_->moved = camera_->moved || changes_view(input);
 }
 
 // Returns false when there was nothing to draw into (a minimised window).
 bool Viewer::draw_frame(bool last) {
     const glm::ivec2 size = window_->framebuffer_size();
-    if (size.x <= 0 || size.y <= 0) return false;
-    if (!target_ || target_->width() != size.x || target_->height() != size.y)
-        target_ = std::make_unique<engine::RenderTarget>(size.x, size.y);
+    if (size.x <= 0 || size.y <= 0 || (options_.stereo && size.x < 2)) return false;
+    const glm::ivec2 eye_size(options_.stereo ? size.x / 2 : size.x, size.y);
+    if (!target_ || target_->width() != eye_size.x || target_->height() != eye_size.y) {
+        target_ = std::make_unique<engine::RenderTarget>(eye_size.x, eye_size.y);
+        if (options_.stereo) right_target_ = std::make_unique<engine::RenderTarget>(eye_size.x, eye_size.y);
+    }
     const ViewSetup& lens = camera_->view;
     const engine::CameraView view =
-        engine::make_camera(camera_->camera_to_world(), lens.fov_y, size.x, size.y, lens.znear, lens.zfar);
-    engine_.renderer().render(*scene_, view, *target_);
-    pick_->after_frame(view);
-    engine::present_to_window(*target_, size);
+        engine::make_camera(camera_->camera_to_world(), lens.fov_y, eye_size.x, eye_size.y, lens.znear, lens.zfar);
+    if (options_.stereo) {
+        const engine::StereoEyes eyes = engine::stereo_eyes(view, options_.ipd);
+        engine_.renderer().render(*scene_, eyes.left, *target_);
+        engine_.renderer().render(*scene_, eyes.right, *right_target_);
+        engine::present_to_window(*target_, size, {0, 0}, eye_size);
+        engine::present_to_window(*right_target_, size, {eye_size.x, 0}, eye_size);
+    } else {
+        engine_.renderer().render(*scene_, view, *target_);
+        pick_->after_frame(view);
+        engine::present_to_window(*target_, size);
+    }
     if (show_ui_) {
         overlay_->new_frame();
         overlay_->render();
@@ -159,7 +175,10 @@ bool Viewer::draw_frame(bool last) {
 void Viewer::write_screenshots() {
     if (!options_.screenshot.empty())
         engine::write_png(options_.screenshot, engine::read_window(window_->framebuffer_size()));
-    if (!options_.offscreen.empty()) engine::write_png(options_.offscreen, target_->read_color());
+    if (options_.offscreen.empty()) return;
+    engine::write_png(options_.offscreen, options_.stereo
+                                              ? engine::side_by_side(target_->read_color(), right_target_->read_color())
+                                              : target_->read_color());
 }
 
 void Viewer::run() {
@@ -198,6 +217,9 @@ int main(int argc, char** argv) {
                    "After the last frame, also write the offscreen frame without overlay as PNG (checks the blit)")
         ->needs(frames);
     app.add_flag("--no-ui", options.no_ui, "Start with the overlay hidden (F1 toggles it)");
+    app.add_flag("--stereo", options.stereo, "Draw the left and right eyes side by side");
+    app.add_option("--ipd", options.ipd, "With --stereo: the distance between the eyes, in the scene's units")
+        ->check(CLI::Range(0.0f, 1e6f));
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

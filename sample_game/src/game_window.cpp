@@ -60,7 +60,7 @@ private:
     engine::Engine engine_;
     std::unique_ptr<GameWorld> world_;
     std::unique_ptr<engine::UiOverlay> overlay_;
-    std::unique_ptr<engine::RenderTarget> target_;
+    std::unique_ptr<engine::RenderTarget> target_, right_target_;  // the right eye's in stereo
     std::shared_ptr<StreamingPanel> streaming_;
     engine::Subscription lod_subscription_;
     std::vector<PathPose> path_;
@@ -183,27 +183,45 @@ void Game::update_camera(float seconds) {
 
 bool Game::draw_frame(bool last, double frame_ms) {
     const glm::ivec2 size = window_->framebuffer_size();
-    if (size.x <= 0 || size.y <= 0) return false;
-    if (!target_ || target_->width() != size.x || target_->height() != size.y)
-        target_ = std::make_unique<engine::RenderTarget>(size.x, size.y);
-    const engine::CameraView camera = world_->camera(fly_.position(), fly_.forward(), size.x, size.y);
+    const bool stereo = options_.stereo_ipd > 0.0f;
+    if (size.x <= 0 || size.y <= 0 || (stereo && size.x < 2)) return false;
+    const glm::ivec2 eye_size(stereo ? size.x / 2 : size.x, size.y);
+    if (!target_ || target_->width() != eye_size.x || target_->height() != eye_size.y) {
+        target_ = std::make_unique<engine::RenderTarget>(eye_size.x, eye_size.y);
+        if (stereo) right_target_ = std::make_unique<engine::RenderTarget>(eye_size.x, eye_size.y);
+    }
+    const engine::CameraView camera = world_->camera(fly_.position(), fly_.forward(), eye_size.x, eye_size.y);
     world_->update_streaming(camera, frame_++, last_eye_ ? camera.position - *last_eye_ : glm::vec3(0.0f));
     last_eye_ = camera.position;
-    engine_.renderer().render(world_->scene(), camera, *target_);
+    if (stereo) {
+        const engine::StereoEyes eyes = engine::stereo_eyes(camera, options_.stereo_ipd);
+        engine_.renderer().render(world_->scene(), eyes.left, *target_);
+        engine_.renderer().render(world_->scene(), eyes.right, *right_target_);
+    } else {
+        engine_.renderer().render(world_->scene(), camera, *target_);
+    }
     auto& streamer = world_->streamer();
     const plugin_msgs::ResidencyReport& residency = streamer.residency();
     streaming_->record({world_->census(), streamer.chunk_count(), streamer.resident_bytes(),
                         streamer.settings().memory_budget_bytes, streamer.stats().uploaded_bytes_last_update,
                         streamer.settings().upload_budget_bytes_per_frame, frame_ms, residency.drawn_chunks,
                         residency.drawn_groups, residency.groups.resident, streamer.group_count()});
-    engine::present_to_window(*target_, size);
+    if (stereo) {
+        engine::present_to_window(*target_, size, {0, 0}, eye_size);
+        engine::present_to_window(*right_target_, size, {eye_size.x, 0}, eye_size);
+    } else {
+        engine::present_to_window(*target_, size);
+    }
     if (show_ui_) {
         overlay_->new_frame();
         overlay_->render();
     }
     if (last) {
         if (!options_.screenshot.empty()) engine::write_png(options_.screenshot, engine::read_window(size));
-        if (!options_.offscreen.empty()) engine::write_png(options_.offscreen, target_->read_color());
+        if (!options_.offscreen.empty())
+            engine::write_png(options_.offscreen,
+                              stereo ? engine::side_by_side(target_->read_color(), right_target_->read_color())
+                                     : target_->read_color());
     }
     window_->swap_buffers();
     return true;

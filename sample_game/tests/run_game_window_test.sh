@@ -5,7 +5,8 @@
 # panels and writes screenshots, which are checked:
 #   1. the window with the overlay is not a uniform image;
 #   2. without the overlay the window equals the offscreen frame (the blit is complete and upright);
-#   3. the overlay changes a clear share of the pixels (it is drawn).
+#   3. the overlay changes a clear share of the pixels (it is drawn);
+#   4. with --stereo the window holds the two eyes side by side as they were read back.
 # A missing xvfb-run is a failure, not a skip: scripts/setup installs xvfb and xauth.
 #   run_game_window_test.sh SAMPLE_GAME SPLAT_WORLD PNG_STATS OUT_DIR
 set -euo pipefail
@@ -24,7 +25,7 @@ for tool in xvfb-run xauth; do
 done
 
 mkdir -p "$out"
-rm -f "$out"/with_ui.png "$out"/no_ui.png "$out"/offscreen.png
+rm -f "$out"/with_ui.png "$out"/no_ui.png "$out"/offscreen.png "$out"/stereo.png "$out"/stereo_offscreen.png
 # 3 x 3 chunks of 32 m at a tenth of the density: about a second to make, reused when it matches.
 "$world_tool" --out "$out/world" --size 96 --chunk 32 --density 0.1 --refine-iterations 3 \
   --bake-width 128 --bake-height 128 --threads 2 > "$out/world.log" 2>&1 || { cat "$out/world.log"; exit 1; }
@@ -41,4 +42,7 @@ run_game --no-ui --screenshot "$out/no_ui.png" --offscreen "$out/offscreen.png"
 "$stats" stats "$out/no_ui.png" --min-stddev 5
 "$stats" diff "$out/no_ui.png" "$out/offscreen.png" --max-fraction 0.001
 "$stats" diff "$out/with_ui.png" "$out/no_ui.png" --min-fraction 0.02
+run_game --no-ui --stereo --screenshot "$out/stereo.png" --offscreen "$out/stereo_offscreen.png"
+"$stats" stats "$out/stereo.png" --min-stddev 5
+"$stats" diff "$out/stereo.png" "$out/stereo_offscreen.png" --max-fraction 0.001
 echo "game window test: passed; screenshots in $out"

@@ -1,5 +1,6 @@
 // sample_game: the streamed outdoor walkthrough (sample_game/README.md), in a window.
-//   sample_game [--world DIR] [--width W --height H] [--frames N] [--screenshot PNG] [LOD and streaming options]
+//   sample_game [--world DIR] [--width W --height H] [--frames N] [--screenshot PNG] [--stereo [--ipd M]]
+//               [LOD and streaming options]
 //   sample_game --write-path FILE [--world DIR] [--frames N] [--path FILE]
 // The window flies freely or follows the world's path, with the LOD and streaming panels. The
 // measurements of the walkthrough (profile, soak, reference) are sample_game_harness's; this program
@@ -19,6 +20,8 @@ namespace {
 struct CommandLine : sample_game::cli::GameCommandLine {
     int path_frames = 1800;
     bool no_ui = false, no_fog = false;
+    bool stereo = false;
+    float ipd = 0.063f;
     std::string screenshot, offscreen, write_path;
 };
 
@@ -33,6 +36,10 @@ void add_options(CLI::App& app, CommandLine& c) {
     app.add_option("--screenshot", c.screenshot, "After the last --frames frame, write the window as PNG");
     app.add_option("--offscreen", c.offscreen, "Also write the frame without overlay as PNG");
     app.add_flag("--no-ui", c.no_ui, "Start with the overlay hidden (F1 toggles it)");
+    app.add_flag("--stereo", c.stereo, "Draw the left and right eyes side by side, each half the window wide");
+    app.add_option("--ipd", c.ipd, "With --stereo: the distance between the eyes (m)")
+        ->check(CLI::Range(0.0f, 10.0f))
+        ->capture_default_str();
     app.add_flag("--no-fog", c.no_fog, "No distance fog (on by default: meshes and splats by the frame's depth)");
     app.add_option("--fog-density", c.settings.fog.density, "Distance fog per metre (half fog at ln 2 / density)")
         ->check(CLI::Range(0.0, 10.0))
@@ -51,6 +58,7 @@ int run_window(const CommandLine& c) {
     o.screenshot = c.screenshot;
     o.offscreen = c.offscreen;
     o.no_ui = c.no_ui;
+    o.stereo_ipd = c.stereo ? c.ipd : 0.0f;
     if ((!o.screenshot.empty() || !o.offscreen.empty()) && o.frames == 0)
         engine::fail("sample_game: --screenshot and --offscreen need --frames N");
     sample_game::run_window(o);

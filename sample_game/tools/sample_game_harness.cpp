@@ -2,7 +2,7 @@
 //   sample_game_harness --profile [--world DIR] [--out DIR] [--width W --height H] [--frames N]
 //               [--memory-budget-mib M] [--upload-budget-mib U] [--frames-png K]
 //               [--no-baseline] [--baseline-every K] [--baseline-overview-every K] [--no-preload]
-//               [--sync-streaming] [LOD options]
+//               [--sync-streaming] [--fog] [--stereo [--ipd M]] [LOD options]
 //   sample_game_harness --soak [--world DIR] [--out DIR] [--laps N] [--frames N] [--no-faults] [--retry-after-frames N]
 //   sample_game_harness --reference [--world DIR] [--width W --height H] [--frames N] [--fov-y D] [--supersample S]
 //   [--force]
@@ -34,6 +34,8 @@ struct CommandLine : sample_game::cli::GameCommandLine {
     std::string out = "out/game", reference_world;
     int frames_png = 0, baseline_every = 10, baseline_overview_every = 1;
     bool no_baseline = false, no_preload = false;
+    bool stereo = false;
+    float ipd = 0.063f;
 };
 
 // What to run headless: the profile, the soak or the reference, and their own settings.
@@ -77,6 +79,12 @@ void add_profile_options(CLI::App& app, CommandLine& c) {
                  "Profile: start the walk cold instead of streaming the first view first");
     app.add_flag("--fog", c.settings.fog.enabled,
                  "Draw the windowed game's distance fog too (its GPU time is the CSV's gpu_fog_ms)");
+    app.add_flag("--stereo", c.stereo,
+                 "Profile: draw each LOD frame again as a stereo pair and compare its cost (CSV stereo_frame_ms, "
+                 "stereo_eye_psnr; the summary's settings line)");
+    app.add_option("--ipd", c.ipd, "With --stereo: the distance between the eyes (m)")
+        ->check(CLI::Range(0.0f, 10.0f))
+        ->capture_default_str();
 }
 
 void add_options(CLI::App& app, CommandLine& c) {
@@ -108,6 +116,7 @@ int run_profile(const CommandLine& c) {
     o.baseline_every = c.baseline_every;
     o.baseline_overview_every = c.baseline_overview_every;
     o.preload = !c.no_preload;
+    o.stereo_ipd = c.stereo ? c.ipd : 0.0f;
     o.reference_supersample = c.supersample;
     o.reference_world = c.reference_world;
     sample_game::validate(o);  // before making a GL context: option errors come first

@@ -55,6 +55,40 @@ TEST(Camera, ATileViewPutsEveryPointWhereTheWholeImageHasIt) {
     EXPECT_THROW(engine::tile_view(whole, {0, 0}, {0, 50}), engine::Error);
 }
 
+// A stereo pair: eyes ipd apart along the centre's right axis, looking the same way, the centre's view
+// selecting for both; a point on the centre's axis at depth z appears f·ipd/(2z) pixels right of the
+// centre in the left eye and as far left in the right one, at the same row and depth.
+TEST(Camera, StereoEyesAreParallelAndShareTheCentresSelection) {
+    const auto centre = engine::make_look_at_camera({1, 2, 3}, {1, 2, -7}, {0, 1, 0}, 0.9f, 200, 100, 0.1f, 100.0f);
+    const float ipd = 0.064f;
+    const engine::StereoEyes eyes = engine::stereo_eyes(centre, ipd);
+    EXPECT_NEAR(glm::length(eyes.left.position - glm::vec3(1.0f - ipd / 2, 2, 3)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(eyes.right.position - glm::vec3(1.0f + ipd / 2, 2, 3)), 0.0f, 1e-6f);
+    ASSERT_TRUE(eyes.left.selection_view && eyes.right.selection_view);
+    EXPECT_EQ(*eyes.left.selection_view, centre.view);
+    EXPECT_EQ(*eyes.right.selection_view, centre.view);
+    EXPECT_FALSE(centre.selection_view);
+    EXPECT_EQ(eyes.left.projection, centre.projection);
+    const float z = 4.0f;
+    const glm::vec3 c = centre.project_to_pixel({1, 2, 3 - z});
+    const glm::vec3 l = eyes.left.project_to_pixel({1, 2, 3 - z}), r = eyes.right.project_to_pixel({1, 2, 3 - z});
+    const float shift = centre.focal_length() * ipd / (2.0f * z);
+    EXPECT_NEAR(l.x - c.x, shift, 1e-3f);
+    EXPECT_NEAR(c.x - r.x, shift, 1e-3f);
+    EXPECT_NEAR(l.y, c.y, 1e-4f);
+    EXPECT_NEAR(l.z, z, 1e-5f);
+    EXPECT_THROW(engine::stereo_eyes(centre, -0.1f), engine::Error);
+    EXPECT_THROW(engine::stereo_eyes(centre, std::numeric_limits<float>::quiet_NaN()), engine::Error);
+}
+
+TEST(Image, SideBySidePutsTheLeftImageFirst) {
+    const engine::Image left{2, 1, {1, 2, 3, 4, 5, 6, 7, 8}}, right{1, 1, {9, 10, 11, 12}};
+    const engine::Image both = engine::side_by_side(left, right);
+    EXPECT_EQ(both.width, 3);
+    EXPECT_EQ(both.rgba, (std::vector<std::uint8_t>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}));
+    EXPECT_THROW(engine::side_by_side(left, engine::Image{1, 2, std::vector<std::uint8_t>(8)}), engine::Error);
+}
+
 TEST(Camera, RejectsImpossibleSettings) {
     EXPECT_THROW(engine::make_look_at_camera({0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 1.0f, 10, 10, 0.1f, 10.0f),
                  engine::Error);

@@ -4,7 +4,9 @@
 #   1. the window with the overlay is not a uniform image;
 #   2. without the overlay the window equals the offscreen frame read back by
 #      RenderTarget::read_color() (the blit is complete and upright);
-#   3. the overlay changes a clear share of the pixels (it is drawn).
+#   3. the overlay changes a clear share of the pixels (it is drawn);
+#   4. with --stereo the window holds the two eyes side by side as they were read back (each eye's
+#      blit into its half is complete and upright).
 # A missing xvfb-run is a failure, not a skip: scripts/setup installs xvfb and xauth.
 set -euo pipefail
 
@@ -22,7 +24,7 @@ for tool in xvfb-run xauth; do
 done
 
 mkdir -p "$out"
-rm -f "$out"/with_ui.png "$out"/no_ui.png "$out"/offscreen.png
+rm -f "$out"/with_ui.png "$out"/no_ui.png "$out"/offscreen.png "$out"/stereo.png "$out"/stereo_offscreen.png
 
 run_view() {
   xvfb-run -a -s "-screen 0 1280x720x24" \
@@ -35,4 +37,7 @@ run_view --no-ui --screenshot "$out/no_ui.png" --offscreen "$out/offscreen.png"
 "$stats" stats "$out/with_ui.png" --min-stddev 10
 "$stats" diff "$out/no_ui.png" "$out/offscreen.png" --max-fraction 0.001
 "$stats" diff "$out/with_ui.png" "$out/no_ui.png" --min-fraction 0.02
+run_view --no-ui --stereo --ipd 0.2 --screenshot "$out/stereo.png" --offscreen "$out/stereo_offscreen.png"
+"$stats" stats "$out/stereo.png" --min-stddev 10
+"$stats" diff "$out/stereo.png" "$out/stereo_offscreen.png" --max-fraction 0.001
 echo "window test: passed; screenshots in $out"

@@ -70,11 +70,17 @@ std::vector<float> RenderTarget::read_view_depth() const {
 }
 
 void present_to_window(const RenderTarget& target, glm::ivec2 window_size) {
+    present_to_window(target, window_size, {0, 0}, window_size);
+}
+
+void present_to_window(const RenderTarget& target, glm::ivec2 window_size, glm::ivec2 origin, glm::ivec2 size) {
     const GLuint source = target.framebuffer().id();
     glNamedFramebufferReadBuffer(source, GL_COLOR_ATTACHMENT0);
     glDisable(GL_SCISSOR_TEST);      // the blit obeys the scissor box a pass may have left set
     glDisable(GL_FRAMEBUFFER_SRGB);  // the target already holds display-space values
-    glBlitNamedFramebuffer(source, 0, 0, 0, target.width(), target.height(), 0, window_size.y, window_size.x, 0,
+    // The window's rows count from the bottom: the rectangle's top is window_size.y − origin.y.
+    const GLint top = window_size.y - origin.y, bottom = top - size.y;
+    glBlitNamedFramebuffer(source, 0, 0, 0, target.width(), target.height(), origin.x, top, origin.x + size.x, bottom,
                            GL_COLOR_BUFFER_BIT, GL_NEAREST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, window_size.x, window_size.y);

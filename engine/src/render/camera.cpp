@@ -1,6 +1,7 @@
 #include "engine/render/camera.h"
 
 #include <cmath>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -86,6 +87,21 @@ CameraView tile_view(const CameraView& whole, glm::ivec2 origin, glm::ivec2 size
     const float top = (centre.y - static_cast<float>(first.y)) / f, bottom = (centre.y - static_cast<float>(end.y)) / f;
     c.projection = glm::frustum(left * c.znear, right * c.znear, bottom * c.znear, top * c.znear, c.znear, c.zfar);
     return c;
+}
+
+StereoEyes stereo_eyes(const CameraView& centre, float ipd) {
+    if (!(ipd >= 0.0f) || !std::isfinite(ipd)) fail("stereo: the eye separation must be a finite distance >= 0");
+    const glm::mat4 to_world = glm::inverse(centre.view);
+    const glm::vec3 right = glm::normalize(glm::vec3(to_world[0]));
+    StereoEyes eyes{centre, centre};
+    for (auto [eye, side] : {std::pair{&eyes.left, -0.5f}, std::pair{&eyes.right, 0.5f}}) {
+        glm::mat4 m = to_world;
+        m[3] = glm::vec4(centre.position + side * ipd * right, 1.0f);
+        eye->view = glm::inverse(m);
+        eye->position = glm::vec3(m[3]);
+        eye->selection_view = centre.selection_view.value_or(centre.view);
+    }
+    return eyes;
 }
 
 }  // namespace engine

@@ -89,4 +89,18 @@ Image depth_image(const std::vector<float>& depth, int width, int height) {
     return image;
 }
 
+Image side_by_side(const Image& left, const Image& right) {
+    if (left.height != right.height)
+        fail("side_by_side(): images of " + std::to_string(left.height) + " and " + std::to_string(right.height) +
+             " rows");
+    Image both{left.width + right.width, left.height, {}};
+    both.rgba.reserve(static_cast<std::size_t>(both.width) * static_cast<std::size_t>(both.height) * 4);
+    for (int y = 0; y < both.height; ++y)
+        for (const Image* half : {&left, &right}) {
+            const std::uint8_t* row = half->pixel(0, y);
+            both.rgba.insert(both.rgba.end(), row, row + static_cast<std::size_t>(half->width) * 4);
+        }
+    return both;
+}
+
 }  // namespace engine

@@ -1,10 +1,15 @@
 #include "sample_game/harness/frame_probe.h"
 
+#include <algorithm>
 #include <chrono>
+#include <limits>
+#include <vector>
 
 #include <plugin_msgs/frame_statistics.h>
 
 #include "engine/gl/compute_step.h"
+#include "engine/render/camera.h"
+#include "engine/render/image.h"
 #include "splat_lod/splat_renderer.h"
 
 namespace sample_game {
@@ -82,6 +87,27 @@ void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::Ca
     record.gpu_frame_bytes = memory.frame_bytes;
     record.selection_runs = static_cast<int>(memory.selection_runs);
     record_streaming(world, record);
+}
+
+void measure_stereo(GameWorld& world, engine::Engine& engine, const engine::CameraView& camera, float ipd,
+                    engine::RenderTarget& target, FrameRecord& record) {
+    const engine::StereoEyes eyes = engine::stereo_eyes(camera, ipd);
+    record.stereo_frame_ms = 0.0;
+    std::vector<engine::Image> images;
+    for (const engine::CameraView* eye : {&eyes.left, &eyes.right}) {
+        record.stereo_frame_ms += draw(engine, world.scene(), *eye, target);
+        images.push_back(target.read_color());  // not timed
+    }
+    record.stereo_eye_psnr = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < 2; ++k) {
+        engine::CameraView own = k == 0 ? eyes.left : eyes.right;
+        own.selection_view.reset();
+        draw(engine, world.scene(), own, target);
+        record.stereo_eye_psnr =
+            std::min(record.stereo_eye_psnr, engine::compare_images(images[k], target.read_color()).psnr_db);
+    }
+    engine.renderer().timers().wait_all();
+    world.pass().wait_for_statistics(engine.bus());
 }
 
 void record_pose(const GameWorld& world, const PathPose& pose, FrameRecord& record) {

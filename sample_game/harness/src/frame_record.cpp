@@ -192,6 +192,12 @@ std::vector<FrameColumn> make_columns() {
     c.push_back({"failures_total", "chunk failures reported so far", [](R r) { return integer(r.failures_total); }});
     c.push_back({"gpu_fog_ms", "GPU timer: the distance fog post pass (with --fog)",
                  [](R r) { return milliseconds(r.gpu_fog_ms); }});
+    c.push_back({"stereo_frame_ms", "with --stereo: the same frame as a stereo pair, both eyes to the GPU's finish",
+                 [](R r) { return milliseconds(r.stereo_frame_ms); }});
+    c.push_back({"stereo_eye_psnr",
+                 "with --stereo: the lower of the eyes' PSNR against a mono render from that "
+                 "eye with its own selection (dB; inf: identical; -1: none)",
+                 [](R r) { return r.stereo_eye_psnr < 0.0 ? std::string("-1") : decimal(r.stereo_eye_psnr, 3); }});
     return c;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -188,6 +189,7 @@ struct Run {
             r.stream_update_ms = world.update_streaming(camera, first_update + i, pose_velocity(poses, i));
             draw_and_measure(world, engine, camera, target, r);
             const engine::Image image = target.read_color();
+            if (options.stereo_ipd > 0.0f) measure_stereo(world, engine, camera, options.stereo_ipd, target, r);
             keep_picture(image, r);
             if (compared.count(i)) lod_images[r.frame] = image;
             compare_with_reference(image, camera, r, previous_lod);
@@ -329,6 +331,25 @@ std::string preload_note(const ProfileOptions& options, const PreloadStats& prel
                            : std::string("; no preload (cold start)");
 }
 
+// With --stereo: per segment, the median of the frames' stereo-to-mono ratios, and the lowest eye PSNR.
+std::string stereo_note(const ProfileOptions& options, const std::vector<FrameRecord>& lod) {
+    if (!(options.stereo_ipd > 0.0f)) return "";
+    std::map<std::string, std::vector<double>> ratios;
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const FrameRecord& r : lod) {
+        if (!(r.stereo_frame_ms > 0.0 && r.frame_ms > 0.0)) continue;
+        ratios[std::string(to_string(r.segment))].push_back(r.stereo_frame_ms / r.frame_ms);
+        lowest = std::min(lowest, r.stereo_eye_psnr);
+    }
+    std::string note = formatted("; stereo (ipd %.3f), the stereo frame over the mono one, median per segment:",
+                                 static_cast<double>(options.stereo_ipd));
+    for (auto& [segment, values] : ratios) {
+        std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
+        note += formatted(" %s %.3f", segment.c_str(), values[values.size() / 2]);
+    }
+    return note + formatted(", lowest eye PSNR against its own selection %.2f dB", lowest);
+}
+
 // The summary's list of what the run wrote, and why the plots are missing if they are.
 std::vector<std::string> listed_outputs(const ProfileOptions& options,
                                         const std::vector<std::filesystem::path>& pictures, std::size_t frame_pictures,
@@ -432,7 +453,7 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
     context.timing =
         formatted("LOD run %.0f s including the preload, loading every chunk %.0f s, baseline frames %.0f s",
                   lod_seconds, load_seconds, baseline_seconds);
-    context.settings += preload_note(options, preload);
+    context.settings += preload_note(options, preload) + stereo_note(options, lod);
     context.outputs =
         listed_outputs(options, outcome.pictures, run.frame_pictures.size(), plots.problem, strip_note(run.strip));
     context.reference = reference_note(options, reference, key);

@@ -21,6 +21,9 @@ struct WindowOptions {
     std::filesystem::path screenshot;  // after the last frame: the window, overlay included
     std::filesystem::path offscreen;   // after the last frame: the rendered frame without overlay
     bool no_ui = false;
+    // > 0: a stereo pair this far apart (metres), side by side, each eye half the window wide
+    // (engine::stereo_eyes: one selection, the centre's; streaming follows the centre).
+    float stereo_ipd = 0.0f;
 };
 
 // Throws engine::Error on a missing display, a bad world or option (naming it).

@@ -7,6 +7,8 @@
 // - square pixels: fy = fx = (H / 2) / tan(fov_y / 2), principal point at the image centre;
 // - a tile (tile_view()) is a window of a larger image: W, H, the centre and fov_y are then that
 //   image's, so a tiled render puts every pixel where the whole image has it.
+#include <optional>
+
 #include <glm/glm.hpp>
 
 namespace engine {
@@ -24,6 +26,10 @@ struct CameraView {
     // (width, height)); full_size (0, 0): the view is the whole image.
     glm::ivec2 full_size{0};
     glm::ivec2 tile_origin{0};
+    // The view that chooses what is drawn where a pass selects by how large things look (the splat
+    // pass's level of detail): none for this view itself. A stereo pair's eyes share their centre's
+    // (stereo_eyes()), so that both draw the same selection.
+    std::optional<glm::mat4> selection_view;
 
     float focal_length() const;         // fx = fy in pixels (of the whole image's height)
     glm::vec2 principal_point() const;  // (W/2, H/2) of the whole image, in this view's pixels
@@ -40,5 +46,13 @@ CameraView make_look_at_camera(const glm::vec3& eye, const glm::vec3& target, co
 // same pose, field of view and focal length, an off-centre projection. Throws engine::Error when
 // the window is empty or leaves the image.
 CameraView tile_view(const CameraView& whole, glm::ivec2 origin, glm::ivec2 size);
+
+// A stereo pair for `centre`: two views `ipd` apart along its right axis (left first), looking the same
+// way with the same lens and size (parallel axes), whose selection is the centre's (selection_view).
+// Throws engine::Error for an ipd that is negative or not finite.
+struct StereoEyes {
+    CameraView left, right;
+};
+StereoEyes stereo_eyes(const CameraView& centre, float ipd);
 
 }  // namespace engine

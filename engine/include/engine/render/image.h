@@ -19,6 +19,9 @@ struct Image {
     }
 };
 
+// `left` and `right` next to each other (a stereo pair); throws engine::Error unless their heights agree.
+Image side_by_side(const Image& left, const Image& right);
+
 Image read_png(const std::filesystem::path& path);                      // throws naming the file
 void write_png(const std::filesystem::path& path, const Image& image);  // atomic replace
 

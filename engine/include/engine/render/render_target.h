@@ -49,6 +49,9 @@ private:
 // buffer, `window_size` pixels), flipping Y once (the target's row 0 is the top, the window's the
 // bottom), and leaves the default framebuffer bound with that viewport for an overlay.
 void present_to_window(const RenderTarget& target, glm::ivec2 window_size);
+// The same into the window's rectangle of `size` pixels at `origin` (top-left origin), e.g. one eye of a
+// stereo pair side by side.
+void present_to_window(const RenderTarget& target, glm::ivec2 window_size, glm::ivec2 origin, glm::ivec2 size);
 // The window's back buffer (before the swap, when its contents are defined), top row first, opaque:
 // the window's alpha is whatever an overlay's blending left, and a screenshot is opaque.
 Image read_window(glm::ivec2 window_size);

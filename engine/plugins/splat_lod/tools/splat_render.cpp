@@ -3,9 +3,16 @@
 //                --out OUT.png [--background R,G,B] [--sh-degree N] [--frames N] [--mip-filter]
 //                [--render-scale S --upscaler spline|bicubic|bilinear|lanczos3] [--tile 4|8|16]
 //                [--low-res-tile 4|8|16] [--raster-fetch automatic|texel|shared] [--bbox-tiles] [--wide-sort-keys]
+//                [--stereo [--ipd M]]
 // Prints the Gaussians drawn and the per-pass GPU times (median over the frames after the first 2).
+// --stereo: draws the left and right eyes of engine::stereo_eyes (one selection, the centre's) side by
+// side into OUT.png (2W × H), and prints the stereo frame's time against the mono frame's, at the eye's
+// size and at the pair's (2W × H, the same vertical field of view: a wider view), interleaved, medians
+// over --frames, and each eye's PSNR against a mono render from that eye with its own selection.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <vector>
@@ -38,6 +45,8 @@ struct Options {
     bool bbox_tiles = false, wide_sort_keys = false;
     std::string lod_mode = "full";
     float transition_band = plugin_msgs::LodRule::kDefaultTransitionBand;
+    bool stereo = false;
+    float ipd = 0.063f;
 };
 
 void apply_settings(splat_lod::SplatPassSettings& settings, plugin_msgs::LodSettings& lod, const Options& o) {
@@ -59,6 +68,53 @@ void apply_settings(splat_lod::SplatPassSettings& settings, plugin_msgs::LodSett
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+// Milliseconds of drawing `views` one after the other, the GPU finished.
+double frame_ms(engine::Engine& engine, const engine::Scene& scene,
+                std::initializer_list<const engine::CameraView*> views, engine::RenderTarget& target) {
+    const auto start = std::chrono::steady_clock::now();
+    for (const engine::CameraView* view : views) engine.renderer().render(scene, *view, target);
+    engine.renderer().timers().wait_all();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// --stereo: the pair side by side in `out`, its cost against the mono frame, each eye against a mono
+// render from that eye with its own selection.
+void run_stereo(engine::Engine& engine, const engine::Scene& scene, const engine::CameraView& centre,
+                const engine::CameraView& wide, const Options& o) {
+    const engine::StereoEyes eyes = engine::stereo_eyes(centre, o.ipd);
+    engine::RenderTarget target(o.width, o.height);
+    std::vector<engine::Image> images;
+    for (const engine::CameraView* eye : {&eyes.left, &eyes.right}) {
+        splat_lod::render_complete(engine, scene, *eye, target);
+        images.push_back(target.read_color());
+    }
+    engine::write_png(o.out, engine::side_by_side(images[0], images[1]));
+    double psnr[2];
+    for (int k = 0; k < 2; ++k) {
+        engine::CameraView own = k == 0 ? eyes.left : eyes.right;
+        own.selection_view.reset();
+        splat_lod::render_complete(engine, scene, own, target);
+        psnr[k] = engine::compare_images(images[static_cast<std::size_t>(k)], target.read_color()).psnr_db;
+    }
+    // The mono frame at the eye's size, and at the pair's (2W × H, the same vertical field of view).
+    engine::RenderTarget wide_target(wide.width, wide.height);
+    std::vector<double> mono, mono_wide, stereo;
+    frame_ms(engine, scene, {&centre}, target);  // warm
+    splat_lod::render_complete(engine, scene, wide, wide_target);
+    for (int i = 0; i < o.frames; ++i) {
+        mono.push_back(frame_ms(engine, scene, {&centre}, target));
+        stereo.push_back(frame_ms(engine, scene, {&eyes.left, &eyes.right}, target));
+        mono_wide.push_back(frame_ms(engine, scene, {&wide}, wide_target));
+    }
+    std::printf(
+        "stereo %dx%d per eye, ipd %.4f: stereo frame %.2f ms; mono frame %.2f ms (%.3fx), mono frame of "
+        "the pair's size %dx%d %.2f ms (%.3fx); medians of %d\n",
+        o.width, o.height, static_cast<double>(o.ipd), median(stereo), median(mono), median(stereo) / median(mono),
+        wide.width, wide.height, median(mono_wide), median(stereo) / median(mono_wide), o.frames);
+    std::printf("  each eye against a mono render from that eye with its own selection: left %.2f dB, right %.2f dB\n",
+                psnr[0], psnr[1]);
 }
 
 int run(const Options& o) {
@@ -83,6 +139,13 @@ int run(const Options& o) {
     plugin_msgs::LodSettings lod;
     apply_settings(pass.settings(), lod, o);
     engine.bus().publish(lod);
+    if (o.stereo) {
+        run_stereo(engine, scene, camera,
+                   engine::make_look_at_camera(eye, target, engine::parse_vec3(o.up, "--up"), glm::radians(o.fov_y_deg),
+                                               2 * o.width, o.height, 0.01f, 1e6f),
+                   o);
+        return 0;
+    }
     engine::RenderTarget target_image(o.width, o.height);
 
     // Warm-up: the first frame compiles shaders and sizes the key buffer; the second is a plain one.
@@ -151,6 +214,9 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"compact", "full"}));
     app.add_flag("--bbox-tiles", o.bbox_tiles, "bin splats into every tile of their bounding box (to measure)");
     app.add_flag("--wide-sort-keys", o.wide_sort_keys, "sort (depth bits, tile) key pairs (to measure)");
+    app.add_flag("--stereo", o.stereo, "draw both eyes side by side and compare the stereo frame with the mono one");
+    app.add_option("--ipd", o.ipd, "with --stereo: the distance between the eyes, in the scene's units")
+        ->check(CLI::Range(0.0f, 1e6f));
     CLI11_PARSE(app, argc, argv);
     try {
         return run(o);

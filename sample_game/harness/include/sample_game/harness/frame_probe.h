@@ -20,6 +20,12 @@ inline constexpr int kMaxRedraws = 8;
 void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::CameraView& camera,
                       engine::RenderTarget& target, FrameRecord& record);
 
+// With a stereo pair this far apart (ProfileOptions::stereo_ipd): draws `camera`'s two eyes, timed to the
+// GPU's finish, and each eye again with its own selection, and fills stereo_frame_ms and
+// stereo_eye_psnr. Draws into `target`, which then holds the right eye with its own selection.
+void measure_stereo(GameWorld& world, engine::Engine& engine, const engine::CameraView& camera, float ipd,
+                    engine::RenderTarget& target, FrameRecord& record);
+
 // The record's pose fields: segment, path parameter, eye, height above the ground and distance from
 // the world's centre.
 void record_pose(const GameWorld& world, const PathPose& pose, FrameRecord& record);

@@ -70,6 +70,10 @@ struct FrameRecord {
     // does not have, such as a level popping; −1 elsewhere.
     double temporal_error = -1.0;
     double pop = -1.0;  // the same pair's pop: splat_lod::eval::temporal_pair_pop (−1: none)
+    // With --stereo (LOD rows): the frame drawn again as a stereo pair (engine::stereo_eyes, one
+    // selection, the centre's), both eyes one after the other to the GPU's finish; and the lower of the two
+    // eyes' PSNR against a mono render from that eye with its own selection. −1 without.
+    double stereo_frame_ms = -1.0, stereo_eye_psnr = -1.0;
 };
 
 struct FrameColumn {

@@ -47,6 +47,9 @@ struct ProfileOptions {
     // Whose reference: empty for `world`'s own; another world's folder to score this one against it
     // (the same world stored another way: its path must be the same, which the reference's key checks).
     std::filesystem::path reference_world;
+    // > 0: each LOD frame is drawn again as a stereo pair this far apart (docs/stereo.md), its time and
+    // its eyes' PSNR recorded (stereo_frame_ms, stereo_eye_psnr) and summarised per segment.
+    float stereo_ipd = 0.0f;
 };
 
 struct ProfileOutcome {

@@ -59,7 +59,8 @@ bool skip_cluster(uint cluster) {
     if (!(c.bounds.y > 0.0) || c.bounds.w < 0.0 || uint(c.bounds.z) >= frame.coarsest_level) return false;
     GpuInstance inst = instances[floatBitsToUint(c.bounds.w)];
     float stretch = uintBitsToFloat(inst.info.w);
-    vec3 centre = VIEW_TO_CAMERA * (frame.view * (inst.model * vec4(c.sphere.xyz, 1.0))).xyz;
+    // By the camera that selects (a stereo eye's centre), as step 1b's coverage.
+    vec3 centre = VIEW_TO_CAMERA * (frame.selection_view * (inst.model * vec4(c.sphere.xyz, 1.0))).xyz;
     float z_min = centre.z - c.sphere.w * stretch;
     if (!(z_min > frame.znear)) return false;
     float fx = frame.focal.x, fy = frame.focal.y, lx = frame.jacobian_clamp.x, ly = frame.jacobian_clamp.y;

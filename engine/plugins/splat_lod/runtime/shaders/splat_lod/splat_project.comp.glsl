@@ -45,6 +45,34 @@ mat3 local_covariance(GpuGaussian g) {
     return mat3(a.x, a.y, a.z, a.y, a.w, b.x, a.z, b.x, b.y);
 }
 
+// The undilated 2D covariance of a Gaussian of local covariance `local` seen through `view` (world →
+// view), its mean at camera-space `cam`: Σ2D = J T Σ Tᵀ Jᵀ, T = F·W·M; x/z and y/z clamped to
+// 1.3·tan(fov/2) as 3DGS does.
+mat2 screen_covariance(mat4 view, mat3 model, mat3 local, vec3 cam) {
+    mat3 t = VIEW_TO_CAMERA * mat3(view) * model;
+    mat3 sigma = t * local * transpose(t);
+    float fx = frame.focal.x, fy = frame.focal.y, z = cam.z;
+    float tx = clamp(cam.x / z, -frame.jacobian_clamp.x, frame.jacobian_clamp.x) * z;
+    float ty = clamp(cam.y / z, -frame.jacobian_clamp.y, frame.jacobian_clamp.y) * z;
+    mat3x2 j = mat3x2(fx / z, 0.0, 0.0, fy / z, -fx * tx / (z * z), -fy * ty / (z * z));
+    return mat2(j * sigma * transpose(j));
+}
+
+// The coverage that selects the Gaussian (docs/algorithms.md §2), at the output resolution (what the
+// viewer sees), also when the splats are rasterised smaller for upscaling (§5). A stereo eye takes its
+// centre's (frame.selection_view, engine::stereo_eyes), so that both eyes draw the same selection;
+// where the Gaussian is not in front of the centre, its own.
+float selection_coverage(mat2 cov, float det, float opacity, vec3 world, mat3 model, mat3 local) {
+    if (frame.separate_selection != 0u) {
+        vec3 cam = VIEW_TO_CAMERA * (frame.selection_view * vec4(world, 1.0)).xyz;
+        if (cam.z > frame.znear) {
+            cov = screen_covariance(frame.selection_view, model, local, cam);
+            det = cov[0][0] * cov[1][1] - cov[0][1] * cov[0][1];
+        }
+    }
+    return pixel_coverage(cov, det, opacity) * frame.coverage_scale;
+}
+
 // SplatComponent::dissolve: a pseudo-random rank in [0, 1) of a scene slot (an integer hash, xor-shift-
 // multiply rounds), so that about the fraction f of any component's Gaussians, a fixed subset while it
 // stays resident, rank below f.
@@ -68,18 +96,10 @@ uint project(uint index, out ProjectedSplat p) {
     float opacity = g.position_opacity.w;
     if (!(z > frame.znear) || !(opacity > 1.0 / 255.0)) return 0u;
 
-    // Σ2D = J T Σ Tᵀ Jᵀ, T = F·W·M; x/z and y/z clamped to 1.3·tan(fov/2) as 3DGS does.
-    mat3 t = VIEW_TO_CAMERA * mat3(frame.view) * mat3(inst.model);
-    mat3 sigma = t * local_covariance(g) * transpose(t);
-    float fx = frame.focal.x, fy = frame.focal.y;
-    float tx = clamp(cam.x / z, -frame.jacobian_clamp.x, frame.jacobian_clamp.x) * z;
-    float ty = clamp(cam.y / z, -frame.jacobian_clamp.y, frame.jacobian_clamp.y) * z;
-    mat3x2 j = mat3x2(fx / z, 0.0, 0.0, fy / z, -fx * tx / (z * z), -fy * ty / (z * z));
-    mat2 cov = mat2(j * sigma * transpose(j));
+    mat3 local = local_covariance(g);
+    mat2 cov = screen_covariance(frame.view, mat3(inst.model), local, cam);
     float det_undilated = cov[0][0] * cov[1][1] - cov[0][1] * cov[0][1];
-    // Selected by the coverage at the output resolution (what the viewer sees), also when the
-    // splats are rasterised smaller for upscaling (docs/algorithms.md §5).
-    float coverage = pixel_coverage(cov, det_undilated, opacity) * frame.coverage_scale;
+    float coverage = selection_coverage(cov, det_undilated, opacity, world, mat3(inst.model), local);
     // Under a splat budget every Gaussian selected at some β is projected; the budget pass then
     // picks β and the trim pass keeps those selected at it and applies their weight at β. Otherwise
     // the opacity is scaled by the LOD weight here (smooth transitions; 1 with hard switching). Both
@@ -106,7 +126,7 @@ uint project(uint index, out ProjectedSplat p) {
     opacity *= weight;
     if (!(opacity > 1.0 / 255.0)) return 0u;
 
-    vec2 mean = vec2(frame.principal.x + fx * cam.x / z, frame.principal.y + fy * cam.y / z);
+    vec2 mean = vec2(frame.principal.x + frame.focal.x * cam.x / z, frame.principal.y + frame.focal.y * cam.y / z);
     vec4 conic = vec4(vec3(cov[1][1], -cov[0][1], cov[0][0]) / det, 0.0);
     // The tiles it touches; a splat whose footprint holds no pixel centre of the raster (or is not a
     // number) draws nothing and is culled here.

@@ -19,7 +19,7 @@ static_assert(sizeof(GpuCluster) == 48);
 static_assert(sizeof(GpuPageCodec) == 80);
 static_assert(SPLAT_COMPACT_WORDS == kCompactWords && SPLAT_PROJECT_WORKGROUP_SIZE == kCompactPageSize);
 static_assert(sizeof(ProjectedSplat) == 48);
-static_assert(sizeof(FrameUniforms) == 240);
+static_assert(sizeof(FrameUniforms) == 304);
 // std140 offsets of every FrameUniforms member.
 static_assert(offsetof(FrameUniforms, camera_position) == 64);
 static_assert(offsetof(FrameUniforms, znear) == 76);
@@ -40,6 +40,7 @@ static_assert(offsetof(FrameUniforms, transition_band) == 212);
 static_assert(offsetof(FrameUniforms, exact_tiles) == 216);
 static_assert(offsetof(FrameUniforms, key_depth_bits) == 220);
 static_assert(offsetof(FrameUniforms, splat_capacity) == 224);
+static_assert(offsetof(FrameUniforms, selection_view) == 240);
 static_assert(sizeof(FrameCounters) == 80);
 static_assert(offsetof(FrameCounters, depth_range) == 64);
 static_assert(offsetof(FrameCounters, budget) == 48);

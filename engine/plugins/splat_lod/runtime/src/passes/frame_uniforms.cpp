@@ -46,6 +46,8 @@ gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const plugi
     gpu::FrameUniforms u{};
     u.view = camera.view;
     u.camera_position = camera.position;
+    u.separate_selection = camera.selection_view ? 1u : 0u;
+    u.selection_view = camera.selection_view.value_or(camera.view);
     u.znear = settings.znear;
     u.focal = glm::vec2(f, f);
     u.principal = camera.principal_point() * s;
