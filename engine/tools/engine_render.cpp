@@ -190,7 +190,7 @@ int main(int argc, char** argv) {
     app.add_option("--settle", o.settle_seconds,
                    "first render while plugins report background work (a drop-in LOD), at most this many seconds")
         ->check(CLI::Range(0.0, 1e6));
-    app.add_option("--pick", o.picks, "print and mark what is under pixel X,Y (repeatable, at most 16)");
+    app.add_option("--pick", o.picks, "print and mark what is under pixel X,Y (repeatable, at most 64)");
     CLI11_PARSE(app, argc, argv);
     if (o.picks.size() > engine::kMaxPicksPerFrame) {
         std::fprintf(stderr, "engine_render: at most %zu --pick\n", engine::kMaxPicksPerFrame);

@@ -203,6 +203,14 @@ void Window::swap_buffers() {
     glfwSwapBuffers(window_);
 }
 
+glm::vec2 Window::cursor_pixel() const {
+    int width = 0, height = 0;
+    glfwGetWindowSize(window_, &width, &height);
+    const glm::ivec2 framebuffer = framebuffer_size();
+    if (width <= 0 || height <= 0) return mouse_position_;
+    return mouse_position_ * glm::vec2(framebuffer) / glm::vec2(width, height);
+}
+
 glm::ivec2 Window::framebuffer_size() const {
     int width = 0, height = 0;
     glfwGetFramebufferSize(window_, &width, &height);

@@ -20,7 +20,7 @@ PickTool::PickTool(Renderer& renderer, UiOverlay& overlay) : renderer_(renderer)
 void PickTool::update(const Window& window, bool overlay_has_mouse) {
     const bool down = window.mouse_down(MouseButton::left);
     if (down && !was_down_ && !overlay_has_mouse) {
-        pending_pixel_ = glm::ivec2(glm::floor(window.mouse_position()));
+        pending_pixel_ = glm::ivec2(glm::floor(window.cursor_pixel()));
         pending_ = renderer_.pick(pending_pixel_);
     }
     was_down_ = down;
@@ -53,8 +53,10 @@ void PickTool::draw_panel() const {
     ImGui::Text("world: %.3f, %.3f, %.3f", hit.position.x, hit.position.y, hit.position.z);
     ImGui::Text("depth: %.3f", hit.depth);
     // The cross at the picked point as the camera sees it now (none when it is behind the camera).
-    const glm::vec3 p = camera_.project_to_pixel(glm::vec3(hit.position));
-    if (!(p.z > 0.0f)) return;
+    const glm::vec3 pixel = camera_.project_to_pixel(glm::vec3(hit.position));
+    if (!(pixel.z > 0.0f)) return;
+    const ImVec2 scale = ImGui::GetIO().DisplayFramebufferScale;  // framebuffer pixels per ImGui unit
+    const ImVec2 p(pixel.x / scale.x, pixel.y / scale.y);
     const float r = 8.0f;
     ImDrawList* draw = ImGui::GetForegroundDrawList();
     for (const auto& [colour, width] :

@@ -39,9 +39,12 @@ public:
 
     bool key_down(Key key) const;
     bool mouse_down(MouseButton button) const;
-    glm::vec2 mouse_position() const { return mouse_position_; }  // pixels, top-left origin
-    glm::vec2 mouse_delta() const { return mouse_delta_; }        // since the previous poll_events()
-    float scroll_delta() const { return scroll_delta_; }          // wheel steps since the previous poll
+    glm::vec2 mouse_position() const { return mouse_position_; }  // window coordinates, top-left origin
+    // The cursor in framebuffer pixels (top-left origin): the window coordinates scaled by the
+    // framebuffer's size over the window's, which differ on high-density displays.
+    glm::vec2 cursor_pixel() const;
+    glm::vec2 mouse_delta() const { return mouse_delta_; }  // since the previous poll_events()
+    float scroll_delta() const { return scroll_delta_; }    // wheel steps since the previous poll
 
 private:
     Window() = default;

@@ -17,7 +17,7 @@ struct Component;
 struct CameraView;
 
 // At most this many picks are answered by one frame; later ones wait for the next frame.
-inline constexpr std::size_t kMaxPicksPerFrame = 16;
+inline constexpr std::size_t kMaxPicksPerFrame = 64;
 
 struct PickHit {
     glm::dvec3 position{0.0};  // world

@@ -114,13 +114,14 @@ TEST_F(SplatPickTest, RealScenesPickWhereTheReferenceReachesAHalf) {
     }
 }
 
-// Two clouds side by side: a pixel on each names its node and component; a pixel between them, and one
-// in a corner, pick nothing.
+// Two clouds side by side: a pixel on each names its node and component, with and without a splat budget
+// that binds (under a budget the trim, not the projection, leaves the instance in the projected splat); a
+// pixel between them, and one in a corner, pick nothing.
 TEST_F(SplatPickTest, ThePickNamesTheComponentAndNodeHit) {
     std::vector<engine::test::GaussianSpec> specs;
     for (int i = 0; i < 27; ++i)
         specs.push_back({glm::vec3(i % 3, (i / 3) % 3, i / 9) * 0.15f - 0.15f,
-                         glm::vec3(-2.0f),
+                         glm::vec3(-2.5f + 0.02f * static_cast<float>(i)),
                          {1, 0, 0, 0},
                          4.0f,
                          glm::vec3(0.8f, 0.3f, 0.2f)});
@@ -128,21 +129,30 @@ TEST_F(SplatPickTest, ThePickNamesTheComponentAndNodeHit) {
     const auto scene = splat_scene({cloud, cloud}, {glm::vec3(-1.0f, 0.0f, 0.0f), glm::vec3(1.0f, 0.0f, 0.0f)});
     const auto camera = engine::make_look_at_camera({0, 0, 4}, {0, 0, 0}, {0, 1, 0}, 0.8f, 160, 120, 0.1f, 100.0f);
     const glm::vec3 left = camera.project_to_pixel({-1, 0, 0}), right = camera.project_to_pixel({1, 0, 0});
-    const std::uint64_t a = pass.pick(glm::ivec2(left)), b = pass.pick(glm::ivec2(right));
-    const std::uint64_t between = pass.pick({80, 60}), corner = pass.pick({0, 0});
-    engine::RenderTarget target(camera.width, camera.height);
-    splat_lod::render_complete(harness.engine(), *scene, camera, target);
-
-    const engine::PickResult on_left = pass.pick_result(a, true), on_right = pass.pick_result(b, true);
-    ASSERT_TRUE(on_left.hit && on_right.hit);
-    EXPECT_EQ(on_left.hit->node, scene->find_node("splats 0"));
-    EXPECT_EQ(on_right.hit->node, scene->find_node("splats 1"));
-    EXPECT_EQ(on_right.hit->component, scene->find_node("splats 1")->find_component<splat_lod::SplatComponent>());
-    // The front of the cube of Gaussians is at z = 0.15 (its nearest layer), 3.85 from the camera.
-    EXPECT_NEAR(on_left.hit->depth, 3.85, 0.15);
-    EXPECT_NEAR(on_left.hit->position.x, -1.0, 0.05);
-    EXPECT_FALSE(pass.pick_result(between, true).hit);
-    EXPECT_FALSE(pass.pick_result(corner, true).hit);
+    for (const std::uint32_t budget : {0u, 40u}) {
+        SCOPED_TRACE(budget);
+        harness.edit_lod([&](plugin_msgs::LodSettings& lod) { lod.splat_budget = budget; });
+        const std::uint64_t a = pass.pick(glm::ivec2(left)), b = pass.pick(glm::ivec2(right));
+        const std::uint64_t between = pass.pick({80, 60}), corner = pass.pick({0, 0});
+        engine::RenderTarget target(camera.width, camera.height);
+        splat_lod::render_complete(harness.engine(), *scene, camera, target);
+        if (budget > 0) {
+            EXPECT_LE(pass.latest_statistics()->visible, budget);
+            EXPECT_GT(pass.latest_statistics()->unbudgeted, budget);  // it binds
+        }
+        const engine::PickResult on_left = pass.pick_result(a, true), on_right = pass.pick_result(b, true);
+        ASSERT_TRUE(on_left.hit && on_right.hit);
+        EXPECT_EQ(on_left.hit->node, scene->find_node("splats 0"));
+        EXPECT_EQ(on_right.hit->node, scene->find_node("splats 1"));
+        EXPECT_EQ(on_right.hit->component, scene->find_node("splats 1")->find_component<splat_lod::SplatComponent>());
+        // The front of the cube of Gaussians is at z = 0.15 (its nearest layer, also the largest Gaussians,
+        // which the budget keeps), 3.85 from the camera.
+        EXPECT_NEAR(on_left.hit->depth, 3.85, 0.15);
+        EXPECT_NEAR(on_left.hit->position.x, -1.0, 0.05);
+        EXPECT_FALSE(pass.pick_result(between, true).hit);
+        EXPECT_FALSE(pass.pick_result(corner, true).hit);
+    }
+    harness.edit_lod([](plugin_msgs::LodSettings& lod) { lod.splat_budget = 0; });
 }
 
 // The scene's pick (engine::Renderer::pick: the meshes' ray cast and the splats' answer, the nearer

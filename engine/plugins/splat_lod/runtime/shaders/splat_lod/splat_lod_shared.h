@@ -254,7 +254,7 @@ SPLAT_LOD_STRUCT(FrameCounters) {
 
 // Picking (SplatRenderer::pick): the pixels asked this frame and, per pixel, what splat_pick.comp.glsl
 // found along its ray.
-#define SPLAT_MAX_PICKS 16
+#define SPLAT_MAX_PICKS 64
 SPLAT_LOD_STRUCT(SplatPicks) {
     uvec4 count;                     // x: pixels asked (at most SPLAT_MAX_PICKS); yzw unused
     uvec4 pixels[SPLAT_MAX_PICKS];   // xy: the raster pixel, zw: the output pixel
