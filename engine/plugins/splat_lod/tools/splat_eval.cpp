@@ -5,7 +5,8 @@
 //              --up X,Y,Z --name NAME --max-reference-side PX
 //              --sheet-tile-width PX --sheet-methods a,b --chain lod-meta.json
 //              --upscale-factors 2,3,4,8 --upscalers spline,bicubic,... --upscale-mode baseline
-//              --temporal-frames 48 --temporal-path path.json]
+//              --temporal-frames 48 --temporal-path path.json
+//              --temporal-paths dolly,orbit,walk,run,slow_dolly --metres-per-unit 1]
 // Writes DIR/measurements.csv, report.md, the gnuplot PNGs, contact_sheet.png (scale sweep),
 // levels.png (when `full` is measured) and upscale_crops.png (upscale sweep); progress on stderr.
 // --chain adds each level of an existing LOD chain to the scale sweep as method chain_L<i>
@@ -37,9 +38,11 @@ struct Options {
     std::string scene, scene_json, cameras = "orbit:2", methods = "baseline,baseline_mip", sweeps = "scale",
                                    scales = "1,2,4,8,16,32,64,128", distances = "1,2,4,8,16,32,64,128", out,
                                    up = "0,1,0", name, sheet_methods, chain, upscale_factors = "2,3,4,8",
-                                   upscalers = "spline,bicubic,bilinear,lanczos3,spline_plain", temporal_path;
+                                   upscalers = "spline,bicubic,bilinear,lanczos3,spline_plain", temporal_path,
+                                   temporal_paths = splat_lod::eval::kDefaultTemporalPaths;
     int temporal_frames = splat_lod::eval::kDefaultDollyFrames;
-    bool temporal_frames_given = false;
+    double metres_per_unit = 1.0;
+    bool temporal_frames_given = false, temporal_paths_given = false, metres_per_unit_given = false;
     bool temporal = false;  // --sweep names temporal
     splat_lod::eval::EvalOptions eval;
 };
@@ -86,6 +89,8 @@ splat_lod::eval::TemporalOptions temporal_options(const Options& o) {
     t.max_reference_side = o.eval.max_reference_side;
     t.dolly_frames = o.temporal_frames;
     t.path_file = o.temporal_path;
+    t.paths = o.temporal_paths;
+    t.metres_per_unit = o.metres_per_unit;
     t.progress = o.eval.progress;
     return t;
 }
@@ -102,6 +107,8 @@ void validate(const Options& o) {
     }
     if (!o.temporal_path.empty()) engine::fail("--temporal-path: only the temporal sweep (--sweep temporal) uses it");
     if (o.temporal_frames_given) engine::fail("--temporal-frames: only the temporal sweep (--sweep temporal) uses it");
+    if (o.temporal_paths_given) engine::fail("--temporal-paths: only the temporal sweep (--sweep temporal) uses it");
+    if (o.metres_per_unit_given) engine::fail("--metres-per-unit: only the temporal sweep (--sweep temporal) uses it");
 }
 
 // The temporal sweep's paths, made (and a --temporal-path file read) before anything is rendered.
@@ -209,8 +216,14 @@ int main(int argc, char** argv) {
                    "temporal sweep: frames of the dolly path, out to 64x the first view's distance and back (>= 4)");
     app.add_option("--temporal-path", o.temporal_path,
                    "temporal sweep: a camera-path JSON or INRIA cameras.json, one more path named by its stem");
+    app.add_option("--temporal-paths", o.temporal_paths,
+                   "temporal sweep: the generated paths, in this order (some of dolly,orbit,walk,run,slow_dolly)");
+    app.add_option("--metres-per-unit", o.metres_per_unit,
+                   "temporal sweep: the scene's scale, for the walk (1.4 m/s) and run (5 m/s) paths at 60 fps");
     CLI11_PARSE(app, argc, argv);
     o.temporal_frames_given = app.count("--temporal-frames") > 0;
+    o.temporal_paths_given = app.count("--temporal-paths") > 0;
+    o.metres_per_unit_given = app.count("--metres-per-unit") > 0;
     try {
         return run(o);
     } catch (const std::exception& e) {

@@ -108,6 +108,40 @@ std::vector<CameraPose> dolly_path(const CameraPose& start, int frames) {
     return poses;
 }
 
+std::vector<CameraPose> stride_path(const CameraPose& start, double speed, double metres_per_unit,
+                                    const std::string& name) {
+    if (!(speed > 0.0) || !(metres_per_unit > 0.0) || !std::isfinite(metres_per_unit))
+        engine::fail("splat_lod::eval::stride_path(): the speed and the scene's scale must be > 0");
+    const double distance = start.focus_distance;
+    const double step = speed / kPathFramesPerSecond / metres_per_unit;  // scene units a frame
+    const double wanted = std::ceil((kStrideMaxFactor - 1.0) * distance / step);
+    const int steps = std::max(kMinTemporalFrames - 1, static_cast<int>(std::min<double>(wanted, kMaxStrideFrames)));
+    std::vector<CameraPose> poses;
+    for (int i = 0; i <= steps; ++i) {
+        const double factor = 1.0 + i * step / distance;
+        CameraPose pose = dolly(start, static_cast<float>(factor));
+        char label[96];
+        std::snprintf(label, sizeof label, "%s %d (%.3fx)", name.c_str(), i, factor);
+        pose.name = label;
+        poses.push_back(pose);
+    }
+    return poses;
+}
+
+std::vector<CameraPose> slow_dolly_path(const CameraPose& start) {
+    const int steps = static_cast<int>(std::lround(std::log2(kSlowDollyMaxFactor) * kSlowDollyStepsPerOctave));
+    std::vector<CameraPose> poses;
+    for (int i = 0; i <= steps; ++i) {
+        const double factor = std::exp2(static_cast<double>(i) / kSlowDollyStepsPerOctave);
+        CameraPose pose = dolly(start, static_cast<float>(factor));
+        char label[64];
+        std::snprintf(label, sizeof label, "slow dolly %d (%.3fx)", i, factor);
+        pose.name = label;
+        poses.push_back(pose);
+    }
+    return poses;
+}
+
 std::vector<CameraPose> orbit_path(const SceneExtent& extent, const glm::vec3& up, int frames) {
     if (frames < kMinTemporalFrames)
         engine::fail("splat_lod::eval::orbit_path(): " + std::to_string(frames) + " frames are too few");
@@ -132,14 +166,26 @@ std::string temporal_path_name(const std::filesystem::path& file) {
     for (char& c : name)
         if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
     if (name.empty()) name = "cameras";
-    if (name == "dolly" || name == "orbit") name += "_file";
+    for (const std::string& taken : parse_name_list(kDefaultTemporalPaths, "paths"))
+        if (name == taken) name += "_file";
     return name;
 }
 
 std::vector<TemporalPath> temporal_paths(const TemporalOptions& options, const CameraPose& first_view,
                                          const SceneExtent& extent, const glm::vec3& up) {
-    std::vector<TemporalPath> paths{{"dolly", dolly_path(first_view, options.dolly_frames)},
-                                    {"orbit", orbit_path(extent, up, kOrbitFrames)}};
+    std::vector<TemporalPath> paths;
+    for (const std::string& name : parse_name_list(options.paths, "--temporal-paths")) {
+        if (name == "dolly")
+            paths.push_back({name, dolly_path(first_view, options.dolly_frames)});
+        else if (name == "orbit")
+            paths.push_back({name, orbit_path(extent, up, kOrbitFrames)});
+        else if (name == "walk")
+            paths.push_back({name, stride_path(first_view, kWalkSpeed, options.metres_per_unit, name)});
+        else if (name == "run")
+            paths.push_back({name, stride_path(first_view, kRunSpeed, options.metres_per_unit, name)});
+        else if (name == "slow_dolly")
+            paths.push_back({name, slow_dolly_path(first_view)});
+    }
     if (options.path_file.empty()) return paths;
     std::vector<CameraPose> poses;
     try {
@@ -161,6 +207,18 @@ void validate_temporal_options(const TemporalOptions& o) {
         for (std::size_t j = 0; j < i; ++j)
             if (o.methods[i].name == o.methods[j].name)
                 engine::fail("--methods: \"" + o.methods[i].name + "\" is listed twice");
+    const std::vector<std::string> known = parse_name_list(kDefaultTemporalPaths, "paths");
+    const std::vector<std::string> paths = parse_name_list(o.paths, "--temporal-paths");
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+        if (std::find(known.begin(), known.end(), paths[i]) == known.end())
+            engine::fail("--temporal-paths: unknown path \"" + paths[i] + "\" (expected some of " +
+                         kDefaultTemporalPaths + ")");
+        if (std::find(paths.begin(), paths.begin() + static_cast<std::ptrdiff_t>(i), paths[i]) !=
+            paths.begin() + static_cast<std::ptrdiff_t>(i))
+            engine::fail("--temporal-paths: \"" + paths[i] + "\" is listed twice");
+    }
+    if (!(o.metres_per_unit > 0.0) || !std::isfinite(o.metres_per_unit))
+        engine::fail("--metres-per-unit: must be a finite number > 0, got " + std::to_string(o.metres_per_unit));
     if (o.dolly_frames < kMinTemporalFrames)
         engine::fail("--temporal-frames: " + std::to_string(o.dolly_frames) + " frames are too few (at least " +
                      std::to_string(kMinTemporalFrames) + ")");

@@ -39,16 +39,18 @@ std::string dat_name(const std::string& path, const std::string& method) {
     return "temporal_" + path + "_" + method + ".dat";
 }
 
-// Columns: frame t, the pair error of (t−1, t) (NaN at t = 0), PSNR of frame t, splat ms of frame t.
+// Columns: frame t, the pair error of (t−1, t) (NaN at t = 0), PSNR of frame t, splat ms of frame t,
+// the pop of (t−1, t) (NaN at t = 0).
 void write_dat(const TemporalRow& row, const std::filesystem::path& file) {
     std::ostringstream out;
-    out << "# frame pair_error_8bit psnr_db splat_gpu_ms (" << row.method << " on " << row.path << ")\n";
+    out << "# frame pair_error_8bit psnr_db splat_gpu_ms pop_8bit (" << row.method << " on " << row.path << ")\n";
     const bool timed = static_cast<int>(row.splat_ms.size()) == row.frames;
     for (int t = 0; t < row.frames; ++t) {
         const auto i = static_cast<std::size_t>(t);
         out << t << ' ' << (t == 0 ? std::string("NaN") : number(row.pair_errors[i - 1], 6)) << ' '
             << (std::isfinite(row.psnr[i]) ? number(row.psnr[i], 6) : std::string("NaN")) << ' '
-            << (timed ? number(row.splat_ms[i], 6) : std::string("NaN")) << '\n';
+            << (timed ? number(row.splat_ms[i], 6) : std::string("NaN")) << ' '
+            << (t == 0 ? std::string("NaN") : number(row.pair_pops[i - 1], 6)) << '\n';
     }
     engine::write_text_file_atomic(file, out.str());
 }
@@ -59,12 +61,13 @@ std::string plot_script(const TemporalResults& results, const std::string& path)
     int colour = 1;
     for (const Method& method : o.methods) {
         if (!plots.empty()) plots += ", \\\n     ";
-        plots += "'" + dat_name(path, method.name) + "' using 1:2 with linespoints pt 7 ps 0.6 lc " +
+        plots += "'" + dat_name(path, method.name) + "' using 1:5 with linespoints pt 7 ps 0.6 lc " +
                  std::to_string(colour++) + " title '" + method.name + "'";
     }
-    return "set output 'temporal_" + path + ".png'\nset title '" + o.scene_name + ": temporal error along the " + path +
-           " path'\nset xlabel 'frame t (pair t-1, t)'\nset ylabel 'mean |dM - dR| (8-bit units)'\nplot " + plots +
-           "\n";
+    return "set output 'temporal_" + path + ".png'\nset title '" + o.scene_name + ": pop along the " + path +
+           " path'\nset xlabel 'frame t (pair t-1, t)'\nset ylabel '99.9th percentile of |dM - dR| (8-bit "
+           "units)'\nplot " +
+           plots + "\n";
 }
 
 // Returns the plot files written, or nothing (with a warning) when gnuplot is missing.
@@ -93,8 +96,8 @@ std::vector<std::filesystem::path> write_temporal_plots(const TemporalResults& r
 std::string strip_caption(const TemporalStrip& strip) {
     std::ostringstream out;
     out << "*" << strip.path << ": frames " << strip.first_frame << "\u2013" << strip.first_frame + kStripFrames - 1
-        << " around the largest pair error (" << strip.peak_method << ", frames " << strip.peak_frame - 1 << "\u2192"
-        << strip.peak_frame << ", " << number(strip.peak_error, 2)
+        << " around the largest pop (" << strip.peak_method << ", frames " << strip.peak_frame - 1 << "\u2192"
+        << strip.peak_frame << ", " << number(strip.peak_pop, 2)
         << "); rows the reference and the methods, last row |\u0394M \u2212 \u0394R| \u00d7 " << kStripDifferenceGain
         << " of " << strip.peak_method << " for each pair (under its second frame).*\n\n";
     return out.str();
@@ -126,8 +129,8 @@ std::string markdown(const TemporalResults& results, const std::string& renderer
     }
     out << '\n';
     for (const TemporalStrip& strip : results.strips)
-        out << "![temporal error along " << strip.path << "](temporal_" << strip.path << ".png)\n\n![strip of "
-            << strip.path << "](temporal_strip_" << strip.path << ".png)\n\n"
+        out << "![pop along " << strip.path << "](temporal_" << strip.path << ".png)\n\n![strip of " << strip.path
+            << "](temporal_strip_" << strip.path << ".png)\n\n"
             << strip_caption(strip);
     return out.str();
 }
@@ -173,7 +176,7 @@ engine::Image temporal_strip_image(const TemporalStrip& strip) {
                  "|dM-dR| x" + std::to_string(static_cast<int>(kStripDifferenceGain)), strip.differences, 1);
     draw_text(sheet, 4, sheet.height - kLabelHeight + 4,
               strip.path + ": peak " + strip.peak_method + " frames " + std::to_string(strip.peak_frame - 1) + "-" +
-                  std::to_string(strip.peak_frame) + ", error " + number(strip.peak_error, 2) + " (8-bit)");
+                  std::to_string(strip.peak_frame) + ", pop " + number(strip.peak_pop, 2) + " (8-bit)");
     return sheet;
 }
 

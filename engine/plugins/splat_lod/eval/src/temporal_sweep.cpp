@@ -76,13 +76,13 @@ std::vector<TemporalRow> render_path(FrameMeasurer& measurer, const TemporalPath
     return rows;
 }
 
-// The method and pair with the largest pair error of a path (the first where several tie).
+// The method and pair with the largest pop of a path (the first where several tie).
 void find_peak(const std::vector<TemporalRow>& rows, TemporalStrip& strip) {
-    strip.peak_error = -1.0;
+    strip.peak_pop = -1.0;
     for (const TemporalRow& row : rows)
-        for (std::size_t i = 0; i < row.pair_errors.size(); ++i)
-            if (row.pair_errors[i] > strip.peak_error) {
-                strip.peak_error = row.pair_errors[i];
+        for (std::size_t i = 0; i < row.pair_pops.size(); ++i)
+            if (row.pair_pops[i] > strip.peak_pop) {
+                strip.peak_pop = row.pair_pops[i];
                 strip.peak_method = row.method;
                 strip.peak_frame = static_cast<int>(i) + 1;
             }

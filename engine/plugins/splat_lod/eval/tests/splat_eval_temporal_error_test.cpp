@@ -1,6 +1,7 @@
 // The temporal sweep without GL: the pair error and the pop on synthetic frames with closed-form answers
 // (a pop, a fade over k frames, a pan), the
-// supersampling factor, the dolly and orbit paths, path names and the checks of the options.
+// supersampling factor, the dolly, orbit, walk, run and slow-dolly paths, path names and the checks
+// of the options.
 #include <cmath>
 #include <vector>
 
@@ -141,6 +142,63 @@ TEST(TemporalSweepSetup, DollyGoesOutTo64GeometricallyAndBack) {
     expect_error([&] { eval::dolly_path(start, 3); }, {"--temporal-frames: 3 frames are too few"});
 }
 
+TEST(TemporalSweepSetup, WalkAndRunStepBackAtTheirSpeedUntilTheDistanceDoubles) {
+    eval::CameraPose start;
+    start.eye = {0, 0, 3};
+    start.forward = {0, 0, -1};
+    start.focus_distance = 3.0f;
+    // 1.4 m/s at 60 fps in a scene of 1 m units: 1.4/60 units a frame, ⌈3 / (1.4/60)⌉ = 129 steps.
+    const auto walk = eval::stride_path(start, eval::kWalkSpeed, 1.0, "walk");
+    ASSERT_EQ(walk.size(), 130u);
+    for (std::size_t i = 1; i < walk.size(); ++i) {
+        EXPECT_NEAR(glm::length(walk[i].eye - walk[i - 1].eye), 1.4 / 60.0, 1e-5) << i;
+        EXPECT_NEAR(glm::length(walk[i].target()), 0.0f, 1e-4f) << "the target stays";
+    }
+    EXPECT_GE(walk.back().focus_distance, 6.0f);
+    EXPECT_LT(walk[128].focus_distance, 6.0f) << "the last frame is the first at or past 2x";
+    EXPECT_EQ(walk[0].name, "walk 0 (1.000x)");
+    // A scene in centimetres: the same speed is 100 times as many units, 3 steps.
+    const auto run = eval::stride_path(start, eval::kRunSpeed, 0.01, "run");
+    ASSERT_EQ(run.size(), 4u) << "at least kMinTemporalFrames frames";
+    EXPECT_NEAR(glm::length(run[1].eye - run[0].eye), 5.0 / 60.0 / 0.01, 1e-3);
+    // Units of a kilometre: capped at kMaxStrideFrames steps (6 s).
+    EXPECT_EQ(eval::stride_path(start, eval::kWalkSpeed, 1e3, "walk").size(),
+              static_cast<std::size_t>(eval::kMaxStrideFrames) + 1);
+    expect_error([&] { eval::stride_path(start, eval::kWalkSpeed, 0.0, "walk"); }, {"must be > 0"});
+}
+
+TEST(TemporalSweepSetup, TheSlowDollyGoesFrom1To16AtAThirtySecondOfAnOctaveAFrame) {
+    eval::CameraPose start;
+    start.eye = {0, 0, 2};
+    start.forward = {0, 0, -1};
+    start.focus_distance = 2.0f;
+    const auto poses = eval::slow_dolly_path(start);
+    ASSERT_EQ(poses.size(), 129u);
+    for (std::size_t i = 1; i < poses.size(); ++i)
+        EXPECT_NEAR(poses[i].focus_distance / poses[i - 1].focus_distance, std::exp2(1.0 / 32.0), 1e-5) << i;
+    EXPECT_NEAR(poses.back().focus_distance, 32.0f, 1e-3f);
+    EXPECT_EQ(poses[32].name, "slow dolly 32 (2.000x)");
+}
+
+TEST(TemporalSweepSetup, PathsAreTheListedOnesInTheirOrder) {
+    eval::TemporalOptions o;
+    o.methods = eval::select_methods("full");
+    eval::CameraPose start;
+    start.eye = {0, 0, 2};
+    start.focus_distance = 2.0f;
+    const eval::SceneExtent extent{{0, 0, 0}, 1.0f};
+    const auto all = eval::temporal_paths(o, start, extent, {0, 1, 0});
+    ASSERT_EQ(all.size(), 5u);
+    const char* names[] = {"dolly", "orbit", "walk", "run", "slow_dolly"};
+    for (std::size_t i = 0; i < all.size(); ++i) EXPECT_EQ(all[i].name, names[i]);
+    EXPECT_EQ(all[2].poses.size(), 87u) << "2 units at 1.4/60 a frame: 86 steps";
+    o.paths = "slow_dolly,walk";
+    const auto two = eval::temporal_paths(o, start, extent, {0, 1, 0});
+    ASSERT_EQ(two.size(), 2u);
+    EXPECT_EQ(two[0].name, "slow_dolly");
+    EXPECT_EQ(two[1].name, "walk");
+}
+
 TEST(TemporalSweepSetup, OrbitIsALevelCircleInEqualSteps) {
     const eval::SceneExtent extent{{1, 2, 3}, 2.0f};
     const auto poses = eval::orbit_path(extent, {0, 1, 0}, 24);
@@ -160,6 +218,8 @@ TEST(TemporalSweepSetup, PathNamesAndOptionChecks) {
     EXPECT_EQ(eval::temporal_path_name("some/dir/walk path.json"), "walk_path");
     EXPECT_EQ(eval::temporal_path_name("cameras.json"), "cameras");
     EXPECT_EQ(eval::temporal_path_name("orbit.json"), "orbit_file");
+    EXPECT_EQ(eval::temporal_path_name("walk.json"), "walk_file");
+    EXPECT_EQ(eval::temporal_path_name("slow_dolly.json"), "slow_dolly_file");
 
     eval::TemporalOptions o;
     expect_error([&] { eval::validate_temporal_options(o); }, {"--methods: no method given"});
@@ -171,6 +231,16 @@ TEST(TemporalSweepSetup, PathNamesAndOptionChecks) {
     o.path_file = "/nonexistent/walk.json";
     expect_error([&] { eval::validate_temporal_options(o); }, {"--temporal-path /nonexistent/walk.json: no such file"});
     o.path_file.clear();
+    o.paths = "walk,crawl";
+    expect_error([&] { eval::validate_temporal_options(o); }, {"--temporal-paths: unknown path \"crawl\""});
+    o.paths = "walk,run,walk";
+    expect_error([&] { eval::validate_temporal_options(o); }, {"--temporal-paths: \"walk\" is listed twice"});
+    o.paths = "walk";
+    o.metres_per_unit = 0.0;
+    expect_error([&] { eval::validate_temporal_options(o); }, {"--metres-per-unit: must be a finite number > 0"});
+    o.metres_per_unit = std::nan("");
+    expect_error([&] { eval::validate_temporal_options(o); }, {"--metres-per-unit"});
+    o.metres_per_unit = 1.0;
     o.max_reference_side = 300;
     expect_error([&] { eval::validate_temporal_options(o); }, {"--max-reference-side: 300", "512\u00d7384"});
 }

@@ -120,6 +120,7 @@ TEST_F(SplatEvalTemporalTest, SweepWritesOneRowPerMethodAndPathWithPlotsAndStrip
     options.height = 48;
     options.methods = eval::select_methods("baseline,full");
     options.dolly_frames = 8;
+    options.paths = "dolly,orbit";
     options.path_file = (folder / "side step.json").string();
     int progress_lines = 0;
     options.progress = [&](const std::string& line) {

@@ -8,9 +8,11 @@
 // the same from frame to frame (a steady blur, a constant bias) scores 0; popping, flicker and
 // swimming score. The temporal error of a path is the mean pair error.
 //
-// Paths: `dolly` (the first view of the camera set dollied from 1× to 64× its distance and back,
-// geometric steps), `orbit` (a level circle around the scene) and, when given, a camera file's
-// sequence named by its stem.
+// Paths (TemporalOptions::paths picks them): `dolly` (the first view of the camera set dollied from
+// 1× to 64× its distance and back, geometric steps), `orbit` (a level circle around the scene), `walk`
+// and `run` (the first view stepping back along its view ray at 1.4 and 5 m/s, 60 frames a second,
+// until its distance has doubled, in the scene's units at metres_per_unit), `slow_dolly` (1× to 16×
+// at 1/32 octave a frame) and, when given, a camera file's sequence named by its stem.
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -28,13 +30,21 @@ namespace splat_lod::eval {
 
 class FrameMeasurer;
 
-constexpr int kMinTemporalFrames = 4;         // every path: the strip shows 4 consecutive frames
-constexpr int kDefaultDollyFrames = 48;       // --temporal-frames
-constexpr int kOrbitFrames = 24;              // the orbit path's frames
-constexpr float kDollyMaxFactor = 64.0f;      // the dolly path's turning point
-constexpr int kMaxTemporalSupersampling = 4;  // s ≤ 4
-constexpr int kStripFrames = 4;               // consecutive frames in a strip
-constexpr float kStripDifferenceGain = 4.0f;  // the strip's |ΔM − ΔR| row, brightened
+constexpr int kMinTemporalFrames = 4;          // every path: the strip shows 4 consecutive frames
+constexpr int kDefaultDollyFrames = 48;        // --temporal-frames
+constexpr int kOrbitFrames = 24;               // the orbit path's frames
+constexpr float kDollyMaxFactor = 64.0f;       // the dolly path's turning point
+constexpr int kMaxTemporalSupersampling = 4;   // s ≤ 4
+constexpr int kStripFrames = 4;                // consecutive frames in a strip
+constexpr float kStripDifferenceGain = 4.0f;   // the strip's |ΔM − ΔR| row, brightened
+constexpr double kPathFramesPerSecond = 60.0;  // walk and run
+constexpr double kWalkSpeed = 1.4;             // m/s
+constexpr double kRunSpeed = 5.0;              // m/s
+constexpr double kStrideMaxFactor = 2.0;       // walk and run end at twice the first view's distance...
+constexpr int kMaxStrideFrames = 360;          // ...or after 6 s, whichever comes first
+constexpr int kSlowDollyStepsPerOctave = 32;   // the slow dolly's 1/32 octave a frame
+constexpr double kSlowDollyMaxFactor = 16.0;   // the slow dolly's last frame
+inline constexpr const char* kDefaultTemporalPaths = "dolly,orbit,walk,run,slow_dolly";
 
 struct TemporalOptions {
     std::string scene_name = "scene";
@@ -42,15 +52,17 @@ struct TemporalOptions {
     int height = 384;
     std::vector<Method> methods;
     int max_reference_side = 2048;
-    int dolly_frames = kDefaultDollyFrames;  // the whole dolly, out and back
-    std::string path_file;                   // a camera-path or INRIA cameras.json; empty: none
+    int dolly_frames = kDefaultDollyFrames;     // the whole dolly, out and back
+    std::string paths = kDefaultTemporalPaths;  // comma-separated, run in this order (--temporal-paths)
+    double metres_per_unit = 1.0;               // the scene's scale, for walk and run (--metres-per-unit)
+    std::string path_file;                      // a camera-path or INRIA cameras.json; empty: none
     // Called before each frame with "[i/n] scene path frame f (temporal)".
     std::function<void(const std::string&)> progress;
 };
 
 // A camera path rendered frame by frame.
 struct TemporalPath {
-    std::string name;  // "dolly", "orbit" or the camera file's stem; letters, digits, '-', '_', '.'
+    std::string name;  // a name of kDefaultTemporalPaths or the camera file's stem; letters, digits, '-', '_', '.'
     std::vector<CameraPose> poses;
 };
 
@@ -70,13 +82,13 @@ struct TemporalRow {
     std::vector<double> splat_ms;     // per frame, the "splat" GPU span (absent spans are left out)
 };
 
-// The frames around a path's largest pair error: the reference and every method (rows), frames
-// first_frame … first_frame + 3 (columns), and the peak method's |ΔM − ΔR| per pair.
+// The frames around a path's largest pop (the player's worst pair): the reference and every method
+// (rows), frames first_frame … first_frame + 3 (columns), and the peak method's |ΔM − ΔR| per pair.
 struct TemporalStrip {
     std::string path;
     std::string peak_method;
     int peak_frame = 0;  // the peak pair is (peak_frame − 1, peak_frame)
-    double peak_error = 0.0;
+    double peak_pop = 0.0;
     int first_frame = 0;
     std::vector<std::string> rows;                   // "reference", then the methods
     std::vector<std::vector<engine::Image>> images;  // [row][column], W×H
@@ -116,19 +128,27 @@ std::vector<double> temporal_pair_errors(const std::vector<FloatImage>& method,
 // `frames` poses from `start` dollied out to kDollyMaxFactor and back: the first ⌈frames/2⌉ go from
 // 1× to 64× inclusive, the rest come back with the last at 1×, all in geometric steps.
 std::vector<CameraPose> dolly_path(const CameraPose& start, int frames);
+// The first view stepping back along its view ray by `speed` m/s at kPathFramesPerSecond, the scene's
+// unit being `metres_per_unit` metres: from 1× its focus distance until kStrideMaxFactor× (the last
+// frame at or just past it) or kMaxStrideFrames steps. `name` names the poses ("walk 3 (1.07x)").
+std::vector<CameraPose> stride_path(const CameraPose& start, double speed, double metres_per_unit,
+                                    const std::string& name);
+// 1× to kSlowDollyMaxFactor× in steps of 1/kSlowDollyStepsPerOctave octave (129 frames).
+std::vector<CameraPose> slow_dolly_path(const CameraPose& start);
 // `frames` views on a level circle around the scene at the first orbit camera's distance and
 // elevation (orbit_poses(extent, up, 1)), turning once about `up` in equal steps.
 std::vector<CameraPose> orbit_path(const SceneExtent& extent, const glm::vec3& up, int frames = kOrbitFrames);
 // The path name of a camera file: its stem with characters other than letters, digits, '-', '_'
-// and '.' replaced by '_'; "_file" is appended when that gives "dolly" or "orbit".
+// and '.' replaced by '_'; "_file" is appended when that gives a name of kDefaultTemporalPaths.
 std::string temporal_path_name(const std::filesystem::path& file);
-// dolly (from first_view), orbit, and the camera file's path when options.path_file is given.
-// Throws engine::Error naming --temporal-path when that file holds fewer than kMinTemporalFrames
-// cameras or cannot be read.
+// The paths of options.paths in their order (dolly, walk, run and slow_dolly from first_view), and the
+// camera file's path when options.path_file is given. Throws engine::Error naming --temporal-path
+// when that file holds fewer than kMinTemporalFrames cameras or cannot be read.
 std::vector<TemporalPath> temporal_paths(const TemporalOptions& options, const CameraPose& first_view,
                                          const SceneExtent& extent, const glm::vec3& up);
 
-// Throws engine::Error before anything is rendered when no method is given, a method repeats,
+// Throws engine::Error before anything is rendered when no method is given, a method repeats, a
+// path of --temporal-paths is unknown or repeats, --metres-per-unit is not a finite number > 0,
 // --temporal-frames is below kMinTemporalFrames, --temporal-path names no file, or the reference
 // cannot be supersampled within max_reference_side.
 void validate_temporal_options(const TemporalOptions& options);
