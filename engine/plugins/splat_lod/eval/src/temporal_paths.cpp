@@ -65,6 +65,11 @@ double temporal_pair_pop(const FloatImage& method_previous, const FloatImage& me
     return *nth;
 }
 
+double selection_switch_pop(const FloatImage& frozen, const FloatImage& image) {
+    // |(M_t − frozen) − (R − R)|: the pair pop with a reference that does not change.
+    return temporal_pair_pop(frozen, image, image, image);
+}
+
 engine::Image temporal_difference_image(const FloatImage& method_previous, const FloatImage& method,
                                         const FloatImage& reference_previous, const FloatImage& reference, float gain) {
     check_same_sizes(method_previous, method, reference_previous, reference);

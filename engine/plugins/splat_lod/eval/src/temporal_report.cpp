@@ -40,17 +40,19 @@ std::string dat_name(const std::string& path, const std::string& method) {
 }
 
 // Columns: frame t, the pair error of (t−1, t) (NaN at t = 0), PSNR of frame t, splat ms of frame t,
-// the pop of (t−1, t) (NaN at t = 0).
+// the pop and the switch pop of (t−1, t) (NaN at t = 0).
 void write_dat(const TemporalRow& row, const std::filesystem::path& file) {
     std::ostringstream out;
-    out << "# frame pair_error_8bit psnr_db splat_gpu_ms pop_8bit (" << row.method << " on " << row.path << ")\n";
+    out << "# frame pair_error_8bit psnr_db splat_gpu_ms pop_8bit switch_pop_8bit (" << row.method << " on " << row.path
+        << ")\n";
     const bool timed = static_cast<int>(row.splat_ms.size()) == row.frames;
     for (int t = 0; t < row.frames; ++t) {
         const auto i = static_cast<std::size_t>(t);
         out << t << ' ' << (t == 0 ? std::string("NaN") : number(row.pair_errors[i - 1], 6)) << ' '
             << (std::isfinite(row.psnr[i]) ? number(row.psnr[i], 6) : std::string("NaN")) << ' '
             << (timed ? number(row.splat_ms[i], 6) : std::string("NaN")) << ' '
-            << (t == 0 ? std::string("NaN") : number(row.pair_pops[i - 1], 6)) << '\n';
+            << (t == 0 ? std::string("NaN") : number(row.pair_pops[i - 1], 6)) << ' '
+            << (t == 0 ? std::string("NaN") : number(row.pair_switch_pops[i - 1], 6)) << '\n';
     }
     engine::write_text_file_atomic(file, out.str());
 }
@@ -61,11 +63,13 @@ std::string plot_script(const TemporalResults& results, const std::string& path)
     int colour = 1;
     for (const Method& method : o.methods) {
         if (!plots.empty()) plots += ", \\\n     ";
-        plots += "'" + dat_name(path, method.name) + "' using 1:5 with linespoints pt 7 ps 0.6 lc " +
-                 std::to_string(colour++) + " title '" + method.name + "'";
+        const std::string file = "'" + dat_name(path, method.name) + "'", lc = std::to_string(colour++);
+        plots += file + " using 1:5 with linespoints pt 7 ps 0.6 lc " + lc + " title '" + method.name +
+                 ": pop', \\\n     " + file + " using 1:6 with lines dt 2 lw 2 lc " + lc + " title '" + method.name +
+                 ": switch pop'";
     }
-    return "set output 'temporal_" + path + ".png'\nset title '" + o.scene_name + ": pop along the " + path +
-           " path'\nset xlabel 'frame t (pair t-1, t)'\nset ylabel '99.9th percentile of |dM - dR| (8-bit "
+    return "set output 'temporal_" + path + ".png'\nset title '" + o.scene_name + ": pops along the " + path +
+           " path'\nset xlabel 'frame t (pair t-1, t)'\nset ylabel '99.9th percentile over pixels (8-bit "
            "units)'\nplot " +
            plots + "\n";
 }
@@ -96,10 +100,11 @@ std::vector<std::filesystem::path> write_temporal_plots(const TemporalResults& r
 std::string strip_caption(const TemporalStrip& strip) {
     std::ostringstream out;
     out << "*" << strip.path << ": frames " << strip.first_frame << "\u2013" << strip.first_frame + kStripFrames - 1
-        << " around the largest pop (" << strip.peak_method << ", frames " << strip.peak_frame - 1 << "\u2192"
+        << " around the largest switch pop (" << strip.peak_method << ", frames " << strip.peak_frame - 1 << "\u2192"
         << strip.peak_frame << ", " << number(strip.peak_pop, 2)
-        << "); rows the reference and the methods, last row |\u0394M \u2212 \u0394R| \u00d7 " << kStripDifferenceGain
-        << " of " << strip.peak_method << " for each pair (under its second frame).*\n\n";
+        << "); rows the reference and the methods, last row |M_t \u2212 M_t with the selection of t\u22121| \u00d7 "
+        << kStripDifferenceGain << " of " << strip.peak_method
+        << " for each pair (under its second frame): what switched.*\n\n";
     return out.str();
 }
 
@@ -113,18 +118,21 @@ std::string markdown(const TemporalResults& results, const std::string& renderer
         << ". Temporal error: the mean over consecutive frame pairs of the mean |(M_t \u2212 M_{t\u22121}) \u2212 "
            "(R_t \u2212 R_{t\u22121})| over pixels and RGB channels, in 8-bit units (0\u2013255). Pop: the 99.9th "
            "percentile over pixels of the same difference averaged over RGB, per pair (a switch in one frame counts "
-           "whole, a fade over k frames 1/k): its largest and mean over the path. Splat ms: the mean "
+           "whole, a fade over k frames 1/k): its largest and mean over the path. Switch pop: the same percentile of "
+           "|M_t \u2212 M_t with the selection of t\u22121| (the selection's change alone: motion and its aliasing "
+           "cancel, baseline scores 0). Splat ms: the mean "
            "over the frames of the splat pass's GPU time, one timed frame each (GPU: "
         << renderer << "; compare methods within one run).\n\n"
-        << "| path | frames | method | temporal error | largest pair (frame) | pop peak | pop mean | PSNR mean (dB) | "
-           "splat ms mean |\n"
-           "|---|---|---|---|---|---|---|---|---|\n";
+        << "| path | frames | method | temporal error | largest pair (frame) | pop peak | pop mean | switch pop peak | "
+           "switch pop mean | PSNR mean (dB) | splat ms mean |\n"
+           "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const TemporalRow& row : results.rows) {
         int frame = 0;
         const double peak = max_pair_error(row, frame);
         out << "| " << row.path << " | " << row.frames << " | " << row.method << " | " << number(row.temporal_error, 3)
             << " | " << number(peak, 2) << " (" << frame << ") | " << number(row.pop_peak, 2) << " | "
-            << number(row.pop_mean, 2) << " | " << number(row.psnr_mean, 2) << " | "
+            << number(row.pop_mean, 2) << " | " << number(row.switch_pop_peak, 2) << " | "
+            << number(row.switch_pop_mean, 2) << " | " << number(row.psnr_mean, 2) << " | "
             << (row.splat_ms_mean ? number(*row.splat_ms_mean, 2) : "\u2013") << " |\n";
     }
     out << '\n';
@@ -138,11 +146,13 @@ std::string markdown(const TemporalResults& results, const std::string& renderer
 }  // namespace
 
 void write_temporal_csv(const TemporalResults& results, const std::filesystem::path& path) {
-    std::string text = "method,path,frames,temporal_error,psnr_mean,splat_ms_mean,pop_peak,pop_mean\n";
+    std::string text =
+        "method,path,frames,temporal_error,psnr_mean,splat_ms_mean,pop_peak,pop_mean,switch_pop_peak,switch_pop_mean\n";
     for (const TemporalRow& row : results.rows)
         text += row.method + ',' + row.path + ',' + std::to_string(row.frames) + ',' + number(row.temporal_error, 4) +
                 ',' + number(row.psnr_mean, 4) + ',' + optional_number(row.splat_ms_mean, 3) + ',' +
-                number(row.pop_peak, 3) + ',' + number(row.pop_mean, 3) + '\n';
+                number(row.pop_peak, 3) + ',' + number(row.pop_mean, 3) + ',' + number(row.switch_pop_peak, 3) + ',' +
+                number(row.switch_pop_mean, 3) + '\n';
     engine::write_text_file_atomic(path, text);
 }
 
@@ -173,10 +183,10 @@ engine::Image temporal_strip_image(const TemporalStrip& strip) {
     }
     if (!strip.differences.empty())
         draw_row(static_cast<int>(strip.images.size()),
-                 "|dM-dR| x" + std::to_string(static_cast<int>(kStripDifferenceGain)), strip.differences, 1);
+                 "switched x" + std::to_string(static_cast<int>(kStripDifferenceGain)), strip.differences, 1);
     draw_text(sheet, 4, sheet.height - kLabelHeight + 4,
               strip.path + ": peak " + strip.peak_method + " frames " + std::to_string(strip.peak_frame - 1) + "-" +
-                  std::to_string(strip.peak_frame) + ", pop " + number(strip.peak_pop, 2) + " (8-bit)");
+                  std::to_string(strip.peak_frame) + ", switch pop " + number(strip.peak_pop, 2) + " (8-bit)");
     return sheet;
 }
 

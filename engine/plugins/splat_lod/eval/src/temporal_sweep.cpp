@@ -1,6 +1,7 @@
 // The temporal sweep's rendering (splat_lod/eval/temporal_sweep.h): every path frame by frame, the
-// reference first, then every method; only the previous frame of each is kept, and the frames of
-// each path's strip are rendered again once its peak is known (the renderer is deterministic).
+// reference first, then every method (each frame also with the previous frame's selection, for the
+// switch pop); only the previous frame of each is kept, and the frames of each path's strip are
+// rendered again once its peak is known (the renderer is deterministic).
 #include "splat_lod/eval/temporal_sweep.h"
 
 #include <algorithm>
@@ -38,6 +39,30 @@ double mean(const std::vector<double>& values) {
                           : std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
 }
 
+// Frame t of a method as drawn and, from the second frame on, drawn again with the selection of the
+// frame before (the switch pop).
+void measure_frame(FrameMeasurer& measurer, const Method& method, const TemporalPath& path, std::size_t t,
+                   const TemporalOptions& o, TemporalRow& row, FloatImage& previous, const FloatImage& reference,
+                   const FloatImage& reference_previous) {
+    const engine::CameraView view = make_view(path.poses[t], o.width, o.height);
+    const FrameMeasurement measured = measurer.measure(method, view, 1, 0);
+    FloatImage image = to_float(measured.image);
+    row.psnr.push_back(psnr(image, reference));
+    if (const auto it = measured.gpu_ms.find("splat"); it != measured.gpu_ms.end()) row.splat_ms.push_back(it->second);
+    if (t > 0) {
+        row.pair_errors.push_back(temporal_pair_error(previous, image, reference_previous, reference));
+        row.pair_pops.push_back(temporal_pair_pop(previous, image, reference_previous, reference));
+        engine::CameraView frozen = view;
+        frozen.selection_view = make_view(path.poses[t - 1], o.width, o.height).view;
+        row.pair_switch_pops.push_back(selection_switch_pop(to_float(measurer.render(method, frozen)), image));
+    }
+    previous = std::move(image);
+}
+
+double peak(const std::vector<double>& values) {
+    return values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+}
+
 std::vector<TemporalRow> render_path(FrameMeasurer& measurer, const TemporalPath& path, int s, Progress& progress) {
     const TemporalOptions& o = progress.options;
     std::vector<TemporalRow> rows(o.methods.size());
@@ -46,20 +71,8 @@ std::vector<TemporalRow> render_path(FrameMeasurer& measurer, const TemporalPath
     for (std::size_t t = 0; t < path.poses.size(); ++t) {
         progress.step(path.name, "frame " + std::to_string(t));
         FloatImage reference = reference_frame(measurer, path.poses[t], o, s);
-        const engine::CameraView view = make_view(path.poses[t], o.width, o.height);
-        for (std::size_t m = 0; m < o.methods.size(); ++m) {
-            const FrameMeasurement measured = measurer.measure(o.methods[m], view, 1, 0);
-            FloatImage image = to_float(measured.image);
-            TemporalRow& row = rows[m];
-            row.psnr.push_back(psnr(image, reference));
-            if (const auto it = measured.gpu_ms.find("splat"); it != measured.gpu_ms.end())
-                row.splat_ms.push_back(it->second);
-            if (t > 0) {
-                row.pair_errors.push_back(temporal_pair_error(previous[m], image, reference_previous, reference));
-                row.pair_pops.push_back(temporal_pair_pop(previous[m], image, reference_previous, reference));
-            }
-            previous[m] = std::move(image);
-        }
+        for (std::size_t m = 0; m < o.methods.size(); ++m)
+            measure_frame(measurer, o.methods[m], path, t, o, rows[m], previous[m], reference, reference_previous);
         reference_previous = std::move(reference);
     }
     for (std::size_t m = 0; m < rows.size(); ++m) {
@@ -69,20 +82,22 @@ std::vector<TemporalRow> render_path(FrameMeasurer& measurer, const TemporalPath
         row.frames = static_cast<int>(path.poses.size());
         row.temporal_error = mean(row.pair_errors);
         row.pop_mean = mean(row.pair_pops);
-        row.pop_peak = row.pair_pops.empty() ? 0.0 : *std::max_element(row.pair_pops.begin(), row.pair_pops.end());
+        row.pop_peak = peak(row.pair_pops);
+        row.switch_pop_mean = mean(row.pair_switch_pops);
+        row.switch_pop_peak = peak(row.pair_switch_pops);
         row.psnr_mean = mean(row.psnr);
         if (!row.splat_ms.empty()) row.splat_ms_mean = mean(row.splat_ms);
     }
     return rows;
 }
 
-// The method and pair with the largest pop of a path (the first where several tie).
+// The method and pair with the largest switch pop of a path (the first where several tie).
 void find_peak(const std::vector<TemporalRow>& rows, TemporalStrip& strip) {
     strip.peak_pop = -1.0;
     for (const TemporalRow& row : rows)
-        for (std::size_t i = 0; i < row.pair_pops.size(); ++i)
-            if (row.pair_pops[i] > strip.peak_pop) {
-                strip.peak_pop = row.pair_pops[i];
+        for (std::size_t i = 0; i < row.pair_switch_pops.size(); ++i)
+            if (row.pair_switch_pops[i] > strip.peak_pop) {
+                strip.peak_pop = row.pair_switch_pops[i];
                 strip.peak_method = row.method;
                 strip.peak_frame = static_cast<int>(i) + 1;
             }
@@ -99,22 +114,21 @@ TemporalStrip render_strip(FrameMeasurer& measurer, const TemporalPath& path, co
     strip.rows.push_back("reference");
     for (const Method& method : o.methods) strip.rows.push_back(method.name);
     strip.images.resize(strip.rows.size());
-    std::vector<FloatImage> reference, peak;
     for (int c = 0; c < kStripFrames; ++c) {
         const int t = strip.first_frame + c;
         progress.step(path.name, "strip frame " + std::to_string(t));
         const CameraPose& pose = path.poses[static_cast<std::size_t>(t)];
-        reference.push_back(reference_frame(measurer, pose, o, s));
-        strip.images[0].push_back(to_rgba8(reference.back()));
+        strip.images[0].push_back(to_rgba8(reference_frame(measurer, pose, o, s)));
         for (std::size_t m = 0; m < o.methods.size(); ++m) {
-            strip.images[m + 1].push_back(measurer.render(o.methods[m], make_view(pose, o.width, o.height)));
-            if (o.methods[m].name == strip.peak_method) peak.push_back(to_float(strip.images[m + 1].back()));
+            const engine::CameraView view = make_view(pose, o.width, o.height);
+            strip.images[m + 1].push_back(measurer.render(o.methods[m], view));
+            if (o.methods[m].name != strip.peak_method || c == 0) continue;
+            engine::CameraView frozen = view;
+            frozen.selection_view = make_view(path.poses[static_cast<std::size_t>(t - 1)], o.width, o.height).view;
+            const FloatImage image = to_float(strip.images[m + 1].back());
+            strip.differences.push_back(temporal_difference_image(to_float(measurer.render(o.methods[m], frozen)),
+                                                                  image, image, image, kStripDifferenceGain));
         }
-    }
-    for (int c = 1; c < kStripFrames; ++c) {
-        const auto i = static_cast<std::size_t>(c);
-        strip.differences.push_back(
-            temporal_difference_image(peak[i - 1], peak[i], reference[i - 1], reference[i], kStripDifferenceGain));
     }
     return strip;
 }

@@ -96,6 +96,19 @@ TEST(TemporalPop, TheSameSwitchFadedOverKFramesPopsOneKthPerPair) {
             << "pair " << t;
 }
 
+TEST(TemporalPop, TheSwitchPopIsWhatTheSelectionChangeAloneDoesToTheFrame) {
+    // Frame t drawn as it is and with frame t−1's selection: a patch switched in one frame counts
+    // whole, faded over k frames 1/k, and a frame the selection does not change scores 0.
+    const eval::FloatImage frozen = square_frame(0.3f, 4, 0.3f), popped = square_frame(0.3f, 4, 0.7f);
+    EXPECT_NEAR(eval::selection_switch_pop(frozen, popped), 0.4 * 255.0, 1e-3);
+    const int k = 8;
+    EXPECT_NEAR(eval::selection_switch_pop(square_frame(0.3f, 10, 0.3f + 0.4f * 3 / k),
+                                           square_frame(0.3f, 10, 0.3f + 0.4f * 4 / k)),
+                0.4 * 255.0 / k, 1e-3);
+    EXPECT_EQ(eval::selection_switch_pop(popped, popped), 0.0);
+    expect_error([&] { eval::selection_switch_pop(popped, eval::make_float_image(2, 2)); }, {"sizes differ"});
+}
+
 TEST(TemporalPop, MotionTheReferenceHasTooCancels) {
     // A pan: the patch moves one pixel to the right per frame in both.
     std::vector<eval::FloatImage> frames;

@@ -62,6 +62,8 @@ void expect_rows_and_strips(const eval::TemporalResults& results) {
         EXPECT_EQ(row.pair_errors.size(), static_cast<std::size_t>(row.frames - 1));
         EXPECT_EQ(row.pair_pops.size(), row.pair_errors.size());
         EXPECT_GE(row.pop_peak, row.pop_mean);
+        EXPECT_EQ(row.pair_switch_pops.size(), row.pair_errors.size());
+        EXPECT_GE(row.switch_pop_peak, row.switch_pop_mean);
         EXPECT_TRUE(std::isfinite(row.temporal_error));
         EXPECT_GT(row.temporal_error, 0.0) << "the low-resolution render never moves exactly like the reference";
         EXPECT_TRUE(std::isfinite(row.psnr_mean));
@@ -70,6 +72,7 @@ void expect_rows_and_strips(const eval::TemporalResults& results) {
         EXPECT_GT(*row.splat_ms_mean, 0.0);
         if (row.method == "baseline") {
             EXPECT_LT(row.temporal_error, 3.0) << "the reference's own renderer";
+            EXPECT_EQ(row.switch_pop_peak, 0.0) << "no selection: the previous frame's draws the same bytes";
         }
     }
     ASSERT_EQ(results.strips.size(), 3u);
@@ -85,12 +88,14 @@ void expect_rows_and_strips(const eval::TemporalResults& results) {
 void expect_files(const std::filesystem::path& folder) {
     const auto csv = read_lines(folder / "temporal.csv");
     ASSERT_EQ(csv.size(), 7u);
-    EXPECT_EQ(csv[0], "method,path,frames,temporal_error,psnr_mean,splat_ms_mean,pop_peak,pop_mean");
+    EXPECT_EQ(csv[0],
+              "method,path,frames,temporal_error,psnr_mean,splat_ms_mean,pop_peak,pop_mean,switch_pop_peak,"
+              "switch_pop_mean");
     EXPECT_EQ(csv[1].rfind("baseline,dolly,8,", 0), 0u) << csv[1];
     EXPECT_EQ(csv[6].rfind("full,side_step,4,", 0), 0u) << csv[6];
     for (std::size_t i = 1; i < csv.size(); ++i) {
         const auto fields = split(csv[i]);
-        ASSERT_EQ(fields.size(), 8u) << csv[i];
+        ASSERT_EQ(fields.size(), 10u) << csv[i];
         for (std::size_t f = 3; f < fields.size(); ++f) EXPECT_TRUE(std::isfinite(std::stod(fields[f]))) << csv[i];
     }
     for (const std::string path : {"dolly", "orbit", "side_step"}) {

@@ -36,7 +36,7 @@ constexpr int kOrbitFrames = 24;               // the orbit path's frames
 constexpr float kDollyMaxFactor = 64.0f;       // the dolly path's turning point
 constexpr int kMaxTemporalSupersampling = 4;   // s ≤ 4
 constexpr int kStripFrames = 4;                // consecutive frames in a strip
-constexpr float kStripDifferenceGain = 4.0f;   // the strip's |ΔM − ΔR| row, brightened
+constexpr float kStripDifferenceGain = 4.0f;   // the strip's switch-difference row, brightened
 constexpr double kPathFramesPerSecond = 60.0;  // walk and run
 constexpr double kWalkSpeed = 1.4;             // m/s
 constexpr double kRunSpeed = 5.0;              // m/s
@@ -71,28 +71,32 @@ struct TemporalRow {
     std::string method;
     std::string path;
     int frames = 0;
-    double temporal_error = 0.0;  // the mean of pair_errors (8-bit units)
-    double pop_peak = 0.0;        // the largest of pair_pops (8-bit units)
-    double pop_mean = 0.0;        // the mean of pair_pops
-    double psnr_mean = 0.0;       // the mean of psnr (dB; +inf when every frame matches exactly)
+    double temporal_error = 0.0;   // the mean of pair_errors (8-bit units)
+    double pop_peak = 0.0;         // the largest of pair_pops (8-bit units)
+    double pop_mean = 0.0;         // the mean of pair_pops
+    double switch_pop_peak = 0.0;  // the largest of pair_switch_pops (8-bit units)
+    double switch_pop_mean = 0.0;  // the mean of pair_switch_pops
+    double psnr_mean = 0.0;        // the mean of psnr (dB; +inf when every frame matches exactly)
     std::optional<double> splat_ms_mean;
-    std::vector<double> pair_errors;  // index t−1: the pair (t−1, t)
-    std::vector<double> pair_pops;    // index t−1: temporal_pair_pop of the pair (t−1, t)
-    std::vector<double> psnr;         // per frame, against the reference frame
-    std::vector<double> splat_ms;     // per frame, the "splat" GPU span (absent spans are left out)
+    std::vector<double> pair_errors;       // index t−1: the pair (t−1, t)
+    std::vector<double> pair_pops;         // index t−1: temporal_pair_pop of the pair (t−1, t)
+    std::vector<double> pair_switch_pops;  // index t−1: selection_switch_pop of the pair (t−1, t)
+    std::vector<double> psnr;              // per frame, against the reference frame
+    std::vector<double> splat_ms;          // per frame, the "splat" GPU span (absent spans are left out)
 };
 
-// The frames around a path's largest pop (the player's worst pair): the reference and every method
-// (rows), frames first_frame … first_frame + 3 (columns), and the peak method's |ΔM − ΔR| per pair.
+// The frames around a path's largest switch pop (the pair where the selection's change shows most):
+// the reference and every method (rows), frames first_frame … first_frame + 3 (columns), and for each
+// pair the peak method's |M_t − M_t with the selection of t−1| (what switched).
 struct TemporalStrip {
     std::string path;
     std::string peak_method;
-    int peak_frame = 0;  // the peak pair is (peak_frame − 1, peak_frame)
-    double peak_pop = 0.0;
+    int peak_frame = 0;     // the peak pair is (peak_frame − 1, peak_frame)
+    double peak_pop = 0.0;  // its switch pop
     int first_frame = 0;
     std::vector<std::string> rows;                   // "reference", then the methods
     std::vector<std::vector<engine::Image>> images;  // [row][column], W×H
-    std::vector<engine::Image> differences;          // kStripFrames − 1 pairs, W×H, |ΔM − ΔR| × gain
+    std::vector<engine::Image> differences;          // kStripFrames − 1 pairs, W×H, the switch difference × gain
 };
 
 struct TemporalResults {
@@ -118,6 +122,13 @@ double temporal_pair_error(const FloatImage& method_previous, const FloatImage& 
 inline constexpr double kPopPercentile = 0.999;
 double temporal_pair_pop(const FloatImage& method_previous, const FloatImage& method,
                          const FloatImage& reference_previous, const FloatImage& reference);
+// The switch pop of a pair: what the selection's change alone does to frame t. `frozen` is frame t
+// drawn with frame t−1's selection (CameraView::selection_view = the view of t−1: the coverage, level
+// weights and skipped clusters of t−1, the camera of t), `image` frame t as drawn; the kPopPercentile
+// quantile over pixels of |M_t − frozen| averaged over RGB, in 8-bit units. The camera's motion, and
+// the aliasing it moves, cancel exactly; a method without a selection (baseline) scores 0; a Gaussian
+// switching on counts whole, faded in over k frames 1/k a pair. Throws engine::Error when sizes differ.
+double selection_switch_pop(const FloatImage& frozen, const FloatImage& image);
 // |(M_t − M_{t−1}) − (R_t − R_{t−1})| per pixel, averaged over RGB, times `gain`, as grey RGBA8.
 engine::Image temporal_difference_image(const FloatImage& method_previous, const FloatImage& method,
                                         const FloatImage& reference_previous, const FloatImage& reference, float gain);
@@ -157,7 +168,8 @@ void validate_temporal_options(const TemporalOptions& options);
 TemporalResults run_temporal_sweep(FrameMeasurer& measurer, const std::vector<TemporalPath>& paths,
                                    const TemporalOptions& options);
 
-// temporal.csv: method,path,frames,temporal_error,psnr_mean,splat_ms_mean,pop_peak,pop_mean.
+// temporal.csv: method,path,frames,temporal_error,psnr_mean,splat_ms_mean,pop_peak,pop_mean,
+// switch_pop_peak,switch_pop_mean.
 void write_temporal_csv(const TemporalResults& results, const std::filesystem::path& path);
 // The strip of one path: a header of frame numbers, one row per image source, the peak method's
 // differences below.
