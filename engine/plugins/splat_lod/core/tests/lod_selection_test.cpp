@@ -123,31 +123,43 @@ TEST(LodWeight, FullHardIgnoresTheBand) {
 // A Gaussian fading out where its replacement fades in: on a dolly both coverages scale by the same
 // factor, so when the fine one's "too small" switch and the coarse one's "too large" switch fall at the
 // same distance the weights are ramp(y) and ramp(−y) of one log distance y: they sum to 1 everywhere,
-// equal the hard rule outside the band and change continuously (by at most |Δlog2 S| / band).
+// equal the hard rule outside the band and change continuously (by at most |Δlog2 S| / band). Wherever
+// the band lies (transition_past: before the switch, centred, past it), the same holds with the band
+// moved.
 TEST(LodWeight, FineAndCoarseWeightsSumToOneAcrossTheBand) {
-    for (const double band : {0.5, 1.0, 2.0}) {
-        LodRule rule;
-        rule.transition_band = band;
-        LodRule hard = rule;
-        hard.transition_band = 0.0;
-        // Fine: S = t, S_min = 2, switch where t / (2·rel_min) = 1 (t = 1, below S_T). Coarse: S = 16·t,
-        // S_max = 16 / rel_max, switch at t = 1 too.
-        const double fine_min = 2.0, coarse_max = 16.0 / 1.5;
-        double previous_fine = -1.0;
-        for (int i = 0; i <= 4000; ++i) {
-            const double t = std::pow(2.0, -4.0 + 8.0 * i / 4000.0);  // the dolly: coverage ∝ t
-            const double fine = lod_weight(rule, 1, t, fine_min, -1.0);
-            const double coarse = lod_weight(rule, 2, 16.0 * t, -1.0, coarse_max);
-            ASSERT_NEAR(fine + coarse, 1.0, 1e-9) << "band " << band << " t " << t;
-            const double y = std::log2(t);
-            if (y < -1e-9 || y > band + 1e-9) {
-                EXPECT_EQ(fine, lod_selected(hard, 1, t, fine_min, -1.0) ? 1.0 : 0.0);
-                EXPECT_EQ(coarse, lod_selected(hard, 2, 16.0 * t, -1.0, coarse_max) ? 1.0 : 0.0);
+    for (const double band : {0.5, 1.0, 2.0})
+        for (const float past : {0.0f, 0.5f, 1.0f}) {
+            SCOPED_TRACE("band " + std::to_string(band) + ", past " + std::to_string(past));
+            LodRule rule;
+            rule.transition_band = static_cast<float>(band);
+            rule.transition_past = past;
+            LodRule hard = rule;
+            hard.transition_band = 0.0;
+            const double shift = band * past;
+            // Fine: S = t, S_min = 2, switch where t / (2·rel_min) = 1 (t = 1, below S_T). Coarse: S = 16·t,
+            // S_max = 16 / rel_max, switch at t = 1 too.
+            const double fine_min = 2.0, coarse_max = 16.0 / 1.5;
+            double previous_fine = -1.0;
+            for (int i = 0; i <= 4000; ++i) {
+                const double t = std::pow(2.0, -4.0 + 8.0 * i / 4000.0);  // the dolly: coverage ∝ t
+                const double fine = lod_weight(rule, 1, t, fine_min, -1.0);
+                const double coarse = lod_weight(rule, 2, 16.0 * t, -1.0, coarse_max);
+                ASSERT_NEAR(fine + coarse, 1.0, 1e-9) << "t " << t;
+                const double y = std::log2(t);
+                if (y < -shift - 1e-9 || y > band - shift + 1e-9) {
+                    EXPECT_EQ(fine, lod_selected(hard, 1, t, fine_min, -1.0) ? 1.0 : 0.0);
+                    EXPECT_EQ(coarse, lod_selected(hard, 2, 16.0 * t, -1.0, coarse_max) ? 1.0 : 0.0);
+                }
+                if (std::abs(y + shift) < 1e-3) {
+                    EXPECT_NEAR(fine, 0.0, 1e-2) << "0 where the band begins";
+                }
+                if (std::abs(y - band + shift) < 1e-3) {
+                    EXPECT_NEAR(fine, 1.0, 1e-2) << "1 where it ends";
+                }
+                if (previous_fine >= 0.0) {
+                    EXPECT_LE(std::abs(fine - previous_fine), 8.0 / 4000.0 / band + 1e-9);
+                }
+                previous_fine = fine;
             }
-            if (previous_fine >= 0.0) {
-                EXPECT_LE(std::abs(fine - previous_fine), 8.0 / 4000.0 / band + 1e-9);
-            }
-            previous_fine = fine;
         }
-    }
 }

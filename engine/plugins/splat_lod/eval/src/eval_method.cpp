@@ -120,25 +120,41 @@ Method stored_as(const Method& method, GpuStorage storage) {
 
 namespace {
 
-// "full@B": `full` with a transition band of B octaves (to choose the band by measurement); none
-// when `name` has another form. Throws naming the method when B is not a band the settings accept.
+// A number that fills `text` and lies in [lo, hi]; none otherwise.
+std::optional<double> number_in(const std::string& text, double lo, double hi) {
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+        value = std::stod(text, &used);
+    } catch (const std::exception&) {
+        return std::nullopt;
+    }
+    if (used != text.size() || !(value >= lo && value <= hi)) return std::nullopt;
+    return value;
+}
+
+// "full@B" or "full@B:P": `full` with a transition band of B octaves, the fraction P of it past each
+// switch (LodRule::transition_past, 0 when left out), to choose the band by measurement; none when
+// `name` has another form. Throws naming the method when B or P is not one the settings accept.
 std::optional<Method> banded_full(const std::string& name) {
     const std::string prefix = "full@";
     if (name.rfind(prefix, 0) != 0) return std::nullopt;
     const std::string text = name.substr(prefix.size());
-    std::size_t used = 0;
-    double band = -1.0;
-    try {
-        band = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != text.size() || !(band >= 0.0 && band <= plugin_msgs::LodRule::kMaxTransitionBand))
-        engine::fail("--methods: \"" + name + "\": expected full@B with a transition band B in [0, 4] octaves");
-    return Method{name, "every level, selected by pixel coverage, transition band " + text + " octaves",
-                  [band](plugin_msgs::LodSettings& lod, SplatPassSettings&) {
+    const std::size_t colon = text.find(':');
+    const auto band = number_in(text.substr(0, colon), 0.0, plugin_msgs::LodRule::kMaxTransitionBand);
+    const auto past =
+        colon == std::string::npos ? std::optional<double>(0.0) : number_in(text.substr(colon + 1), 0.0, 1.0);
+    if (!band || !past)
+        engine::fail("--methods: \"" + name +
+                     "\": expected full@B or full@B:P with a transition band B in [0, 4] octaves and the fraction P "
+                     "of it past each switch in [0, 1]");
+    return Method{name,
+                  "every level, selected by pixel coverage, transition band " + text.substr(0, colon) + " octaves" +
+                      (colon == std::string::npos ? "" : ", " + text.substr(colon + 1) + " of it past each switch"),
+                  [b = *band, p = *past](plugin_msgs::LodSettings& lod, SplatPassSettings&) {
                       lod.rule.mode = plugin_msgs::LodMode::full;
-                      lod.rule.transition_band = band;
+                      lod.rule.transition_band = static_cast<float>(b);
+                      lod.rule.transition_past = static_cast<float>(p);
                   }};
 }
 
@@ -155,7 +171,7 @@ std::vector<Method> select_methods(const std::string& list) {
         if (it == all.end() && !banded) {
             std::string known;
             for (const auto& m : all) known += (known.empty() ? "" : ", ") + m.name;
-            engine::fail("--methods: unknown method \"" + name + "\" (known: " + known + ", full@B)");
+            engine::fail("--methods: unknown method \"" + name + "\" (known: " + known + ", full@B, full@B:P)");
         }
         if (std::any_of(selected.begin(), selected.end(), [&](const Method& m) { return m.name == name; }))
             engine::fail("--methods: \"" + name + "\" is listed twice");

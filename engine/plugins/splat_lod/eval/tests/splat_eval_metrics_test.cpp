@@ -124,9 +124,9 @@ TEST(SplatEvalMetrics, UnknownMethodIsRefused) {
 }
 
 TEST(SplatEvalMetrics, FullWithABandIsAMethod) {
-    const auto methods = eval::select_methods("full,full_hard,full@0.5");
-    ASSERT_EQ(methods.size(), 3u);
-    std::vector<double> bands;
+    const auto methods = eval::select_methods("full,full_hard,full@0.5,full@1:0.25");
+    ASSERT_EQ(methods.size(), 4u);
+    std::vector<double> bands, past;
     for (const auto& method : methods) {
         splat_lod::SplatPassSettings settings;
         plugin_msgs::LodSettings lod;
@@ -135,10 +135,14 @@ TEST(SplatEvalMetrics, FullWithABandIsAMethod) {
         const auto traits = plugin_msgs::traits(lod.rule.mode);
         EXPECT_TRUE(traits.all_levels && traits.coverage_rule);
         bands.push_back(traits.transitions ? lod.rule.transition_band : 0.0);
+        past.push_back(lod.rule.transition_past);
     }
-    EXPECT_EQ(bands, (std::vector<double>{plugin_msgs::LodRule::kDefaultTransitionBand, 0.0, 0.5}));
+    EXPECT_EQ(bands, (std::vector<double>{plugin_msgs::LodRule::kDefaultTransitionBand, 0.0, 0.5, 1.0}));
+    EXPECT_EQ(past, (std::vector<double>{0.0, 0.0, 0.0, 0.25}));
     expect_error([] { eval::select_methods("full@-1"); }, {"full@-1", "[0, 4] octaves"});
     expect_error([] { eval::select_methods("full@wide"); }, {"full@wide"});
+    expect_error([] { eval::select_methods("full@0.5:2"); }, {"full@0.5:2", "[0, 1]"});
+    expect_error([] { eval::select_methods("full@0.5:"); }, {"full@0.5:"});
     expect_error([] { eval::select_methods("full@0.5,full@0.5"); }, {"listed twice"});
 }
 

@@ -8,6 +8,7 @@
 #include "engine/render/scene_camera.h"
 #include "engine/scene/scene_loader.h"
 #include "gpu_fixture.h"
+#include "splat_lod/core/compact_gaussians.h"
 #include "splat_lod/core/reference_renderer.h"
 #include "splat_lod/core/splat_io.h"
 #include "splat_lod/splat_component.h"
@@ -351,6 +352,7 @@ TEST_F(SplatPipelineTest, LevelColouringTintsEachLevel) {
 // Smooth transitions (the default): the GPU scales each selected Gaussian's opacity by
 // splat_lod::lod_weight, so the image equals the reference render of the cloud with opacities scaled
 // by the CPU's weights, and the same frame drawn twice is the same bytes (a pure function of the view).
+// The same with the band centred on the switches (transition_past ½).
 TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     std::vector<GaussianSpec> specs;
     for (int i = 0; i < 400; ++i) {
@@ -361,56 +363,71 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
                          1.5f,
                          {0.5f + 0.5f * std::sin(t), 0.4f, 0.5f + 0.5f * std::cos(t)}});
     }
-    auto cloud = engine::test::make_cloud(specs);
     const auto camera =
         engine::make_look_at_camera({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 160, 120, 0.1f, 100.0f);
     const auto ref_camera = ref::make_reference_camera(camera);
     const ref::ReferenceSettings settings;
     splat_lod::SplatRenderer pass(harness.engine().renderer());
-    harness.engine().bus().publish(plugin_msgs::LodSettings{});  // full, the default band
-    const splat_lod::LodRule rule = pass.lod().rule;
-    const double band = plugin_msgs::LodRule::kDefaultTransitionBand;
-    ASSERT_EQ(rule.transition_band, band);
-    ASSERT_GT(band, 0.0);
-    auto weighted = cloud;
-    std::vector<std::uint8_t> keep(cloud.size());
-    int partial = 0;
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-        const auto p = ref::project_gaussian(cloud, i, glm::dmat4(1.0), ref_camera, settings);
-        const glm::dvec3 c = p.cov2d - glm::dvec3(settings.dilation, 0.0, settings.dilation);
-        const double coverage = splat_lod::pixel_coverage(c.x, c.y, c.z, p.opacity);
-        cloud.lod_level[i] = static_cast<std::uint8_t>(1 + i % 4);
-        // Switches spread from 0.3 bands past this view's coverage to 1.3 bands before it: the band lies
-        // before each switch, so many are inside it.
-        const double octaves = band * (0.5 + 0.8 * std::sin(0.37 * static_cast<double>(i)));
-        cloud.coverage_max[i] = static_cast<float>(coverage / (rule.rel_max * std::exp2(octaves)));
-        cloud.coverage_min[i] =
-            (i % 2 == 0) ? -1.0f : static_cast<float>(coverage / (rule.rel_min * std::exp2(octaves)));
-        const double w =
-            splat_lod::lod_weight(rule, cloud.lod_level[i], coverage, cloud.coverage_min[i], cloud.coverage_max[i]);
-        if (w > 0.0 && w < 1.0) ++partial;
-        const double opacity = p.opacity * w;
-        keep[i] = p.drawn() && opacity > 1.0 / 255.0;
-        if (keep[i]) weighted.opacity_logits[i] = static_cast<float>(std::log(opacity / (1.0 - opacity)));
+    std::shared_ptr<const splat_lod::SplatCloud> shared_cloud;
+    engine::Image smooth_image;
+    for (const float past : {0.0f, 0.5f}) {
+        SCOPED_TRACE("transition_past " + std::to_string(past));
+        auto cloud = engine::test::make_cloud(specs);
+        plugin_msgs::LodSettings lod;  // full, the default band
+        lod.rule.transition_past = past;
+        harness.engine().bus().publish(lod);
+        const splat_lod::LodRule rule = pass.lod().rule;
+        const double band = plugin_msgs::LodRule::kDefaultTransitionBand;
+        ASSERT_EQ(rule.transition_band, band);
+        ASSERT_EQ(rule.transition_past, past);
+        for (std::size_t i = 0; i < cloud.size(); ++i) {
+            const auto p = ref::project_gaussian(cloud, i, glm::dmat4(1.0), ref_camera, settings);
+            const glm::dvec3 c = p.cov2d - glm::dvec3(settings.dilation, 0.0, settings.dilation);
+            const double coverage = splat_lod::pixel_coverage(c.x, c.y, c.z, p.opacity);
+            cloud.lod_level[i] = static_cast<std::uint8_t>(1 + i % 4);
+            // Switches spread from 0.3 bands past this view's coverage to 1.3 bands before it: with the
+            // band before each switch (or centred on it) many are inside it.
+            const double octaves = band * (0.5 + 0.8 * std::sin(0.37 * static_cast<double>(i)));
+            cloud.coverage_max[i] = static_cast<float>(coverage / (rule.rel_max * std::exp2(octaves)));
+            cloud.coverage_min[i] =
+                (i % 2 == 0) ? -1.0f : static_cast<float>(coverage / (rule.rel_min * std::exp2(octaves)));
+        }
+        // The weights of what the GPU stores (compact: quantised bounds and opacities).
+        auto weighted = splat_lod::compact_round_trip(cloud, cloud.sh_degree);
+        std::vector<std::uint8_t> keep(cloud.size());
+        int partial = 0;
+        for (std::size_t i = 0; i < weighted.size(); ++i) {
+            const auto p = ref::project_gaussian(weighted, i, glm::dmat4(1.0), ref_camera, settings);
+            const glm::dvec3 c = p.cov2d - glm::dvec3(settings.dilation, 0.0, settings.dilation);
+            const double coverage = splat_lod::pixel_coverage(c.x, c.y, c.z, p.opacity);
+            const double w = splat_lod::lod_weight(rule, weighted.lod_level[i], coverage, weighted.coverage_min[i],
+                                                   weighted.coverage_max[i]);
+            if (w > 0.0 && w < 1.0) ++partial;
+            const double opacity = p.opacity * w;
+            keep[i] = p.drawn() && opacity > 1.0 / 255.0;
+            if (keep[i]) weighted.opacity_logits[i] = static_cast<float>(std::log(opacity / (1.0 - opacity)));
+        }
+        weighted.keep_only(keep);
+        EXPECT_GT(partial, 100) << "the case is not vacuous: many Gaussians are inside the band";
+        shared_cloud = shared(cloud);
+        const auto gpu = harness.render({shared_cloud}, camera);
+        EXPECT_GE(engine::compare_images(gpu, reference(weighted, camera)).psnr_db, 40.0);
+        // Float on the GPU, double here: a weight at the 1/255 edge may fall either way.
+        EXPECT_NEAR(static_cast<double>(pass.latest_statistics()->visible), static_cast<double>(weighted.size()), 2.0);
+        EXPECT_EQ(harness.render({shared_cloud}, camera).rgba, gpu.rgba) << "the same frame twice";
+        if (past == 0.0f) smooth_image = gpu;
     }
-    weighted.lod_level = cloud.lod_level;
-    weighted.keep_only(keep);
-    EXPECT_GT(partial, 100) << "the case is not vacuous: many Gaussians are inside the band";
-    const auto shared_cloud = shared(cloud);
-    const auto gpu = harness.render({shared_cloud}, camera);
-    EXPECT_GE(engine::compare_images(gpu, reference(weighted, camera)).psnr_db, 40.0);
-    // Float on the GPU, double here: a weight at the 1/255 edge may fall either way.
-    EXPECT_NEAR(static_cast<double>(pass.latest_statistics()->visible), static_cast<double>(weighted.size()), 2.0);
-    EXPECT_EQ(harness.render({shared_cloud}, camera).rgba, gpu.rgba) << "the same frame twice";
-    // Hard switching draws another image from the same cloud.
+    // The band before the switches (smooth_image) with the last cloud's levels and bounds, which are the
+    // same: hard switching draws another image from the same cloud.
     plugin_msgs::LodSettings hard;
     hard.rule.transition_band = 0.0f;
     harness.engine().bus().publish(hard);
     const auto hard_image = harness.render({shared_cloud}, camera);
-    EXPECT_LT(engine::compare_images(hard_image, gpu).psnr_db, 40.0);
+    EXPECT_LT(engine::compare_images(hard_image, smooth_image).psnr_db, 40.0);
     // The mode full_hard is that image whatever the band.
     plugin_msgs::LodSettings full_hard;
     full_hard.rule.mode = plugin_msgs::LodMode::full_hard;
+    full_hard.rule.transition_past = 0.5f;
     harness.engine().bus().publish(full_hard);
     EXPECT_EQ(harness.render({shared_cloud}, camera).rgba, hard_image.rgba);
 }

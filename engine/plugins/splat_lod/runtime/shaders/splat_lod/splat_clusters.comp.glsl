@@ -67,9 +67,11 @@ bool skip_cluster(uint cluster) {
     float jacobian = sqrt(fx * fx * (1.0 + lx * lx) + fy * fy * (1.0 + ly * ly)) / z_min;
     // × the coverage scale: selection uses the coverage at the output resolution (splat_project).
     float scale = 2.0 * stretch * jacobian * frame.coverage_scale * 1.001;  // margin for float rounding
-    // The same thresholds with smooth transitions: a Gaussian's weight is 0 from its "too small"
-    // switch on (lod_weight), so the band never draws one that the hard rule calls too small.
-    return c.bounds.x * scale < frame.size_threshold && c.bounds.y * scale < frame.rel_min;
+    // With smooth transitions a Gaussian's weight is 0 from transition_shift octaves past its "too
+    // small" switch on (lod_weight): the thresholds move down by that much (by nothing when the band
+    // lies wholly before the switches, the default, or the mode has no transitions: the shift is 0).
+    float shift = exp2(-frame.transition_shift);
+    return c.bounds.x * scale < frame.size_threshold * shift && c.bounds.y * scale < frame.rel_min * shift;
 }
 
 void main() {

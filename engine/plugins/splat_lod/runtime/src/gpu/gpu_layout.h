@@ -40,6 +40,7 @@ static_assert(offsetof(FrameUniforms, transition_band) == 212);
 static_assert(offsetof(FrameUniforms, exact_tiles) == 216);
 static_assert(offsetof(FrameUniforms, key_depth_bits) == 220);
 static_assert(offsetof(FrameUniforms, splat_capacity) == 224);
+static_assert(offsetof(FrameUniforms, transition_shift) == 236);
 static_assert(offsetof(FrameUniforms, selection_view) == 240);
 static_assert(sizeof(FrameCounters) == 80);
 static_assert(offsetof(FrameCounters, depth_range) == 64);
@@ -60,6 +61,9 @@ inline void write_lod_rule(FrameUniforms& u, const plugin_msgs::LodRule& rule) {
     u.lod_flags = lod_flags(plugin_msgs::traits(rule.mode));
     u.finest_level = static_cast<std::uint32_t>(kFinestLevel);
     u.transition_band = rule.transition_band;
+    // 0 without transitions, so that skipping keeps the hard rule's thresholds there.
+    u.transition_shift =
+        plugin_msgs::traits(rule.mode).transitions ? rule.transition_band * rule.transition_past : 0.0f;
 }
 
 static_assert(static_cast<int>(plugin_msgs::Upscaler::spline) == SPLAT_UPSCALER_SPLINE);

@@ -75,6 +75,12 @@ struct LodRule {
     float transition_band = kDefaultTransitionBand;
     static constexpr float kDefaultTransitionBand = 0.0625f;
     static constexpr float kMaxTransitionBand = 4.0f;
+    // Where the band lies: the fraction of it past each switch, in [0, 1]. 0 (the default): wholly
+    // before the switch, as above; ½: centred on it; 1: wholly past it. Past the switch a fine Gaussian
+    // is still drawn, fading, where the hard rule calls it too small (more Gaussians drawn, the fine
+    // detail kept longer), and a coarse one is held back, fading in, where the hard rule already draws
+    // it; the two ramps move together, so a hand-over still sums to 1.
+    float transition_past = 0.0f;
 
     // Empty when the rule is usable, otherwise "<kind>.<key>: <why>". NaN fails every check.
     std::string validate(std::string_view kind = "lod_rule") const;
@@ -106,6 +112,9 @@ inline std::string LodRule::validate(std::string_view kind) const {
     if (!(transition_band >= 0.0f && transition_band <= kMaxTransitionBand))
         return error("transition_band", "must be in [0, " + number_text(kMaxTransitionBand) +
                                             "] octaves of coverage, got " + number_text(transition_band));
+    if (!(transition_past >= 0.0f && transition_past <= 1.0f))
+        return error("transition_past", "must be in [0, 1] (the fraction of the band past each switch), got " +
+                                            number_text(transition_past));
     return {};
 }
 
@@ -117,6 +126,7 @@ inline void write_rule(nlohmann::json& object, const LodRule& rule) {
     object["rel_min"] = rule.rel_min;
     object["rel_max"] = rule.rel_max;
     object["transition_band"] = rule.transition_band;
+    object["transition_past"] = rule.transition_past;
 }
 inline void read_rule(const nlohmann::json& object, std::string_view kind, LodRule& rule) {
     detail::read(object, kind, "mode", rule.mode);
@@ -124,6 +134,7 @@ inline void read_rule(const nlohmann::json& object, std::string_view kind, LodRu
     detail::read(object, kind, "rel_min", rule.rel_min);
     detail::read(object, kind, "rel_max", rule.rel_max);
     detail::read(object, kind, "transition_band", rule.transition_band);
+    detail::read(object, kind, "transition_past", rule.transition_past);
 }
 
 }  // namespace plugin_msgs
