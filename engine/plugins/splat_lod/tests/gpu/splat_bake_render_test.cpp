@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "engine/render/camera.h"
 #include "gpu_fixture.h"
@@ -27,15 +29,38 @@ protected:
     engine::test::SplatRenderHarness harness;
 };
 
-engine::Image render_mode(engine::test::SplatRenderHarness& harness,
+engine::Image render_rule(engine::test::SplatRenderHarness& harness,
                           const std::shared_ptr<const splat_lod::SplatCloud>& cloud, const engine::CameraView& camera,
-                          plugin_msgs::LodMode mode, std::uint32_t splat_budget = 0, float render_scale = 1.0f) {
+                          const plugin_msgs::LodRule& rule, std::uint32_t splat_budget = 0, float render_scale = 1.0f) {
     plugin_msgs::LodSettings lod;
-    lod.rule.mode = mode;
+    lod.rule = rule;
     lod.splat_budget = splat_budget;
     lod.render_scale = render_scale;
     harness.engine().bus().publish(lod);
     return harness.render({cloud}, camera);
+}
+
+engine::Image render_mode(engine::test::SplatRenderHarness& harness,
+                          const std::shared_ptr<const splat_lod::SplatCloud>& cloud, const engine::CameraView& camera,
+                          plugin_msgs::LodMode mode, std::uint32_t splat_budget = 0, float render_scale = 1.0f) {
+    plugin_msgs::LodRule rule;
+    rule.mode = mode;
+    return render_rule(harness, cloud, camera, rule, splat_budget, render_scale);
+}
+
+// The rules whose selection skipping and budgets must not change: full (its default band), full with
+// a wide band centred on the switches (fine Gaussians drawn past their switch) and filter_small.
+std::vector<plugin_msgs::LodRule> skipping_rules() {
+    plugin_msgs::LodRule full, centred, filter_small;
+    centred.transition_band = 1.0f;
+    centred.transition_past = 0.5f;
+    filter_small.mode = plugin_msgs::LodMode::filter_small;
+    return {full, centred, filter_small};
+}
+
+std::string rule_name(const plugin_msgs::LodRule& rule) {
+    return std::string(plugin_msgs::to_string(rule.mode)) + " band " + std::to_string(rule.transition_band) + " past " +
+           std::to_string(rule.transition_past);
 }
 
 // A garden in miniature (~10k Gaussians, still full of sub-pixel leaves) baked from 12 cameras.
@@ -106,14 +131,14 @@ TEST_F(SplatBakeRenderTest, ClusterSkippingChangesNothingButTheWork) {
     const auto pose = eval::orbit_poses(extent, up, 1).front();
     bool skipped_somewhere = false;
     for (const float distance : {1.0f, 8.0f, 64.0f})
-        for (const auto mode : {plugin_msgs::LodMode::full, plugin_msgs::LodMode::filter_small}) {
-            SCOPED_TRACE("distance " + std::to_string(distance) + ", " + std::string(plugin_msgs::to_string(mode)));
+        for (const auto& rule : skipping_rules()) {
+            SCOPED_TRACE("distance " + std::to_string(distance) + ", " + rule_name(rule));
             const auto view = eval::make_view(eval::dolly(pose, distance), 128, 96);
             pass.settings().cluster_skipping = false;
-            const auto without = render_mode(harness, cloud, view, mode);
+            const auto without = render_rule(harness, cloud, view, rule);
             const auto counts_without = pass.latest_statistics()->per_level;
             pass.settings().cluster_skipping = true;
-            const auto with = render_mode(harness, cloud, view, mode);
+            const auto with = render_rule(harness, cloud, view, rule);
             EXPECT_EQ(with.rgba, without.rgba);
             EXPECT_EQ(pass.latest_statistics()->per_level, counts_without);
             if (pass.latest_statistics()->skipped > 0) skipped_somewhere = true;
@@ -207,15 +232,18 @@ TEST_F(SplatBakeRenderTest, SplatBudgetIsNeverExceededAndChangesNothingWhenItFit
     splat_lod::SplatRenderer pass(harness.engine().renderer());
     const auto pose = eval::orbit_poses(garden.extent, glm::vec3(0, 1, 0), 1).front();
     const auto view = eval::make_view(eval::dolly(pose, 0.6f), 128, 96);
-    for (const auto mode : {plugin_msgs::LodMode::full, plugin_msgs::LodMode::baseline}) {
-        SCOPED_TRACE(std::string(plugin_msgs::to_string(mode)));
-        const auto free = render_mode(harness, cloud, view, mode);
+    std::vector<plugin_msgs::LodRule> rules = skipping_rules();
+    rules.back().mode = plugin_msgs::LodMode::baseline;  // full, full with a centred band, baseline
+    for (const auto& rule : rules) {
+        const plugin_msgs::LodMode mode = rule.mode;
+        SCOPED_TRACE(rule_name(rule));
+        const auto free = render_rule(harness, cloud, view, rule);
         const plugin_msgs::SplatStatistics unbudgeted = *pass.latest_statistics();
         ASSERT_GT(unbudgeted.visible, 1000u);
         EXPECT_EQ(unbudgeted.unbudgeted, unbudgeted.visible);
 
         // Fits exactly.
-        const auto fitting = render_mode(harness, cloud, view, mode, static_cast<std::uint32_t>(unbudgeted.visible));
+        const auto fitting = render_rule(harness, cloud, view, rule, static_cast<std::uint32_t>(unbudgeted.visible));
         EXPECT_EQ(fitting.rgba, free.rgba);
         EXPECT_EQ(pass.latest_statistics()->visible, unbudgeted.visible);
         EXPECT_EQ(pass.latest_statistics()->budget_scale, 1.0);
@@ -223,7 +251,7 @@ TEST_F(SplatBakeRenderTest, SplatBudgetIsNeverExceededAndChangesNothingWhenItFit
         double previous_psnr = 1e9;
         for (const double share : {0.7, 0.3, 0.05}) {
             const auto budget = static_cast<std::uint32_t>(share * static_cast<double>(unbudgeted.visible));
-            const auto image = render_mode(harness, cloud, view, mode, budget);
+            const auto image = render_rule(harness, cloud, view, rule, budget);
             const auto& s = *pass.latest_statistics();
             SCOPED_TRACE("budget " + std::to_string(budget));
             EXPECT_LE(s.visible, budget);
@@ -237,13 +265,12 @@ TEST_F(SplatBakeRenderTest, SplatBudgetIsNeverExceededAndChangesNothingWhenItFit
             } else
                 EXPECT_TRUE(s.budget_scale > 1.0 || s.budget_coverage_cut_px > 0.0);
             const double psnr = eval::psnr(eval::to_float(image), eval::to_float(free));
-            RecordProperty(std::string(plugin_msgs::to_string(mode)) + "_psnr_at_" + std::to_string(share),
-                           std::to_string(psnr));
+            RecordProperty(rule_name(rule) + "_psnr_at_" + std::to_string(share), std::to_string(psnr));
             EXPECT_LE(psnr, previous_psnr + 0.5) << "a smaller budget does not get closer to the free frame";
             previous_psnr = psnr;
         }
         for (const std::uint32_t tiny : {1u, 17u}) {  // even the coarsest cut is too many
-            render_mode(harness, cloud, view, mode, tiny);
+            render_rule(harness, cloud, view, rule, tiny);
             EXPECT_LE(pass.latest_statistics()->visible, tiny);
         }
     }
