@@ -42,6 +42,10 @@ inline void add_lod_options(CLI::App& app, GameCommandLine& c) {
     app.add_option("--lod-transition-band", lod.rule.transition_band,
                    "Octaves of coverage over which a Gaussian fades into its coarser level (0: hard switching)")
         ->capture_default_str();
+    app.add_option("--lod-transition-past", lod.rule.transition_past,
+                   "The fraction of the transition band past each switch (0: before it, 0.5: centred, 1: past it)")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
     app.add_option("--render-scale", lod.render_scale, "Splat raster resolution relative to the output, (0, 1]")
         ->capture_default_str();
     app.add_option("--upscaler", c.upscaler, "spline (default), bicubic, bilinear or lanczos3")

@@ -45,6 +45,7 @@ struct Options {
     bool bbox_tiles = false, wide_sort_keys = false;
     std::string lod_mode = "full";
     float transition_band = plugin_msgs::LodRule::kDefaultTransitionBand;
+    float transition_past = 0.0f;
     bool stereo = false;
     float ipd = 0.063f;
 };
@@ -63,6 +64,7 @@ void apply_settings(splat_lod::SplatPassSettings& settings, plugin_msgs::LodSett
     settings.compact_sort_keys = !o.wide_sort_keys;
     lod.rule.mode = plugin_msgs::detail::enum_from_json<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, o.lod_mode);
     lod.rule.transition_band = o.transition_band;
+    lod.rule.transition_past = o.transition_past;
 }
 
 double median(std::vector<double> v) {
@@ -207,6 +209,10 @@ int main(int argc, char** argv) {
     app.add_option("--transition-band", o.transition_band,
                    "mode full: octaves of coverage over which a Gaussian fades into its coarser level (0: hard)")
         ->check(CLI::Range(0.0f, plugin_msgs::LodRule::kMaxTransitionBand))
+        ->capture_default_str();
+    app.add_option("--transition-past", o.transition_past,
+                   "mode full: the fraction of the band past each switch (0: before it, 0.5: centred, 1: past it)")
+        ->check(CLI::Range(0.0f, 1.0f))
         ->capture_default_str();
     app.add_option("--raster-fetch", o.raster_fetch, "how the raster reads splats: automatic, texel or shared")
         ->check(CLI::IsMember({"automatic", "texel", "shared"}));
