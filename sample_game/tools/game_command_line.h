@@ -19,7 +19,7 @@ struct GameCommandLine {
     std::string world = "out/world/default";
     int width = 0, height = 0, frames = -1;  // 0 / −1: the program's own default
     double memory_budget_mib = -1.0, upload_budget_mib = -1.0;
-    std::string mode, upscaler, gpu_storage;
+    std::string mode, upscaler, gpu_storage, transition_placement;
     GameSettings settings;
 };
 
@@ -42,10 +42,11 @@ inline void add_lod_options(CLI::App& app, GameCommandLine& c) {
     app.add_option("--lod-transition-band", lod.rule.transition_band,
                    "Octaves of coverage over which a Gaussian fades into its coarser level (0: hard switching)")
         ->capture_default_str();
-    app.add_option("--lod-transition-past", lod.rule.transition_past,
-                   "The fraction of the transition band past each switch (0: before it, 0.5: centred, 1: past it)")
-        ->check(CLI::Range(0.0, 1.0))
-        ->capture_default_str();
+    app.add_option("--lod-transition-placement", c.transition_placement,
+                   "Where each fade lies against its switch: inside (default; within the hard rule's ranges), "
+                   "before, centred")
+        ->check(CLI::IsMember(std::vector<std::string>(plugin_msgs::kTransitionPlacementNames.begin(),
+                                                       plugin_msgs::kTransitionPlacementNames.end())));
     app.add_option("--render-scale", lod.render_scale, "Splat raster resolution relative to the output, (0, 1]")
         ->capture_default_str();
     app.add_option("--upscaler", c.upscaler, "spline (default), bicubic, bilinear or lanczos3")
@@ -115,6 +116,9 @@ inline void add_world_options(CLI::App& app, GameCommandLine& c, const std::stri
 inline void apply(GameCommandLine& c) {
     if (!c.mode.empty())
         c.settings.lod.rule.mode = enum_named<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, c.mode);
+    if (!c.transition_placement.empty())
+        c.settings.lod.rule.transition_placement = enum_named<plugin_msgs::TransitionPlacement>(
+            plugin_msgs::kTransitionPlacementNames, c.transition_placement);
     if (!c.upscaler.empty())
         c.settings.lod.upscaler = enum_named<plugin_msgs::Upscaler>(plugin_msgs::kUpscalerNames, c.upscaler);
     if (!c.gpu_storage.empty())

@@ -45,7 +45,7 @@ struct Options {
     bool bbox_tiles = false, wide_sort_keys = false;
     std::string lod_mode = "full";
     float transition_band = plugin_msgs::LodRule::kDefaultTransitionBand;
-    float transition_past = 0.0f;
+    std::string transition_placement = "inside";
     bool stereo = false;
     float ipd = 0.063f;
 };
@@ -64,7 +64,8 @@ void apply_settings(splat_lod::SplatPassSettings& settings, plugin_msgs::LodSett
     settings.compact_sort_keys = !o.wide_sort_keys;
     lod.rule.mode = plugin_msgs::detail::enum_from_json<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, o.lod_mode);
     lod.rule.transition_band = o.transition_band;
-    lod.rule.transition_past = o.transition_past;
+    lod.rule.transition_placement = plugin_msgs::detail::enum_from_json<plugin_msgs::TransitionPlacement>(
+        plugin_msgs::kTransitionPlacementNames, o.transition_placement);
 }
 
 double median(std::vector<double> v) {
@@ -210,9 +211,10 @@ int main(int argc, char** argv) {
                    "mode full: octaves of coverage over which a Gaussian fades into its coarser level (0: hard)")
         ->check(CLI::Range(0.0f, plugin_msgs::LodRule::kMaxTransitionBand))
         ->capture_default_str();
-    app.add_option("--transition-past", o.transition_past,
-                   "mode full: the fraction of the band past each switch (0: before it, 0.5: centred, 1: past it)")
-        ->check(CLI::Range(0.0f, 1.0f))
+    app.add_option("--transition-placement", o.transition_placement,
+                   "mode full: where each fade lies against its switch: inside (the hard rule's ranges), before, "
+                   "centred")
+        ->check(CLI::IsMember({"inside", "before", "centred"}))
         ->capture_default_str();
     app.add_option("--raster-fetch", o.raster_fetch, "how the raster reads splats: automatic, texel or shared")
         ->check(CLI::IsMember({"automatic", "texel", "shared"}));

@@ -35,17 +35,17 @@ double lod_weight(const LodRule& rule, int level, double coverage, double covera
     const plugin_msgs::LodModeTraits mode = plugin_msgs::traits(rule.mode);
     if (!mode.transitions || !mode.coverage_rule || !(band > 0.0) || !(coverage > 0.0))
         return lod_selected(rule, level, coverage, coverage_min, coverage_max, coarsest_level) ? 1.0 : 0.0;
-    // Both ramps moved by the same shift: the band's part past each switch.
-    const double shift = band * double(rule.transition_past);
+    // Each ramp moved past its switch (toward the coarser side) by its placement's shift.
+    const plugin_msgs::TransitionShifts shift = plugin_msgs::transition_shifts(rule.transition_placement, float(band));
     double weight = 1.0;
     if (level != kFinestLevel && coverage_max >= 0.0) {
         const double x = std::log2(coverage / (coverage_max * double(rule.rel_max)));
-        weight *= std::clamp(1.0 - (x + shift) / band, 0.0, 1.0);
+        weight *= std::clamp(1.0 - (x + double(shift.large)) / band, 0.0, 1.0);
     }
     if (level != coarsest_level && coverage_min >= 0.0) {
         const double y = std::log2(
             std::max(coverage / double(rule.size_threshold_px), coverage / (coverage_min * double(rule.rel_min))));
-        weight *= std::clamp((y + shift) / band, 0.0, 1.0);
+        weight *= std::clamp((y + double(shift.small)) / band, 0.0, 1.0);
     }
     return weight;
 }

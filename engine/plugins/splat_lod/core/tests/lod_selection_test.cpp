@@ -71,9 +71,10 @@ TEST(LodWeight, HardSwitchingIsTheSelectionRule) {
     EXPECT_EQ(lod_weight(smooth, 1, 1.9, 5.0, 10.0), 0.0);
 }
 
-TEST(LodWeight, RampsInLogCoverageOnTheFineSideOfEachSwitch) {
+TEST(LodWeight, PlacedBeforeTheRampsLieOnTheFineSideOfEachSwitch) {
     LodRule rule;
     rule.transition_band = 1.0;
+    rule.transition_placement = plugin_msgs::TransitionPlacement::before;
     // Too large: switch at S = S_max·rel_max = 15; 1 up to there (as the hard rule), then down to 0 at
     // 30, one octave past it.
     EXPECT_DOUBLE_EQ(lod_weight(rule, 2, 15.0, -1.0, 10.0), 1.0);
@@ -122,20 +123,20 @@ TEST(LodWeight, FullHardIgnoresTheBand) {
 
 // A Gaussian fading out where its replacement fades in: on a dolly both coverages scale by the same
 // factor, so when the fine one's "too small" switch and the coarse one's "too large" switch fall at the
-// same distance the weights are ramp(y) and ramp(−y) of one log distance y: they sum to 1 everywhere,
-// equal the hard rule outside the band and change continuously (by at most |Δlog2 S| / band). Wherever
-// the band lies (transition_past: before the switch, centred, past it), the same holds with the band
-// moved.
+// same distance the weights are ramp(y) and ramp(−y) of one log distance y: placed before (or centred
+// on) the switches they sum to 1 everywhere, equal the hard rule outside the band and change
+// continuously (by at most |Δlog2 S| / band).
 TEST(LodWeight, FineAndCoarseWeightsSumToOneAcrossTheBand) {
     for (const double band : {0.5, 1.0, 2.0})
-        for (const float past : {0.0f, 0.5f, 1.0f}) {
-            SCOPED_TRACE("band " + std::to_string(band) + ", past " + std::to_string(past));
+        for (const auto placement :
+             {plugin_msgs::TransitionPlacement::before, plugin_msgs::TransitionPlacement::centred}) {
+            SCOPED_TRACE("band " + std::to_string(band) + ", " + std::string(plugin_msgs::to_string(placement)));
             LodRule rule;
             rule.transition_band = static_cast<float>(band);
-            rule.transition_past = past;
+            rule.transition_placement = placement;
             LodRule hard = rule;
             hard.transition_band = 0.0;
-            const double shift = band * past;
+            const double shift = plugin_msgs::transition_shifts(placement, static_cast<float>(band)).small;
             // Fine: S = t, S_min = 2, switch where t / (2·rel_min) = 1 (t = 1, below S_T). Coarse: S = 16·t,
             // S_max = 16 / rel_max, switch at t = 1 too.
             const double fine_min = 2.0, coarse_max = 16.0 / 1.5;
@@ -162,4 +163,51 @@ TEST(LodWeight, FineAndCoarseWeightsSumToOneAcrossTheBand) {
                 previous_fine = fine;
             }
         }
+}
+
+// Placed inside (the default): a fine Gaussian fades out over the band before its "too small" switch, a
+// coarse one fades in over the band past its "too large" switch. Both ramps lie where the hard rule
+// draws the Gaussian, so the weight is never above the hard rule's (nothing drawn that it does not
+// draw), equals it outside the bands, is continuous, and a hand-over at one coverage dips: the fine
+// one is gone at the switch and the coarse one only begins there.
+TEST(LodWeight, PlacedInsideTheRampsLieWhereTheHardRuleDraws) {
+    LodRule rule;
+    ASSERT_EQ(rule.transition_placement, plugin_msgs::TransitionPlacement::inside) << "the default";
+    rule.transition_band = 1.0;
+    const LodRule hard = hard_rule();
+    // Too large: switch at S = S_max·rel_max = 15: 0 from there up, 1 from one octave below it.
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 2, 15.0, -1.0, 10.0), 0.0);
+    EXPECT_NEAR(lod_weight(rule, 2, 15.0 / std::sqrt(2.0), -1.0, 10.0), 0.5, 1e-12);
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 2, 7.5, -1.0, 10.0), 1.0);
+    // Too small: as placed before: 0 at the switch (S = 1 here), 1 from one octave above.
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 1.0, 2.0, -1.0), 0.0);
+    EXPECT_NEAR(lod_weight(rule, 1, std::sqrt(2.0), 2.0, -1.0), 0.5, 1e-12);
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 2.0, 2.0, -1.0), 1.0);
+    int inside_band = 0;
+    double previous = -1.0;
+    for (int i = 0; i <= 4000; ++i) {
+        const double s = std::pow(2.0, -3.0 + 10.0 * i / 4000.0);
+        for (const int level : {1, 2, 3, 4}) {
+            const double w = lod_weight(rule, level, s, 1.0, 6.0);
+            const double h = lod_selected(hard, level, s, 1.0, 6.0) ? 1.0 : 0.0;
+            ASSERT_LE(w, h) << "level " << level << " S " << s;
+            if (w > 0.0 && w < 1.0) ++inside_band;
+        }
+        const double w2 = lod_weight(rule, 2, s, 1.0, 6.0);
+        // Level 2's bands: "too small" for S in (0.5, 1) (y = log2(2S) in (0, 1)), "too large" for S in
+        // (4.5, 9) (x = log2(S / 9) in (−1, 0)); outside them, at both ends of each fade, the hard rule.
+        if ((s < 0.5 || s > 1.0) && (s < 4.5 || s > 9.0)) {
+            EXPECT_EQ(w2, lod_selected(hard, 2, s, 1.0, 6.0) ? 1.0 : 0.0) << "S " << s;
+        }
+        if (previous >= 0.0) {
+            EXPECT_LE(std::abs(w2 - previous), 10.0 / 4000.0 / rule.transition_band + 1e-9) << "continuous";
+        }
+        previous = w2;
+    }
+    EXPECT_GT(inside_band, 100) << "the comparison is not vacuous";
+    // A hand-over at one coverage (the pair of FineAndCoarseWeightsSumToOneAcrossTheBand): the two sum
+    // to 1 outside both bands and to less inside them, 0 at the shared switch.
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 1.0, 2.0, -1.0) + lod_weight(rule, 2, 16.0, -1.0, 16.0 / 1.5), 0.0);
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 4.0, 2.0, -1.0) + lod_weight(rule, 2, 64.0, -1.0, 16.0 / 1.5), 1.0);
+    EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 0.25, 2.0, -1.0) + lod_weight(rule, 2, 4.0, -1.0, 16.0 / 1.5), 1.0);
 }

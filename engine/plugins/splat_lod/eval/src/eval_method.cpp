@@ -133,28 +133,34 @@ std::optional<double> number_in(const std::string& text, double lo, double hi) {
     return value;
 }
 
-// "full@B" or "full@B:P": `full` with a transition band of B octaves, the fraction P of it past each
-// switch (LodRule::transition_past, 0 when left out), to choose the band by measurement; none when
-// `name` has another form. Throws naming the method when B or P is not one the settings accept.
+// "full@B" or "full@B:PLACEMENT": `full` with a transition band of B octaves placed as PLACEMENT says
+// (inside, before or centred: LodRule::transition_placement, the default when left out), to choose the
+// band by measurement; none when `name` has another form. Throws naming the method when B or the
+// placement is not one the settings accept.
 std::optional<Method> banded_full(const std::string& name) {
     const std::string prefix = "full@";
     if (name.rfind(prefix, 0) != 0) return std::nullopt;
     const std::string text = name.substr(prefix.size());
     const std::size_t colon = text.find(':');
     const auto band = number_in(text.substr(0, colon), 0.0, plugin_msgs::LodRule::kMaxTransitionBand);
-    const auto past =
-        colon == std::string::npos ? std::optional<double>(0.0) : number_in(text.substr(colon + 1), 0.0, 1.0);
-    if (!band || !past)
+    plugin_msgs::TransitionPlacement placement = plugin_msgs::LodRule{}.transition_placement;
+    bool placement_known = colon == std::string::npos;
+    for (std::size_t p = 0; !placement_known && p < plugin_msgs::kTransitionPlacementNames.size(); ++p)
+        if (text.substr(colon + 1) == plugin_msgs::kTransitionPlacementNames[p]) {
+            placement = static_cast<plugin_msgs::TransitionPlacement>(p);
+            placement_known = true;
+        }
+    if (!band || !placement_known)
         engine::fail("--methods: \"" + name +
-                     "\": expected full@B or full@B:P with a transition band B in [0, 4] octaves and the fraction P "
-                     "of it past each switch in [0, 1]");
+                     "\": expected full@B or full@B:PLACEMENT with a transition band B in [0, 4] octaves and "
+                     "PLACEMENT one of inside, before, centred");
     return Method{name,
-                  "every level, selected by pixel coverage, transition band " + text.substr(0, colon) + " octaves" +
-                      (colon == std::string::npos ? "" : ", " + text.substr(colon + 1) + " of it past each switch"),
-                  [b = *band, p = *past](plugin_msgs::LodSettings& lod, SplatPassSettings&) {
+                  "every level, selected by pixel coverage, transition band " + text.substr(0, colon) +
+                      " octaves placed " + std::string(plugin_msgs::to_string(placement)),
+                  [b = *band, p = placement](plugin_msgs::LodSettings& lod, SplatPassSettings&) {
                       lod.rule.mode = plugin_msgs::LodMode::full;
                       lod.rule.transition_band = static_cast<float>(b);
-                      lod.rule.transition_past = static_cast<float>(p);
+                      lod.rule.transition_placement = p;
                   }};
 }
 
@@ -171,7 +177,7 @@ std::vector<Method> select_methods(const std::string& list) {
         if (it == all.end() && !banded) {
             std::string known;
             for (const auto& m : all) known += (known.empty() ? "" : ", ") + m.name;
-            engine::fail("--methods: unknown method \"" + name + "\" (known: " + known + ", full@B, full@B:P)");
+            engine::fail("--methods: unknown method \"" + name + "\" (known: " + known + ", full@B, full@B:PLACEMENT)");
         }
         if (std::any_of(selected.begin(), selected.end(), [&](const Method& m) { return m.name == name; }))
             engine::fail("--methods: \"" + name + "\" is listed twice");

@@ -124,9 +124,10 @@ TEST(SplatEvalMetrics, UnknownMethodIsRefused) {
 }
 
 TEST(SplatEvalMetrics, FullWithABandIsAMethod) {
-    const auto methods = eval::select_methods("full,full_hard,full@0.5,full@1:0.25");
+    const auto methods = eval::select_methods("full,full_hard,full@0.5,full@1:before");
     ASSERT_EQ(methods.size(), 4u);
-    std::vector<double> bands, past;
+    std::vector<double> bands;
+    std::vector<plugin_msgs::TransitionPlacement> placements;
     for (const auto& method : methods) {
         splat_lod::SplatPassSettings settings;
         plugin_msgs::LodSettings lod;
@@ -135,13 +136,15 @@ TEST(SplatEvalMetrics, FullWithABandIsAMethod) {
         const auto traits = plugin_msgs::traits(lod.rule.mode);
         EXPECT_TRUE(traits.all_levels && traits.coverage_rule);
         bands.push_back(traits.transitions ? lod.rule.transition_band : 0.0);
-        past.push_back(lod.rule.transition_past);
+        placements.push_back(lod.rule.transition_placement);
     }
     EXPECT_EQ(bands, (std::vector<double>{plugin_msgs::LodRule::kDefaultTransitionBand, 0.0, 0.5, 1.0}));
-    EXPECT_EQ(past, (std::vector<double>{0.0, 0.0, 0.0, 0.25}));
+    using plugin_msgs::TransitionPlacement;
+    EXPECT_EQ(placements, (std::vector<TransitionPlacement>{TransitionPlacement::inside, TransitionPlacement::inside,
+                                                            TransitionPlacement::inside, TransitionPlacement::before}));
     expect_error([] { eval::select_methods("full@-1"); }, {"full@-1", "[0, 4] octaves"});
     expect_error([] { eval::select_methods("full@wide"); }, {"full@wide"});
-    expect_error([] { eval::select_methods("full@0.5:2"); }, {"full@0.5:2", "[0, 1]"});
+    expect_error([] { eval::select_methods("full@0.5:after"); }, {"full@0.5:after", "inside, before, centred"});
     expect_error([] { eval::select_methods("full@0.5:"); }, {"full@0.5:"});
     expect_error([] { eval::select_methods("full@0.5,full@0.5"); }, {"listed twice"});
 }

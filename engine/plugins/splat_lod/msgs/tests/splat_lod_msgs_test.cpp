@@ -88,7 +88,7 @@ TEST(SplatLodMsgs, LodRuleModesAreTheirTraits) {
         }
     plugin_msgs::LodRule rule;
     rule.rel_min = 0.75f;
-    rule.transition_past = 0.5f;
+    rule.transition_placement = plugin_msgs::TransitionPlacement::centred;
     json object = json::object();
     plugin_msgs::write_rule(object, rule);
     EXPECT_EQ(object.at("rel_min").get<float>(), 0.75f);
@@ -144,8 +144,8 @@ TEST(SplatLodMsgs, LodSettingsRejectOutOfRangeValuesNamingTheKey) {
         {R"({"rel_max": -1})", "lod_settings.rel_max"},
         {R"({"transition_band": -0.5})", "lod_settings.transition_band: must be in [0, 4.0] octaves of coverage"},
         {R"({"transition_band": 9})", "lod_settings.transition_band"},
-        {R"({"transition_past": 1.5})", "lod_settings.transition_past: must be in [0, 1]"},
-        {R"({"transition_past": -0.1})", "lod_settings.transition_past"},
+        {R"({"transition_placement": "after"})", "transition_placement"},
+        {R"({"transition_placement": 1})", "transition_placement"},
     });
 }
 

@@ -352,7 +352,7 @@ TEST_F(SplatPipelineTest, LevelColouringTintsEachLevel) {
 // Smooth transitions (the default): the GPU scales each selected Gaussian's opacity by
 // splat_lod::lod_weight, so the image equals the reference render of the cloud with opacities scaled
 // by the CPU's weights, and the same frame drawn twice is the same bytes (a pure function of the view).
-// The same with the band centred on the switches (transition_past ½).
+// The same for every placement of the band (inside, the default; before; centred on the switches).
 TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     std::vector<GaussianSpec> specs;
     for (int i = 0; i < 400; ++i) {
@@ -370,24 +370,25 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     splat_lod::SplatRenderer pass(harness.engine().renderer());
     std::shared_ptr<const splat_lod::SplatCloud> shared_cloud;
     engine::Image smooth_image;
-    for (const float past : {0.0f, 0.5f}) {
-        SCOPED_TRACE("transition_past " + std::to_string(past));
+    for (const auto placement : {plugin_msgs::TransitionPlacement::inside, plugin_msgs::TransitionPlacement::before,
+                                 plugin_msgs::TransitionPlacement::centred}) {
+        SCOPED_TRACE(std::string(plugin_msgs::to_string(placement)));
         auto cloud = engine::test::make_cloud(specs);
         plugin_msgs::LodSettings lod;  // full, the default band
-        lod.rule.transition_past = past;
+        lod.rule.transition_placement = placement;
         harness.engine().bus().publish(lod);
         const splat_lod::LodRule rule = pass.lod().rule;
         const double band = plugin_msgs::LodRule::kDefaultTransitionBand;
         ASSERT_EQ(rule.transition_band, band);
-        ASSERT_EQ(rule.transition_past, past);
+        ASSERT_EQ(rule.transition_placement, placement);
         for (std::size_t i = 0; i < cloud.size(); ++i) {
             const auto p = ref::project_gaussian(cloud, i, glm::dmat4(1.0), ref_camera, settings);
             const glm::dvec3 c = p.cov2d - glm::dvec3(settings.dilation, 0.0, settings.dilation);
             const double coverage = splat_lod::pixel_coverage(c.x, c.y, c.z, p.opacity);
             cloud.lod_level[i] = static_cast<std::uint8_t>(1 + i % 4);
-            // Switches spread from 0.3 bands past this view's coverage to 1.3 bands before it: with the
-            // band before each switch (or centred on it) many are inside it.
-            const double octaves = band * (0.5 + 0.8 * std::sin(0.37 * static_cast<double>(i)));
+            // Switches spread from 1.2 bands past this view's coverage to 1.2 bands before it: wherever
+            // the band lies against its switch, many are inside it.
+            const double octaves = band * 1.2 * std::sin(0.37 * static_cast<double>(i));
             cloud.coverage_max[i] = static_cast<float>(coverage / (rule.rel_max * std::exp2(octaves)));
             cloud.coverage_min[i] =
                 (i % 2 == 0) ? -1.0f : static_cast<float>(coverage / (rule.rel_min * std::exp2(octaves)));
@@ -408,17 +409,17 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
             if (keep[i]) weighted.opacity_logits[i] = static_cast<float>(std::log(opacity / (1.0 - opacity)));
         }
         weighted.keep_only(keep);
-        EXPECT_GT(partial, 100) << "the case is not vacuous: many Gaussians are inside the band";
+        EXPECT_GT(partial, 60) << "the case is not vacuous: many Gaussians are inside the band";
         shared_cloud = shared(cloud);
         const auto gpu = harness.render({shared_cloud}, camera);
         EXPECT_GE(engine::compare_images(gpu, reference(weighted, camera)).psnr_db, 40.0);
         // Float on the GPU, double here: a weight at the 1/255 edge may fall either way.
         EXPECT_NEAR(static_cast<double>(pass.latest_statistics()->visible), static_cast<double>(weighted.size()), 2.0);
         EXPECT_EQ(harness.render({shared_cloud}, camera).rgba, gpu.rgba) << "the same frame twice";
-        if (past == 0.0f) smooth_image = gpu;
+        if (placement == plugin_msgs::TransitionPlacement::inside) smooth_image = gpu;
     }
-    // The band before the switches (smooth_image) with the last cloud's levels and bounds, which are the
-    // same: hard switching draws another image from the same cloud.
+    // The default placement (smooth_image) with the last cloud's levels and bounds, which are the same:
+    // hard switching draws another image from the same cloud.
     plugin_msgs::LodSettings hard;
     hard.rule.transition_band = 0.0f;
     harness.engine().bus().publish(hard);
@@ -427,7 +428,7 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     // The mode full_hard is that image whatever the band.
     plugin_msgs::LodSettings full_hard;
     full_hard.rule.mode = plugin_msgs::LodMode::full_hard;
-    full_hard.rule.transition_past = 0.5f;
+    full_hard.rule.transition_placement = plugin_msgs::TransitionPlacement::centred;
     harness.engine().bus().publish(full_hard);
     EXPECT_EQ(harness.render({shared_cloud}, camera).rgba, hard_image.rgba);
 }

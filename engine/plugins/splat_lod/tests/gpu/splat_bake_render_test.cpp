@@ -48,19 +48,19 @@ engine::Image render_mode(engine::test::SplatRenderHarness& harness,
     return render_rule(harness, cloud, camera, rule, splat_budget, render_scale);
 }
 
-// The rules whose selection skipping and budgets must not change: full (its default band), full with
-// a wide band centred on the switches (fine Gaussians drawn past their switch) and filter_small.
+// The rules whose selection skipping and budgets must not change: full (its default band and
+// placement), full with the band centred on the switches (fine Gaussians drawn past their switch) and
+// filter_small.
 std::vector<plugin_msgs::LodRule> skipping_rules() {
     plugin_msgs::LodRule full, centred, filter_small;
-    centred.transition_band = 1.0f;
-    centred.transition_past = 0.5f;
+    centred.transition_placement = plugin_msgs::TransitionPlacement::centred;
     filter_small.mode = plugin_msgs::LodMode::filter_small;
     return {full, centred, filter_small};
 }
 
 std::string rule_name(const plugin_msgs::LodRule& rule) {
-    return std::string(plugin_msgs::to_string(rule.mode)) + " band " + std::to_string(rule.transition_band) + " past " +
-           std::to_string(rule.transition_past);
+    return std::string(plugin_msgs::to_string(rule.mode)) + " band " + std::to_string(rule.transition_band) + " " +
+           std::string(plugin_msgs::to_string(rule.transition_placement));
 }
 
 // A garden in miniature (~10k Gaussians, still full of sub-pixel leaves) baked from 12 cameras.

@@ -36,14 +36,15 @@ vec2 lod_switch_octaves(uint level, float coverage, float coverage_min, float co
 }
 
 // The opacity weight of lod_weight in splat_lod/core/lod_selection.h: linear ramps in log2 coverage,
-// transition_band octaves wide, transition_shift octaves of them past each switch (the rest on the
-// side where the hard rule draws the finer Gaussian); 0/1 by lod_selected when transitions are hard.
+// transition_band octaves wide, each lying transition_shifts octaves past its switch toward the coarser
+// side; 0/1 by lod_selected when transitions are hard.
 float lod_weight(uint level, float coverage, float coverage_min, float coverage_max) {
     if (!smooth_transitions() || !(coverage > 0.0))
         return lod_selected(level, coverage, coverage_min, coverage_max) ? 1.0 : 0.0;
     vec2 o = lod_switch_octaves(level, coverage, coverage_min, coverage_max);
-    float band = frame.transition_band, shift = frame.transition_shift;
-    return clamp(1.0 - (o.x + shift) / band, 0.0, 1.0) * clamp((o.y + shift) / band, 0.0, 1.0);
+    float band = frame.transition_band;
+    vec2 shift = frame.transition_shifts;  // x: the "too small" ramp's, y: the "too large" ramp's
+    return clamp(1.0 - (o.x + shift.y) / band, 0.0, 1.0) * clamp((o.y + shift.x) / band, 0.0, 1.0);
 }
 
 // Debug view: each level tinted (1 grey, 2 green, 3 blue, 4 red), keeping the shading's brightness.
@@ -56,9 +57,9 @@ vec3 level_colour(uint level, vec3 colour) {
 // The splat budget (splat_lod_shared.h): the β bins [x, y] in which the Gaussian is selected (a weight
 // above 0) with its coverage divided by β = 2^(b/8); empty when y < x. Bin 0 (β = 1) agrees with
 // lod_weight > 0, so a budget that does not bind changes nothing. "Not too large" holds from
-// log2 β > x − b + s on, "not too small" up to log2 β < y + s, with x, y of lod_switch_octaves, b the
-// transition band and s its shift past the switches (both 0 when transitions are hard: then the bounds
-// are inclusive, as in lod_selected).
+// log2 β > x − b + s_large on, "not too small" up to log2 β < y + s_small, with x, y of
+// lod_switch_octaves, b the transition band and s the ramps' shifts (all 0 when transitions are hard:
+// then the bounds are inclusive, as in lod_selected).
 ivec2 budget_bins(uint level, float coverage, float coverage_min, float coverage_max) {
     const ivec2 none = ivec2(1, 0);
     bool all_levels = (frame.lod_flags & SPLAT_LOD_ALL_LEVELS) != 0u;
@@ -67,10 +68,12 @@ ivec2 budget_bins(uint level, float coverage, float coverage_min, float coverage
     if (!(coverage > 0.0)) return lod_selected(level, coverage, coverage_min, coverage_max) ? ivec2(0) : none;
     vec2 o = lod_switch_octaves(level, coverage, coverage_min, coverage_max);
     bool smooth_fade = smooth_transitions();
-    float b = smooth_fade ? frame.transition_band : 0.0, shift = smooth_fade ? frame.transition_shift : 0.0;
-    // With a ramp the weight is 0 exactly at x = b − s and y = −s, so those bounds are exclusive: nudged by a hair.
-    float lo_octaves = o.x - b + shift + (smooth_fade ? 1e-6 : 0.0);
-    float hi_octaves = o.y + shift - (smooth_fade ? 1e-6 : 0.0);
+    float b = smooth_fade ? frame.transition_band : 0.0;
+    vec2 shift = smooth_fade ? frame.transition_shifts : vec2(0.0);
+    // With a ramp the weight is 0 exactly at x = b − s_large and y = −s_small, so those bounds are
+    // exclusive: nudged by a hair.
+    float lo_octaves = o.x - b + shift.y + (smooth_fade ? 1e-6 : 0.0);
+    float hi_octaves = o.y + shift.x - (smooth_fade ? 1e-6 : 0.0);
     if (hi_octaves < 0.0) return none;
     int lo = lo_octaves <= 0.0 ? 0 : int(clamp(ceil(SPLAT_BUDGET_BINS_PER_OCTAVE * lo_octaves), 1.0, float(SPLAT_BUDGET_BINS)));
     int hi = int(clamp(floor(SPLAT_BUDGET_BINS_PER_OCTAVE * hi_octaves), 0.0, float(SPLAT_BUDGET_BINS - 1)));

@@ -67,10 +67,10 @@ bool skip_cluster(uint cluster) {
     float jacobian = sqrt(fx * fx * (1.0 + lx * lx) + fy * fy * (1.0 + ly * ly)) / z_min;
     // × the coverage scale: selection uses the coverage at the output resolution (splat_project).
     float scale = 2.0 * stretch * jacobian * frame.coverage_scale * 1.001;  // margin for float rounding
-    // With smooth transitions a Gaussian's weight is 0 from transition_shift octaves past its "too
-    // small" switch on (lod_weight): the thresholds move down by that much (by nothing when the band
-    // lies wholly before the switches, the default, or the mode has no transitions: the shift is 0).
-    float shift = exp2(-frame.transition_shift);
+    // With smooth transitions a Gaussian's weight is 0 from transition_shifts.x octaves past its "too
+    // small" switch on (lod_weight): the thresholds move down by that much (by nothing when its fade
+    // lies before the switch, placements inside and before, or the mode has no transitions).
+    float shift = exp2(-frame.transition_shifts.x);
     return c.bounds.x * scale < frame.size_threshold * shift && c.bounds.y * scale < frame.rel_min * shift;
 }
 

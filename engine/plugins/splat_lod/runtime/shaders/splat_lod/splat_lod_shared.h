@@ -230,8 +230,12 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     uint splat_capacity;         // ProjectedSplat entries SPLAT_BINDING_PROJECTED holds
     uint sh_storage_degree;      // SH degree the scene stores (compact: how its SH words are laid out)
     uint separate_selection;     // 1: coverage and skipping by selection_view (a stereo eye), 0: by view
-    float transition_shift;  // octaves of the band past each switch (band · transition_past; 0 without transitions)
-    mat4 selection_view;     // world → view of the camera that selects (CameraView::selection_view)
+    uint pad1;
+    mat4 selection_view;  // world → view of the camera that selects (CameraView::selection_view)
+    // Octaves each ramp lies past its switch (plugin_msgs::transition_shifts; 0 without transitions):
+    // x for the "too small" fade-out, y for the "too large" fade-in.
+    vec2 transition_shifts;
+    vec2 pad2;
 };
 
 // Written by the GPU each frame; the CPU reads `projected` and the pair total after step 2, and the

@@ -19,7 +19,7 @@ static_assert(sizeof(GpuCluster) == 48);
 static_assert(sizeof(GpuPageCodec) == 80);
 static_assert(SPLAT_COMPACT_WORDS == kCompactWords && SPLAT_PROJECT_WORKGROUP_SIZE == kCompactPageSize);
 static_assert(sizeof(ProjectedSplat) == 48);
-static_assert(sizeof(FrameUniforms) == 304);
+static_assert(sizeof(FrameUniforms) == 320);
 // std140 offsets of every FrameUniforms member.
 static_assert(offsetof(FrameUniforms, camera_position) == 64);
 static_assert(offsetof(FrameUniforms, znear) == 76);
@@ -40,8 +40,8 @@ static_assert(offsetof(FrameUniforms, transition_band) == 212);
 static_assert(offsetof(FrameUniforms, exact_tiles) == 216);
 static_assert(offsetof(FrameUniforms, key_depth_bits) == 220);
 static_assert(offsetof(FrameUniforms, splat_capacity) == 224);
-static_assert(offsetof(FrameUniforms, transition_shift) == 236);
 static_assert(offsetof(FrameUniforms, selection_view) == 240);
+static_assert(offsetof(FrameUniforms, transition_shifts) == 304);
 static_assert(sizeof(FrameCounters) == 80);
 static_assert(offsetof(FrameCounters, depth_range) == 64);
 static_assert(offsetof(FrameCounters, budget) == 48);
@@ -62,8 +62,11 @@ inline void write_lod_rule(FrameUniforms& u, const plugin_msgs::LodRule& rule) {
     u.finest_level = static_cast<std::uint32_t>(kFinestLevel);
     u.transition_band = rule.transition_band;
     // 0 without transitions, so that skipping keeps the hard rule's thresholds there.
-    u.transition_shift =
-        plugin_msgs::traits(rule.mode).transitions ? rule.transition_band * rule.transition_past : 0.0f;
+    const plugin_msgs::TransitionShifts shifts =
+        plugin_msgs::traits(rule.mode).transitions
+            ? plugin_msgs::transition_shifts(rule.transition_placement, rule.transition_band)
+            : plugin_msgs::TransitionShifts{};
+    u.transition_shifts = glm::vec2(shifts.small, shifts.large);
 }
 
 static_assert(static_cast<int>(plugin_msgs::Upscaler::spline) == SPLAT_UPSCALER_SPLINE);

@@ -61,7 +61,7 @@ void LodPanel::draw() {
     ImGui::DragFloat("rel max", &rule.rel_max, 0.01f, 0.01f, 8.0f, "%.2f");
     ImGui::DragFloat("transition band (octaves, 0: hard)", &rule.transition_band, 0.005f, 0.0f,
                      plugin_msgs::LodRule::kMaxTransitionBand, "%.4f");
-    ImGui::SliderFloat("band past the switch (0: before, 1: past)", &rule.transition_past, 0.0f, 1.0f, "%.2f");
+    enum_combo("transition placement", rule.transition_placement, plugin_msgs::kTransitionPlacementNames);
     ImGui::Checkbox("mip filter", &edit.mip_filter);
     ImGui::Checkbox("level colouring", &edit.level_colouring);
     // The splat budget in thousands of Gaussians per frame (0: none).

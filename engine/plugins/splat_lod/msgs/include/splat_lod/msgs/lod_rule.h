@@ -62,6 +62,46 @@ inline void from_json(const nlohmann::json& json, LodMode& mode) {
     mode = detail::enum_from_json<LodMode>(kLodModeNames, json);
 }
 
+// Where each Gaussian's fade lies against its switch (docs/algorithms.md §3, "Smooth transitions").
+enum class TransitionPlacement {
+    inside,   // within the range where the hard rule draws it: a fine Gaussian fades out over the band
+              // before its "too small" switch, a coarse one fades in over the band past its "too large"
+              // switch; nothing is drawn that the hard rule does not draw
+    before,   // both on the finer side: a coarse Gaussian fades in over the band before its "too large"
+              // switch (drawn where the hard rule does not yet draw it), so a hand-over at one coverage
+              // sums to 1
+    centred,  // both centred on their switch: a hand-over sums to 1, and a fine Gaussian is drawn past
+              // its "too small" switch
+};
+inline constexpr std::array<std::string_view, 3> kTransitionPlacementNames{"inside", "before", "centred"};
+
+inline std::string_view to_string(TransitionPlacement placement) {
+    return detail::enum_name(kTransitionPlacementNames, placement);
+}
+inline void to_json(nlohmann::json& json, TransitionPlacement placement) {
+    json = std::string(to_string(placement));
+}
+inline void from_json(const nlohmann::json& json, TransitionPlacement& placement) {
+    placement = detail::enum_from_json<TransitionPlacement>(kTransitionPlacementNames, json);
+}
+
+// How far each of the two ramps lies past its switch, toward the coarser side, in octaves of coverage:
+// `small` for a Gaussian's "too small" fade-out, `large` for its "too large" fade-in.
+struct TransitionShifts {
+    float small = 0.0f, large = 0.0f;
+};
+constexpr TransitionShifts transition_shifts(TransitionPlacement placement, float band) {
+    switch (placement) {
+        case TransitionPlacement::inside:
+            return {0.0f, band};
+        case TransitionPlacement::before:
+            return {0.0f, 0.0f};
+        case TransitionPlacement::centred:
+            return {0.5f * band, 0.5f * band};
+    }
+    return {};
+}
+
 struct LodRule {
     LodMode mode = LodMode::full;
     float size_threshold_px = 2.0f;  // S_T: below this coverage a Gaussian is "small"
@@ -69,18 +109,12 @@ struct LodRule {
     float rel_max = 1.5f;            // S_rel_max: drawn while S / S_max ≤ rel_max
     // Smooth level transitions (docs/lod.md, "Transitions"): a Gaussian near a switching coverage of
     // the rule is drawn with its opacity scaled by a weight that ramps linearly in log2 coverage over
-    // this many octaves before the switch, so it fades out while its coarser replacement fades in;
-    // none is drawn past its switch, so the band costs no extra fine Gaussians. 0: hard switching.
+    // this many octaves; transition_placement says on which side of the switch. 0: hard switching.
     // Only in modes whose traits have transitions.
     float transition_band = kDefaultTransitionBand;
-    static constexpr float kDefaultTransitionBand = 0.0625f;
+    static constexpr float kDefaultTransitionBand = 1.0f;
     static constexpr float kMaxTransitionBand = 4.0f;
-    // Where the band lies: the fraction of it past each switch, in [0, 1]. 0 (the default): wholly
-    // before the switch, as above; ½: centred on it; 1: wholly past it. Past the switch a fine Gaussian
-    // is still drawn, fading, where the hard rule calls it too small (more Gaussians drawn, the fine
-    // detail kept longer), and a coarse one is held back, fading in, where the hard rule already draws
-    // it; the two ramps move together, so a hand-over still sums to 1.
-    float transition_past = 0.0f;
+    TransitionPlacement transition_placement = TransitionPlacement::inside;
 
     // Empty when the rule is usable, otherwise "<kind>.<key>: <why>". NaN fails every check.
     std::string validate(std::string_view kind = "lod_rule") const;
@@ -112,9 +146,8 @@ inline std::string LodRule::validate(std::string_view kind) const {
     if (!(transition_band >= 0.0f && transition_band <= kMaxTransitionBand))
         return error("transition_band", "must be in [0, " + number_text(kMaxTransitionBand) +
                                             "] octaves of coverage, got " + number_text(transition_band));
-    if (!(transition_past >= 0.0f && transition_past <= 1.0f))
-        return error("transition_past", "must be in [0, 1] (the fraction of the band past each switch), got " +
-                                            number_text(transition_past));
+    if (detail::enum_name(kTransitionPlacementNames, transition_placement) == "<invalid>")
+        return error("transition_placement", "invalid enumerator");
     return {};
 }
 
@@ -126,7 +159,7 @@ inline void write_rule(nlohmann::json& object, const LodRule& rule) {
     object["rel_min"] = rule.rel_min;
     object["rel_max"] = rule.rel_max;
     object["transition_band"] = rule.transition_band;
-    object["transition_past"] = rule.transition_past;
+    object["transition_placement"] = rule.transition_placement;
 }
 inline void read_rule(const nlohmann::json& object, std::string_view kind, LodRule& rule) {
     detail::read(object, kind, "mode", rule.mode);
@@ -134,7 +167,7 @@ inline void read_rule(const nlohmann::json& object, std::string_view kind, LodRu
     detail::read(object, kind, "rel_min", rule.rel_min);
     detail::read(object, kind, "rel_max", rule.rel_max);
     detail::read(object, kind, "transition_band", rule.transition_band);
-    detail::read(object, kind, "transition_past", rule.transition_past);
+    detail::read(object, kind, "transition_placement", rule.transition_placement);
 }
 
 }  // namespace plugin_msgs

@@ -75,7 +75,7 @@ inline void from_json(const nlohmann::json& json, LodSettings& s) {
     detail::require_object(json, kind);
     detail::only_keys(json, kind,
                       {"mode", "size_threshold_px", "rel_min", "rel_max", "render_scale", "upscaler", "mip_filter",
-                       "level_colouring", "splat_budget", "transition_band", "transition_past"});
+                       "level_colouring", "splat_budget", "transition_band", "transition_placement"});
     LodSettings read;
     read_rule(json, kind, read.rule);
     detail::read(json, kind, "render_scale", read.render_scale);
