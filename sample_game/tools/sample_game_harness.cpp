@@ -34,7 +34,7 @@ struct CommandLine : sample_game::cli::GameCommandLine {
     std::string out = "out/game", reference_world;
     int frames_png = 0, baseline_every = 10, baseline_overview_every = 1;
     bool no_baseline = false, no_preload = false;
-    bool stereo = false;
+    bool stereo = false, switch_pops = false;
     float ipd = 0.063f;
 };
 
@@ -82,6 +82,9 @@ void add_profile_options(CLI::App& app, CommandLine& c) {
     app.add_flag("--stereo", c.stereo,
                  "Profile: draw each LOD frame again as a stereo pair and compare its cost (CSV stereo_frame_ms, "
                  "stereo_eye_psnr; the summary's settings line)");
+    app.add_flag("--switch-pops", c.switch_pops,
+                 "Profile: draw each LOD frame after the first again with the frame before's selection (CSV "
+                 "switch_pop; its peak and mean on the summary's settings line)");
     app.add_option("--ipd", c.ipd, "With --stereo: the distance between the eyes (m)")
         ->check(CLI::Range(0.0f, 10.0f))
         ->capture_default_str();
@@ -117,6 +120,7 @@ int run_profile(const CommandLine& c) {
     o.baseline_overview_every = c.baseline_overview_every;
     o.preload = !c.no_preload;
     o.stereo_ipd = c.stereo ? c.ipd : 0.0f;
+    o.switch_pops = c.switch_pops;
     o.reference_supersample = c.supersample;
     o.reference_world = c.reference_world;
     sample_game::validate(o);  // before making a GL context: option errors come first

@@ -10,6 +10,7 @@
 #include "engine/gl/compute_step.h"
 #include "engine/render/camera.h"
 #include "engine/render/image.h"
+#include "splat_lod/eval/temporal_sweep.h"
 #include "splat_lod/splat_renderer.h"
 
 namespace sample_game {
@@ -106,6 +107,18 @@ void measure_stereo(GameWorld& world, engine::Engine& engine, const engine::Came
         record.stereo_eye_psnr =
             std::min(record.stereo_eye_psnr, engine::compare_images(images[k], target.read_color()).psnr_db);
     }
+    engine.renderer().timers().wait_all();
+    world.pass().wait_for_statistics(engine.bus());
+}
+
+void measure_switch_pop(GameWorld& world, engine::Engine& engine, const engine::CameraView& camera,
+                        const engine::CameraView& previous, const engine::Image& image, engine::RenderTarget& target,
+                        FrameRecord& record) {
+    engine::CameraView frozen = camera;
+    frozen.selection_view = previous.view;
+    draw(engine, world.scene(), frozen, target);
+    record.switch_pop = splat_lod::eval::selection_switch_pop(splat_lod::eval::to_float(target.read_color()),
+                                                              splat_lod::eval::to_float(image));
     engine.renderer().timers().wait_all();
     world.pass().wait_for_statistics(engine.bus());
 }

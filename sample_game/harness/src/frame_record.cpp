@@ -198,6 +198,10 @@ std::vector<FrameColumn> make_columns() {
                  "with --stereo: the lower of the eyes' PSNR against a mono render from that "
                  "eye with its own selection (dB; inf: identical; -1: none)",
                  [](R r) { return r.stereo_eye_psnr < 0.0 ? std::string("-1") : decimal(r.stereo_eye_psnr, 3); }});
+    c.push_back({"switch_pop",
+                 "with --switch-pops: the 99.9th percentile over pixels of |this frame - this frame drawn with the "
+                 "frame before's selection| (0..255; -1: none)",
+                 [](R r) { return r.switch_pop < 0.0 ? std::string("-1") : decimal(r.switch_pop, 3); }});
     return c;
 }
 

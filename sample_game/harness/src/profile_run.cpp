@@ -189,6 +189,9 @@ struct Run {
             r.stream_update_ms = world.update_streaming(camera, first_update + i, pose_velocity(poses, i));
             draw_and_measure(world, engine, camera, target, r);
             const engine::Image image = target.read_color();
+            if (options.switch_pops && i > 0)
+                measure_switch_pop(world, engine, camera, world.camera(poses[i - 1], options.width, options.height),
+                                   image, target, r);
             if (options.stereo_ipd > 0.0f) measure_stereo(world, engine, camera, options.stereo_ipd, target, r);
             keep_picture(image, r);
             if (compared.count(i)) lod_images[r.frame] = image;
@@ -333,6 +336,24 @@ std::string preload_note(const ProfileOptions& options, const PreloadStats& prel
                            : std::string("; no preload (cold start)");
 }
 
+// With --switch-pops: the largest switch pop of the walk (and its frame) and the mean.
+std::string switch_pop_note(const ProfileOptions& options, const std::vector<FrameRecord>& lod) {
+    if (!options.switch_pops) return "";
+    double peak = -1.0, sum = 0.0;
+    int frame = -1, pairs = 0;
+    for (const FrameRecord& r : lod) {
+        if (r.switch_pop < 0.0) continue;
+        sum += r.switch_pop;
+        ++pairs;
+        if (r.switch_pop > peak) peak = r.switch_pop, frame = r.frame;
+    }
+    return pairs == 0 ? std::string("; switch pops: no pair")
+                      : formatted(
+                            "; switch pop (this frame against it drawn with the frame before's selection, "
+                            "99.9th percentile, 0..255) peak %.2f (frame %d), mean %.3f over %d pairs",
+                            peak, frame, sum / pairs, pairs);
+}
+
 // With --stereo: per segment, the median of the frames' stereo-to-mono ratios, and the lowest eye PSNR.
 std::string stereo_note(const ProfileOptions& options, const std::vector<FrameRecord>& lod) {
     if (!(options.stereo_ipd > 0.0f)) return "";
@@ -455,7 +476,7 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
     context.timing =
         formatted("LOD run %.0f s including the preload, loading every chunk %.0f s, baseline frames %.0f s",
                   lod_seconds, load_seconds, baseline_seconds);
-    context.settings += preload_note(options, preload) + stereo_note(options, lod);
+    context.settings += preload_note(options, preload) + stereo_note(options, lod) + switch_pop_note(options, lod);
     context.outputs =
         listed_outputs(options, outcome.pictures, run.frame_pictures.size(), plots.problem, strip_note(run.strip));
     context.reference = reference_note(options, reference, key);

@@ -26,6 +26,13 @@ void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::Ca
 void measure_stereo(GameWorld& world, engine::Engine& engine, const engine::CameraView& camera, float ipd,
                     engine::RenderTarget& target, FrameRecord& record);
 
+// The switch pop of a pair (splat_lod::eval::selection_switch_pop): draws `camera` again with the
+// selection of `previous` (its view as CameraView::selection_view) into `target` and compares it with
+// `image`, the frame as drawn; fills switch_pop.
+void measure_switch_pop(GameWorld& world, engine::Engine& engine, const engine::CameraView& camera,
+                        const engine::CameraView& previous, const engine::Image& image, engine::RenderTarget& target,
+                        FrameRecord& record);
+
 // The record's pose fields: segment, path parameter, eye, height above the ground and distance from
 // the world's centre.
 void record_pose(const GameWorld& world, const PathPose& pose, FrameRecord& record);

@@ -74,6 +74,7 @@ struct FrameRecord {
     // selection, the centre's), both eyes one after the other to the GPU's finish; and the lower of the two
     // eyes' PSNR against a mono render from that eye with its own selection. −1 without.
     double stereo_frame_ms = -1.0, stereo_eye_psnr = -1.0;
+    double switch_pop = -1.0;  // with --switch-pops: the pair (frame − 1, frame)'s switch pop (−1: none)
 };
 
 struct FrameColumn {

@@ -50,6 +50,9 @@ struct ProfileOptions {
     // > 0: each LOD frame is drawn again as a stereo pair this far apart (docs/stereo.md), its time and
     // its eyes' PSNR recorded (stereo_frame_ms, stereo_eye_psnr) and summarised per segment.
     float stereo_ipd = 0.0f;
+    // Each LOD frame after the first is drawn again with the frame before's selection, and the switch
+    // pop of the pair recorded (FrameRecord::switch_pop) and summarised.
+    bool switch_pops = false;
 };
 
 struct ProfileOutcome {
