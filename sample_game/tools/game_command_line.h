@@ -43,8 +43,8 @@ inline void add_lod_options(CLI::App& app, GameCommandLine& c) {
                    "Octaves of coverage over which a Gaussian fades into its coarser level (0: hard switching)")
         ->capture_default_str();
     app.add_option("--lod-transition-placement", c.transition_placement,
-                   "Where each fade lies against its switch: inside (default; within the hard rule's ranges), "
-                   "before, centred")
+                   "Where each fade lies against its switch: before (default), inside (within the hard rule's "
+                   "ranges), centred")
         ->check(CLI::IsMember(std::vector<std::string>(plugin_msgs::kTransitionPlacementNames.begin(),
                                                        plugin_msgs::kTransitionPlacementNames.end())));
     app.add_option("--render-scale", lod.render_scale, "Splat raster resolution relative to the output, (0, 1]")

@@ -45,7 +45,7 @@ struct Options {
     bool bbox_tiles = false, wide_sort_keys = false;
     std::string lod_mode = "full";
     float transition_band = plugin_msgs::LodRule::kDefaultTransitionBand;
-    std::string transition_placement = "inside";
+    std::string transition_placement = "before";
     bool stereo = false;
     float ipd = 0.063f;
 };
@@ -212,7 +212,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0.0f, plugin_msgs::LodRule::kMaxTransitionBand))
         ->capture_default_str();
     app.add_option("--transition-placement", o.transition_placement,
-                   "mode full: where each fade lies against its switch: inside (the hard rule's ranges), before, "
+                   "mode full: where each fade lies against its switch: before, inside (the hard rule's ranges), "
                    "centred")
         ->check(CLI::IsMember({"inside", "before", "centred"}))
         ->capture_default_str();

@@ -73,8 +73,8 @@ TEST(LodWeight, HardSwitchingIsTheSelectionRule) {
 
 TEST(LodWeight, PlacedBeforeTheRampsLieOnTheFineSideOfEachSwitch) {
     LodRule rule;
+    ASSERT_EQ(rule.transition_placement, plugin_msgs::TransitionPlacement::before) << "the default";
     rule.transition_band = 1.0;
-    rule.transition_placement = plugin_msgs::TransitionPlacement::before;
     // Too large: switch at S = S_max·rel_max = 15; 1 up to there (as the hard rule), then down to 0 at
     // 30, one octave past it.
     EXPECT_DOUBLE_EQ(lod_weight(rule, 2, 15.0, -1.0, 10.0), 1.0);
@@ -165,14 +165,14 @@ TEST(LodWeight, FineAndCoarseWeightsSumToOneAcrossTheBand) {
         }
 }
 
-// Placed inside (the default): a fine Gaussian fades out over the band before its "too small" switch, a
+// Placed inside: a fine Gaussian fades out over the band before its "too small" switch, a
 // coarse one fades in over the band past its "too large" switch. Both ramps lie where the hard rule
 // draws the Gaussian, so the weight is never above the hard rule's (nothing drawn that it does not
 // draw), equals it outside the bands, is continuous, and a hand-over at one coverage dips: the fine
 // one is gone at the switch and the coarse one only begins there.
 TEST(LodWeight, PlacedInsideTheRampsLieWhereTheHardRuleDraws) {
     LodRule rule;
-    ASSERT_EQ(rule.transition_placement, plugin_msgs::TransitionPlacement::inside) << "the default";
+    rule.transition_placement = plugin_msgs::TransitionPlacement::inside;
     rule.transition_band = 1.0;
     const LodRule hard = hard_rule();
     // Too large: switch at S = S_max·rel_max = 15: 0 from there up, 1 from one octave below it.

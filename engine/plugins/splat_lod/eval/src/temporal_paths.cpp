@@ -21,6 +21,20 @@ void check_same_sizes(const FloatImage& a, const FloatImage& b, const FloatImage
                          std::to_string(image->height));
 }
 
+// `start` dollied by each factor, named "<name> <i> (<factor>x)" with `digits` decimals.
+std::vector<CameraPose> dollied(const CameraPose& start, const std::vector<double>& factors, const std::string& name,
+                                int digits) {
+    std::vector<CameraPose> poses;
+    for (std::size_t i = 0; i < factors.size(); ++i) {
+        CameraPose pose = dolly(start, static_cast<float>(factors[i]));
+        char label[96];
+        std::snprintf(label, sizeof label, "%s %zu (%.*fx)", name.c_str(), i, digits, factors[i]);
+        pose.name = label;
+        poses.push_back(pose);
+    }
+    return poses;
+}
+
 std::string size_text(int width, int height) {
     return std::to_string(width) + "\u00d7" + std::to_string(height);
 }
@@ -99,18 +113,13 @@ std::vector<CameraPose> dolly_path(const CameraPose& start, int frames) {
         engine::fail("--temporal-frames: " + std::to_string(frames) + " frames are too few (at least " +
                      std::to_string(kMinTemporalFrames) + ")");
     const int out = (frames + 1) / 2, back = frames - out;
-    std::vector<CameraPose> poses;
+    std::vector<double> factors;
     for (int i = 0; i < frames; ++i) {
         const double exponent = i < out ? static_cast<double>(i) / (out - 1)
                                         : 1.0 - static_cast<double>(i - out + 1) / static_cast<double>(back);
-        const double factor = std::pow(static_cast<double>(kDollyMaxFactor), exponent);
-        CameraPose pose = dolly(start, static_cast<float>(factor));
-        char name[64];
-        std::snprintf(name, sizeof name, "dolly %d (%.2fx)", i, factor);
-        pose.name = name;
-        poses.push_back(pose);
+        factors.push_back(std::pow(static_cast<double>(kDollyMaxFactor), exponent));
     }
-    return poses;
+    return dollied(start, factors, "dolly", 2);
 }
 
 std::vector<CameraPose> stride_path(const CameraPose& start, double speed, double metres_per_unit,
@@ -121,30 +130,16 @@ std::vector<CameraPose> stride_path(const CameraPose& start, double speed, doubl
     const double step = speed / kPathFramesPerSecond / metres_per_unit;  // scene units a frame
     const double wanted = std::ceil((kStrideMaxFactor - 1.0) * distance / step);
     const int steps = std::max(kMinTemporalFrames - 1, static_cast<int>(std::min<double>(wanted, kMaxStrideFrames)));
-    std::vector<CameraPose> poses;
-    for (int i = 0; i <= steps; ++i) {
-        const double factor = 1.0 + i * step / distance;
-        CameraPose pose = dolly(start, static_cast<float>(factor));
-        char label[96];
-        std::snprintf(label, sizeof label, "%s %d (%.3fx)", name.c_str(), i, factor);
-        pose.name = label;
-        poses.push_back(pose);
-    }
-    return poses;
+    std::vector<double> factors;
+    for (int i = 0; i <= steps; ++i) factors.push_back(1.0 + i * step / distance);
+    return dollied(start, factors, name, 3);
 }
 
 std::vector<CameraPose> slow_dolly_path(const CameraPose& start) {
     const int steps = static_cast<int>(std::lround(std::log2(kSlowDollyMaxFactor) * kSlowDollyStepsPerOctave));
-    std::vector<CameraPose> poses;
-    for (int i = 0; i <= steps; ++i) {
-        const double factor = std::exp2(static_cast<double>(i) / kSlowDollyStepsPerOctave);
-        CameraPose pose = dolly(start, static_cast<float>(factor));
-        char label[64];
-        std::snprintf(label, sizeof label, "slow dolly %d (%.3fx)", i, factor);
-        pose.name = label;
-        poses.push_back(pose);
-    }
-    return poses;
+    std::vector<double> factors;
+    for (int i = 0; i <= steps; ++i) factors.push_back(std::exp2(static_cast<double>(i) / kSlowDollyStepsPerOctave));
+    return dollied(start, factors, "slow dolly", 3);
 }
 
 std::vector<CameraPose> orbit_path(const SceneExtent& extent, const glm::vec3& up, int frames) {

@@ -124,7 +124,7 @@ TEST(SplatEvalMetrics, UnknownMethodIsRefused) {
 }
 
 TEST(SplatEvalMetrics, FullWithABandIsAMethod) {
-    const auto methods = eval::select_methods("full,full_hard,full@0.5,full@1:before");
+    const auto methods = eval::select_methods("full,full_hard,full@0.5,full@1:inside");
     ASSERT_EQ(methods.size(), 4u);
     std::vector<double> bands;
     std::vector<plugin_msgs::TransitionPlacement> placements;
@@ -140,8 +140,8 @@ TEST(SplatEvalMetrics, FullWithABandIsAMethod) {
     }
     EXPECT_EQ(bands, (std::vector<double>{plugin_msgs::LodRule::kDefaultTransitionBand, 0.0, 0.5, 1.0}));
     using plugin_msgs::TransitionPlacement;
-    EXPECT_EQ(placements, (std::vector<TransitionPlacement>{TransitionPlacement::inside, TransitionPlacement::inside,
-                                                            TransitionPlacement::inside, TransitionPlacement::before}));
+    EXPECT_EQ(placements, (std::vector<TransitionPlacement>{TransitionPlacement::before, TransitionPlacement::before,
+                                                            TransitionPlacement::before, TransitionPlacement::inside}));
     expect_error([] { eval::select_methods("full@-1"); }, {"full@-1", "[0, 4] octaves"});
     expect_error([] { eval::select_methods("full@wide"); }, {"full@wide"});
     expect_error([] { eval::select_methods("full@0.5:after"); }, {"full@0.5:after", "inside, before, centred"});

@@ -352,7 +352,7 @@ TEST_F(SplatPipelineTest, LevelColouringTintsEachLevel) {
 // Smooth transitions (the default): the GPU scales each selected Gaussian's opacity by
 // splat_lod::lod_weight, so the image equals the reference render of the cloud with opacities scaled
 // by the CPU's weights, and the same frame drawn twice is the same bytes (a pure function of the view).
-// The same for every placement of the band (inside, the default; before; centred on the switches).
+// The same for every placement of the band (before, the default; inside; centred on the switches).
 TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     std::vector<GaussianSpec> specs;
     for (int i = 0; i < 400; ++i) {
@@ -416,7 +416,7 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
         // Float on the GPU, double here: a weight at the 1/255 edge may fall either way.
         EXPECT_NEAR(static_cast<double>(pass.latest_statistics()->visible), static_cast<double>(weighted.size()), 2.0);
         EXPECT_EQ(harness.render({shared_cloud}, camera).rgba, gpu.rgba) << "the same frame twice";
-        if (placement == plugin_msgs::TransitionPlacement::inside) smooth_image = gpu;
+        if (placement == plugin_msgs::TransitionPlacement::before) smooth_image = gpu;
     }
     // The default placement (smooth_image) with the last cloud's levels and bounds, which are the same:
     // hard switching draws another image from the same cloud.

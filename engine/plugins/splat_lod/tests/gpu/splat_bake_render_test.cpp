@@ -49,13 +49,16 @@ engine::Image render_mode(engine::test::SplatRenderHarness& harness,
 }
 
 // The rules whose selection skipping and budgets must not change: full (its default band and
-// placement), full with the band centred on the switches (fine Gaussians drawn past their switch) and
-// filter_small.
+// placement), full with a one-octave band inside the hard rule's ranges and centred on the switches
+// (fine Gaussians drawn past their switch), and filter_small.
 std::vector<plugin_msgs::LodRule> skipping_rules() {
-    plugin_msgs::LodRule full, centred, filter_small;
+    plugin_msgs::LodRule full, inside, centred, filter_small;
+    inside.transition_band = 1.0f;
+    inside.transition_placement = plugin_msgs::TransitionPlacement::inside;
+    centred.transition_band = 1.0f;
     centred.transition_placement = plugin_msgs::TransitionPlacement::centred;
     filter_small.mode = plugin_msgs::LodMode::filter_small;
-    return {full, centred, filter_small};
+    return {full, inside, centred, filter_small};
 }
 
 std::string rule_name(const plugin_msgs::LodRule& rule) {
@@ -233,7 +236,7 @@ TEST_F(SplatBakeRenderTest, SplatBudgetIsNeverExceededAndChangesNothingWhenItFit
     const auto pose = eval::orbit_poses(garden.extent, glm::vec3(0, 1, 0), 1).front();
     const auto view = eval::make_view(eval::dolly(pose, 0.6f), 128, 96);
     std::vector<plugin_msgs::LodRule> rules = skipping_rules();
-    rules.back().mode = plugin_msgs::LodMode::baseline;  // full, full with a centred band, baseline
+    rules.back().mode = plugin_msgs::LodMode::baseline;  // full, full inside, full centred, baseline
     for (const auto& rule : rules) {
         const plugin_msgs::LodMode mode = rule.mode;
         SCOPED_TRACE(rule_name(rule));

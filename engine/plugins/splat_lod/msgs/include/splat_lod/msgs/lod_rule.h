@@ -66,10 +66,11 @@ inline void from_json(const nlohmann::json& json, LodMode& mode) {
 enum class TransitionPlacement {
     inside,   // within the range where the hard rule draws it: a fine Gaussian fades out over the band
               // before its "too small" switch, a coarse one fades in over the band past its "too large"
-              // switch; nothing is drawn that the hard rule does not draw
-    before,   // both on the finer side: a coarse Gaussian fades in over the band before its "too large"
-              // switch (drawn where the hard rule does not yet draw it), so a hand-over at one coverage
-              // sums to 1
+              // switch; nothing is drawn that the hard rule does not draw, and a hand-over at one
+              // coverage dips (docs/lod.md, "Transitions": better on orbit captures, worse on forward ones)
+    before,   // both on the finer side (the default): a coarse Gaussian fades in over the band before its
+              // "too large" switch (drawn where the hard rule does not yet draw it), so a hand-over at
+              // one coverage sums to 1
     centred,  // both centred on their switch: a hand-over sums to 1, and a fine Gaussian is drawn past
               // its "too small" switch
 };
@@ -112,9 +113,9 @@ struct LodRule {
     // this many octaves; transition_placement says on which side of the switch. 0: hard switching.
     // Only in modes whose traits have transitions.
     float transition_band = kDefaultTransitionBand;
-    static constexpr float kDefaultTransitionBand = 1.0f;
+    static constexpr float kDefaultTransitionBand = 0.0625f;
     static constexpr float kMaxTransitionBand = 4.0f;
-    TransitionPlacement transition_placement = TransitionPlacement::inside;
+    TransitionPlacement transition_placement = TransitionPlacement::before;
 
     // Empty when the rule is usable, otherwise "<kind>.<key>: <why>". NaN fails every check.
     std::string validate(std::string_view kind = "lod_rule") const;
