@@ -255,14 +255,15 @@ std::string describe_world(const ProfileOptions& o, const GameWorld& world) {
         mib(world.whole_world_gpu_bytes()), m.props.size());
 }
 
-std::string describe_settings(const ProfileOptions& o) {
+// `path_frames`: the poses walked (a --path file's own count, else --frames).
+std::string describe_settings(const ProfileOptions& o, std::size_t path_frames) {
     const GameSettings& s = o.settings;
     return formatted(
         "%dx%d, %d path frames, LOD mode %s (S_T %.2f px, rel %.2f/%.2f, transition band %.4g octaves placed "
         "%s), "
         "streamer fades over %d updates, cut anticipates %d, render scale %.3f (%s), "
         "memory budget %.0f MiB, upload budget %.2f MiB/frame, load distance x%.2f, streaming %s, fov %.0f deg",
-        o.width, o.height, o.frames, std::string(plugin_msgs::to_string(s.lod.rule.mode)).c_str(),
+        o.width, o.height, static_cast<int>(path_frames), std::string(plugin_msgs::to_string(s.lod.rule.mode)).c_str(),
         s.lod.rule.size_threshold_px, s.lod.rule.rel_min, s.lod.rule.rel_max, s.lod.rule.transition_band,
         std::string(plugin_msgs::to_string(s.lod.rule.transition_placement)).c_str(), s.fade_frames,
         s.anticipation_updates, s.lod.render_scale, std::string(plugin_msgs::to_string(s.lod.upscaler)).c_str(),
@@ -293,9 +294,9 @@ std::vector<FrameRecord> baseline_run(const ProfileOptions& options, Run& run, d
     const auto baseline_start = Clock::now();
     std::vector<FrameRecord> baseline = run.baseline_frames(load_seconds);
     baseline_seconds = seconds_since(baseline_start) - load_seconds;
-    write_frames_csv(
-        options.out / "baseline.csv", baseline,
-        "sample_game profile, baseline (every chunk resident, mode baseline): " + describe_settings(options));
+    write_frames_csv(options.out / "baseline.csv", baseline,
+                     "sample_game profile, baseline (every chunk resident, mode baseline): " +
+                         describe_settings(options, run.poses.size()));
     return baseline;
 }
 
@@ -458,7 +459,7 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
     const std::vector<FrameRecord> lod = run.lod_frames(preload);
     const double lod_seconds = seconds_since(lod_start);
     write_frames_csv(options.out / "profile.csv", lod,
-                     "sample_game profile, LOD + streaming: " + describe_settings(options));
+                     "sample_game profile, LOD + streaming: " + describe_settings(options, poses.size()));
     std::vector<FrameRecord> baseline;
     double load_seconds = 0.0, baseline_seconds = 0.0;
     if (options.baseline) baseline = baseline_run(options, run, load_seconds, baseline_seconds);
@@ -471,7 +472,7 @@ ProfileOutcome run_profile(const ProfileOptions& options, std::FILE* progress) {
                              world.whole_world_gpu_bytes(), options.settings.lod.splat_budget});
     SummaryContext context;
     context.world = describe_world(options, world);
-    context.settings = describe_settings(options);
+    context.settings = describe_settings(options, poses.size());
     context.wall_seconds = seconds_since(start);
     context.timing =
         formatted("LOD run %.0f s including the preload, loading every chunk %.0f s, baseline frames %.0f s",
