@@ -114,9 +114,7 @@ void measure_stereo(GameWorld& world, engine::Engine& engine, const engine::Came
 void measure_switch_pop(GameWorld& world, engine::Engine& engine, const engine::CameraView& camera,
                         const engine::CameraView& previous, const engine::Image& image, engine::RenderTarget& target,
                         FrameRecord& record) {
-    engine::CameraView frozen = camera;
-    frozen.selection_view = previous.view;
-    draw(engine, world.scene(), frozen, target);
+    draw(engine, world.scene(), splat_lod::eval::with_selection_of(camera, previous), target);
     record.switch_pop = splat_lod::eval::selection_switch_pop(splat_lod::eval::to_float(target.read_color()),
                                                               splat_lod::eval::to_float(image));
     engine.renderer().timers().wait_all();

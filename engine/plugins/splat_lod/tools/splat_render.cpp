@@ -214,7 +214,8 @@ int main(int argc, char** argv) {
     app.add_option("--transition-placement", o.transition_placement,
                    "mode full: where each fade lies against its switch: before, inside (the hard rule's ranges), "
                    "centred")
-        ->check(CLI::IsMember({"inside", "before", "centred"}))
+        ->check(CLI::IsMember(std::vector<std::string>(plugin_msgs::kTransitionPlacementNames.begin(),
+                                                       plugin_msgs::kTransitionPlacementNames.end())))
         ->capture_default_str();
     app.add_option("--raster-fetch", o.raster_fetch, "how the raster reads splats: automatic, texel or shared")
         ->check(CLI::IsMember({"automatic", "texel", "shared"}));

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
 
 #include "engine/core/error.h"
 #include "splat_lod/splat_renderer.h"
@@ -144,11 +147,12 @@ std::optional<Method> banded_full(const std::string& name) {
     const std::size_t colon = text.find(':');
     const auto band = number_in(text.substr(0, colon), 0.0, plugin_msgs::LodRule::kMaxTransitionBand);
     plugin_msgs::TransitionPlacement placement = plugin_msgs::LodRule{}.transition_placement;
-    bool placement_known = colon == std::string::npos;
-    for (std::size_t p = 0; !placement_known && p < plugin_msgs::kTransitionPlacementNames.size(); ++p)
-        if (text.substr(colon + 1) == plugin_msgs::kTransitionPlacementNames[p]) {
-            placement = static_cast<plugin_msgs::TransitionPlacement>(p);
-            placement_known = true;
+    bool placement_known = true;
+    if (colon != std::string::npos) try {
+            placement = plugin_msgs::detail::enum_from_json<plugin_msgs::TransitionPlacement>(
+                plugin_msgs::kTransitionPlacementNames, nlohmann::json(text.substr(colon + 1)));
+        } catch (const std::invalid_argument&) {
+            placement_known = false;
         }
     if (!band || !placement_known)
         engine::fail("--methods: \"" + name +

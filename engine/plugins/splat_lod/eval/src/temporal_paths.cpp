@@ -35,6 +35,14 @@ std::vector<CameraPose> dollied(const CameraPose& start, const std::vector<doubl
     return poses;
 }
 
+// Throws naming `option` when a name repeats.
+void fail_if_repeated(const std::vector<std::string>& names, const std::string& option) {
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) !=
+            names.begin() + static_cast<std::ptrdiff_t>(i))
+            engine::fail(option + ": \"" + names[i] + "\" is listed twice");
+}
+
 std::string size_text(int width, int height) {
     return std::to_string(width) + "\u00d7" + std::to_string(height);
 }
@@ -82,6 +90,12 @@ double temporal_pair_pop(const FloatImage& method_previous, const FloatImage& me
 double selection_switch_pop(const FloatImage& frozen, const FloatImage& image) {
     // |(M_t − frozen) − (R − R)|: the pair pop with a reference that does not change.
     return temporal_pair_pop(frozen, image, image, image);
+}
+
+engine::CameraView with_selection_of(const engine::CameraView& view, const engine::CameraView& previous) {
+    engine::CameraView frozen = view;
+    frozen.selection_view = previous.view;
+    return frozen;
 }
 
 engine::Image temporal_difference_image(const FloatImage& method_previous, const FloatImage& method,
@@ -203,20 +217,16 @@ std::vector<TemporalPath> temporal_paths(const TemporalOptions& options, const C
 void validate_temporal_options(const TemporalOptions& o) {
     if (o.width < 1 || o.height < 1) engine::fail("--width/--height: the image size must be positive");
     if (o.methods.empty()) engine::fail("--methods: no method given");
-    for (std::size_t i = 0; i < o.methods.size(); ++i)
-        for (std::size_t j = 0; j < i; ++j)
-            if (o.methods[i].name == o.methods[j].name)
-                engine::fail("--methods: \"" + o.methods[i].name + "\" is listed twice");
+    std::vector<std::string> methods;
+    for (const Method& method : o.methods) methods.push_back(method.name);
+    fail_if_repeated(methods, "--methods");
     const std::vector<std::string> known = parse_name_list(kDefaultTemporalPaths, "paths");
     const std::vector<std::string> paths = parse_name_list(o.paths, "--temporal-paths");
-    for (std::size_t i = 0; i < paths.size(); ++i) {
-        if (std::find(known.begin(), known.end(), paths[i]) == known.end())
-            engine::fail("--temporal-paths: unknown path \"" + paths[i] + "\" (expected some of " +
-                         kDefaultTemporalPaths + ")");
-        if (std::find(paths.begin(), paths.begin() + static_cast<std::ptrdiff_t>(i), paths[i]) !=
-            paths.begin() + static_cast<std::ptrdiff_t>(i))
-            engine::fail("--temporal-paths: \"" + paths[i] + "\" is listed twice");
-    }
+    for (const std::string& path : paths)
+        if (std::find(known.begin(), known.end(), path) == known.end())
+            engine::fail("--temporal-paths: unknown path \"" + path + "\" (expected some of " + kDefaultTemporalPaths +
+                         ")");
+    fail_if_repeated(paths, "--temporal-paths");
     if (!(o.metres_per_unit > 0.0) || !std::isfinite(o.metres_per_unit))
         engine::fail("--metres-per-unit: must be a finite number > 0, got " + std::to_string(o.metres_per_unit));
     if (o.dolly_frames < kMinTemporalFrames)

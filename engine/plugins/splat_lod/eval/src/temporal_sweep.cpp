@@ -52,8 +52,7 @@ void measure_frame(FrameMeasurer& measurer, const Method& method, const Temporal
     if (t > 0) {
         row.pair_errors.push_back(temporal_pair_error(previous, image, reference_previous, reference));
         row.pair_pops.push_back(temporal_pair_pop(previous, image, reference_previous, reference));
-        engine::CameraView frozen = view;
-        frozen.selection_view = make_view(path.poses[t - 1], o.width, o.height).view;
+        const engine::CameraView frozen = with_selection_of(view, make_view(path.poses[t - 1], o.width, o.height));
         row.pair_switch_pops.push_back(selection_switch_pop(to_float(measurer.render(method, frozen)), image));
     }
     previous = std::move(image);
@@ -123,8 +122,8 @@ TemporalStrip render_strip(FrameMeasurer& measurer, const TemporalPath& path, co
             const engine::CameraView view = make_view(pose, o.width, o.height);
             strip.images[m + 1].push_back(measurer.render(o.methods[m], view));
             if (o.methods[m].name != strip.peak_method || c == 0) continue;
-            engine::CameraView frozen = view;
-            frozen.selection_view = make_view(path.poses[static_cast<std::size_t>(t - 1)], o.width, o.height).view;
+            const engine::CameraView frozen =
+                with_selection_of(view, make_view(path.poses[static_cast<std::size_t>(t - 1)], o.width, o.height));
             const FloatImage image = to_float(strip.images[m + 1].back());
             strip.differences.push_back(temporal_difference_image(to_float(measurer.render(o.methods[m], frozen)),
                                                                   image, image, image, kStripDifferenceGain));

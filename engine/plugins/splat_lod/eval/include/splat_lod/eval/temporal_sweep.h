@@ -21,6 +21,7 @@
 
 #include <glm/glm.hpp>
 
+#include "engine/render/camera.h"
 #include "engine/render/image.h"
 #include "splat_lod/core/camera_set.h"
 #include "splat_lod/eval/eval_method.h"
@@ -129,6 +130,8 @@ double temporal_pair_pop(const FloatImage& method_previous, const FloatImage& me
 // the aliasing it moves, cancel exactly; a method without a selection (baseline) scores 0; a Gaussian
 // switching on counts whole, faded in over k frames 1/k a pair. Throws engine::Error when sizes differ.
 double selection_switch_pop(const FloatImage& frozen, const FloatImage& image);
+// `view` selecting as `previous` does: the `frozen` frame of selection_switch_pop.
+engine::CameraView with_selection_of(const engine::CameraView& view, const engine::CameraView& previous);
 // |(M_t − M_{t−1}) − (R_t − R_{t−1})| per pixel, averaged over RGB, times `gain`, as grey RGBA8.
 engine::Image temporal_difference_image(const FloatImage& method_previous, const FloatImage& method,
                                         const FloatImage& reference_previous, const FloatImage& reference, float gain);
