@@ -43,10 +43,14 @@ inline void add_lod_options(CLI::App& app, GameCommandLine& c) {
                    "Octaves of coverage over which a Gaussian fades into its coarser level (0: hard switching)")
         ->capture_default_str();
     app.add_option("--lod-transition-placement", c.transition_placement,
-                   "Where each fade lies against its switch: before (default), inside (within the hard rule's "
-                   "ranges), centred")
+                   "Where each fade lies against its switch: auto (default: inside for a bake whose levels "
+                   "overlap, before for any other cloud, the world's chunks included), before, inside (within the "
+                   "hard rule's ranges), centred")
         ->check(CLI::IsMember(std::vector<std::string>(plugin_msgs::kTransitionPlacementNames.begin(),
                                                        plugin_msgs::kTransitionPlacementNames.end())));
+    app.add_option("--lod-overlap-transition-band", lod.rule.overlap_transition_band,
+                   "Placement auto: the band of a bake whose levels overlap at their switches")
+        ->capture_default_str();
     app.add_option("--render-scale", lod.render_scale, "Splat raster resolution relative to the output, (0, 1]")
         ->capture_default_str();
     app.add_option("--upscaler", c.upscaler, "spline (default), bicubic, bilinear or lanczos3")

@@ -45,7 +45,8 @@ struct Options {
     bool bbox_tiles = false, wide_sort_keys = false;
     std::string lod_mode = "full";
     float transition_band = plugin_msgs::LodRule::kDefaultTransitionBand;
-    std::string transition_placement = "before";
+    std::string transition_placement{plugin_msgs::to_string(plugin_msgs::LodRule{}.transition_placement)};
+    float overlap_transition_band = plugin_msgs::LodRule::kDefaultOverlapTransitionBand;
     bool stereo = false;
     float ipd = 0.063f;
 };
@@ -64,6 +65,7 @@ void apply_settings(splat_lod::SplatPassSettings& settings, plugin_msgs::LodSett
     settings.compact_sort_keys = !o.wide_sort_keys;
     lod.rule.mode = plugin_msgs::detail::enum_from_json<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, o.lod_mode);
     lod.rule.transition_band = o.transition_band;
+    lod.rule.overlap_transition_band = o.overlap_transition_band;
     lod.rule.transition_placement = plugin_msgs::detail::enum_from_json<plugin_msgs::TransitionPlacement>(
         plugin_msgs::kTransitionPlacementNames, o.transition_placement);
 }
@@ -213,9 +215,14 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--transition-placement", o.transition_placement,
                    "mode full: where each fade lies against its switch: before, inside (the hard rule's ranges), "
-                   "centred")
+                   "centred, or auto (inside with --overlap-transition-band for a bake whose levels overlap, "
+                   "before with --transition-band otherwise)")
         ->check(CLI::IsMember(std::vector<std::string>(plugin_msgs::kTransitionPlacementNames.begin(),
                                                        plugin_msgs::kTransitionPlacementNames.end())))
+        ->capture_default_str();
+    app.add_option("--overlap-transition-band", o.overlap_transition_band,
+                   "mode full, placement auto: the band of a bake whose levels overlap at their switches")
+        ->check(CLI::Range(0.0f, plugin_msgs::LodRule::kMaxTransitionBand))
         ->capture_default_str();
     app.add_option("--raster-fetch", o.raster_fetch, "how the raster reads splats: automatic, texel or shared")
         ->check(CLI::IsMember({"automatic", "texel", "shared"}));

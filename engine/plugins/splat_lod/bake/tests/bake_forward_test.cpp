@@ -86,6 +86,7 @@ TEST(BakeForward, ATinyRoomBakesForItsForwardGrid) {
     bake::BakeSummary summary;
     const SplatCloud baked = bake::bake_lod(fine, bake::bake_cameras(poses, 128, 128), options, &summary);
     ASSERT_EQ(summary.levels.size(), 3u);
+    EXPECT_EQ(baked.level_handover, splat_lod::LevelHandover::abutting) << "member ranges: levels meet at one coverage";
     for (const auto& level : summary.levels) EXPECT_GT(level.added, 0u) << "level " << level.level;
 
     // Views off the grid: between its eyes and a step into the room, turned a little.

@@ -240,6 +240,9 @@ TEST(Bake, BuildsCoarseLevelsFirstWithRangesAndLoadsBack) {
     ASSERT_EQ(loaded.size(), baked.size());
     EXPECT_EQ(loaded.lod_level, baked.lod_level);
     EXPECT_EQ(loaded.coverage_max, baked.coverage_max);
+    // Without member ranges the levels' ranges overlap, and the asset says so.
+    EXPECT_EQ(baked.level_handover, LevelHandover::overlapping);
+    EXPECT_EQ(loaded.level_handover, LevelHandover::overlapping);
 }
 
 TEST(Bake, IsDeterministicForAnyThreadCount) {

@@ -150,10 +150,29 @@ void SplatCloud::keep_only(const std::vector<std::uint8_t>& keep) {
     for (auto& extra : extras) compact(extra.values, keep, 1);
 }
 
+const char* level_handover_name(LevelHandover handover) {
+    switch (handover) {
+        case LevelHandover::overlapping:
+            return "overlapping";
+        case LevelHandover::abutting:
+            return "abutting";
+        case LevelHandover::unknown:
+            break;
+    }
+    return "unknown";
+}
+
+std::optional<LevelHandover> parse_level_handover(const std::string& name) {
+    for (const LevelHandover h : {LevelHandover::unknown, LevelHandover::overlapping, LevelHandover::abutting})
+        if (name == level_handover_name(h)) return h;
+    return std::nullopt;
+}
+
 SplatCloud SplatCloud::permuted(const std::vector<std::uint32_t>& order) const {
     check_consistent();
     SplatCloud out;
     out.sh_degree = sh_degree;
+    out.level_handover = level_handover;
     for (const auto& extra : extras) out.extras.push_back({extra.name, {}});
     out.resize(order.size());
     const std::size_t stride = sh_rest_stride();
@@ -240,6 +259,7 @@ void append_cloud(SplatCloud& into, SplatCloud&& part) {
     into.set_sh_degree(degree);
     part.set_sh_degree(degree);
     append_extras(into, part);
+    if (into.level_handover != part.level_handover) into.level_handover = LevelHandover::unknown;
     append_values(into.positions, part.positions);
     append_values(into.rotations, part.rotations);
     append_values(into.log_scales, part.log_scales);

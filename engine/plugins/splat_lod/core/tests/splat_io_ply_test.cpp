@@ -112,6 +112,45 @@ TEST(SplatIoPly, LodAttributesAreWrittenWhenAnyGaussianUsesThem) {
     EXPECT_EQ(loaded.lod_level[2], 1);
 }
 
+// A baked cloud's level handover travels in a header comment; a cloud that does not know it writes none,
+// and a file from elsewhere (no comment, or a value this reader does not know) reads as unknown.
+TEST(SplatIoPly, TheLevelHandoverRoundTripsInTheHeader) {
+    using splat_lod::LevelHandover;
+    SplatCloud cloud = make_cloud(3, 0, 4);
+    cloud.coverage_max[2] = 12.5f;
+    for (const LevelHandover handover : {LevelHandover::overlapping, LevelHandover::abutting}) {
+        cloud.level_handover = handover;
+        const auto bytes = splat_lod::encode_inria_ply(cloud);
+        EXPECT_NE(header_of(bytes).find(std::string("comment splat_lod level_handover ") +
+                                        splat_lod::level_handover_name(handover) + "\n"),
+                  std::string::npos);
+        EXPECT_EQ(splat_lod::read_ply(bytes, "lod.ply").level_handover, handover);
+    }
+    cloud.level_handover = LevelHandover::unknown;
+    EXPECT_EQ(header_of(splat_lod::encode_inria_ply(cloud)).find("level_handover"), std::string::npos);
+    // Without LOD attributes there are no levels to hand over: nothing is written.
+    SplatCloud plain = make_cloud(3, 0, 4);
+    plain.level_handover = LevelHandover::overlapping;
+    EXPECT_EQ(header_of(splat_lod::encode_inria_ply(plain)).find("level_handover"), std::string::npos);
+    // An unknown value is a warning, not an error.
+    cloud.level_handover = LevelHandover::abutting;
+    auto bytes = splat_lod::encode_inria_ply(cloud);
+    const std::string text(bytes.begin(), bytes.end());
+    const std::size_t at = text.find("abutting");
+    ASSERT_NE(at, std::string::npos);
+    std::memcpy(bytes.data() + at, "sideways", 8);
+    LoadReport report;
+    EXPECT_EQ(splat_lod::read_ply(bytes, "odd.ply", &report).level_handover, LevelHandover::unknown);
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find("sideways"), std::string::npos) << report.warnings[0];
+    // Kept by a permutation; two clouds of different kinds appended are of no known kind.
+    SplatCloud other = make_cloud(2, 0, 4);
+    other.level_handover = LevelHandover::overlapping;
+    EXPECT_EQ(other.permuted({1, 0}).level_handover, LevelHandover::overlapping);
+    splat_lod::append_cloud(cloud, std::move(other));
+    EXPECT_EQ(cloud.level_handover, LevelHandover::unknown);
+}
+
 TEST(SplatIoPly, ReducedLayoutOfTheDonut) {
     ENGINE_REQUIRE_DATA("splats/gshairlod-donut/fused.ply");
     LoadReport report;

@@ -137,16 +137,17 @@ std::optional<double> number_in(const std::string& text, double lo, double hi) {
 }
 
 // "full@B" or "full@B:PLACEMENT": `full` with a transition band of B octaves placed as PLACEMENT says
-// (inside, before or centred: LodRule::transition_placement, the default when left out), to choose the
-// band by measurement; none when `name` has another form. Throws naming the method when B or the
-// placement is not one the settings accept.
+// (inside, before, centred or auto: LodRule::transition_placement; `before` when left out, and with
+// `auto` B is both bands, transition_band and overlap_transition_band), to choose the band by
+// measurement; none when `name` has another form. Throws naming the method when B or the placement is
+// not one the settings accept.
 std::optional<Method> banded_full(const std::string& name) {
     const std::string prefix = "full@";
     if (name.rfind(prefix, 0) != 0) return std::nullopt;
     const std::string text = name.substr(prefix.size());
     const std::size_t colon = text.find(':');
     const auto band = number_in(text.substr(0, colon), 0.0, plugin_msgs::LodRule::kMaxTransitionBand);
-    plugin_msgs::TransitionPlacement placement = plugin_msgs::LodRule{}.transition_placement;
+    plugin_msgs::TransitionPlacement placement = plugin_msgs::TransitionPlacement::before;
     bool placement_known = true;
     if (colon != std::string::npos) try {
             placement = plugin_msgs::detail::enum_from_json<plugin_msgs::TransitionPlacement>(
@@ -157,13 +158,14 @@ std::optional<Method> banded_full(const std::string& name) {
     if (!band || !placement_known)
         engine::fail("--methods: \"" + name +
                      "\": expected full@B or full@B:PLACEMENT with a transition band B in [0, 4] octaves and "
-                     "PLACEMENT one of inside, before, centred");
+                     "PLACEMENT one of inside, before, centred, auto");
     return Method{name,
                   "every level, selected by pixel coverage, transition band " + text.substr(0, colon) +
                       " octaves placed " + std::string(plugin_msgs::to_string(placement)),
                   [b = *band, p = placement](plugin_msgs::LodSettings& lod, SplatPassSettings&) {
                       lod.rule.mode = plugin_msgs::LodMode::full;
                       lod.rule.transition_band = static_cast<float>(b);
+                      lod.rule.overlap_transition_band = static_cast<float>(b);
                       lod.rule.transition_placement = p;
                   }};
 }

@@ -124,9 +124,9 @@ TEST(SplatEvalMetrics, UnknownMethodIsRefused) {
 }
 
 TEST(SplatEvalMetrics, FullWithABandIsAMethod) {
-    const auto methods = eval::select_methods("full,full_hard,full@0.5,full@1:inside");
-    ASSERT_EQ(methods.size(), 4u);
-    std::vector<double> bands;
+    const auto methods = eval::select_methods("full,full_hard,full@0.5,full@1:inside,full@0.25:auto");
+    ASSERT_EQ(methods.size(), 5u);
+    std::vector<double> bands, overlap_bands;
     std::vector<plugin_msgs::TransitionPlacement> placements;
     for (const auto& method : methods) {
         splat_lod::SplatPassSettings settings;
@@ -136,15 +136,20 @@ TEST(SplatEvalMetrics, FullWithABandIsAMethod) {
         const auto traits = plugin_msgs::traits(lod.rule.mode);
         EXPECT_TRUE(traits.all_levels && traits.coverage_rule);
         bands.push_back(traits.transitions ? lod.rule.transition_band : 0.0);
+        overlap_bands.push_back(traits.transitions ? lod.rule.overlap_transition_band : 0.0);
         placements.push_back(lod.rule.transition_placement);
     }
-    EXPECT_EQ(bands, (std::vector<double>{plugin_msgs::LodRule::kDefaultTransitionBand, 0.0, 0.5, 1.0}));
+    EXPECT_EQ(bands, (std::vector<double>{plugin_msgs::LodRule::kDefaultTransitionBand, 0.0, 0.5, 1.0, 0.25}));
+    EXPECT_EQ(overlap_bands,
+              (std::vector<double>{plugin_msgs::LodRule::kDefaultOverlapTransitionBand, 0.0, 0.5, 1.0, 0.25}));
     using plugin_msgs::TransitionPlacement;
-    EXPECT_EQ(placements, (std::vector<TransitionPlacement>{TransitionPlacement::before, TransitionPlacement::before,
-                                                            TransitionPlacement::before, TransitionPlacement::inside}));
+    EXPECT_EQ(placements,
+              (std::vector<TransitionPlacement>{TransitionPlacement::automatic, TransitionPlacement::automatic,
+                                                TransitionPlacement::before, TransitionPlacement::inside,
+                                                TransitionPlacement::automatic}));
     expect_error([] { eval::select_methods("full@-1"); }, {"full@-1", "[0, 4] octaves"});
     expect_error([] { eval::select_methods("full@wide"); }, {"full@wide"});
-    expect_error([] { eval::select_methods("full@0.5:after"); }, {"full@0.5:after", "inside, before, centred"});
+    expect_error([] { eval::select_methods("full@0.5:after"); }, {"full@0.5:after", "inside, before, centred, auto"});
     expect_error([] { eval::select_methods("full@0.5:"); }, {"full@0.5:"});
     expect_error([] { eval::select_methods("full@0.5,full@0.5"); }, {"listed twice"});
 }

@@ -89,6 +89,7 @@ TEST(SplatLodMsgs, LodRuleModesAreTheirTraits) {
     plugin_msgs::LodRule rule;
     rule.rel_min = 0.75f;
     rule.transition_placement = plugin_msgs::TransitionPlacement::centred;
+    rule.overlap_transition_band = 0.75f;
     json object = json::object();
     plugin_msgs::write_rule(object, rule);
     EXPECT_EQ(object.at("rel_min").get<float>(), 0.75f);
@@ -98,6 +99,34 @@ TEST(SplatLodMsgs, LodRuleModesAreTheirTraits) {
     EXPECT_EQ(rule.validate(), "");
     rule.rel_min = 2.0f;
     EXPECT_EQ(rule.validate("streamer.rule").rfind("streamer.rule.rel_min: ", 0), 0u) << rule.validate();
+}
+
+TEST(SplatLodMsgs, AutoPlacementIsResolvedPerAsset) {
+    plugin_msgs::LodRule rule;
+    rule.transition_band = 0.125f;
+    rule.overlap_transition_band = 0.75f;
+    ASSERT_EQ(rule.transition_placement, plugin_msgs::TransitionPlacement::automatic);
+    // Levels that overlap at their switches: inside, with the overlap band; otherwise before, with the band.
+    const plugin_msgs::LodRule overlap = rule.for_asset(true), abutting = rule.for_asset(false);
+    EXPECT_EQ(overlap.transition_placement, plugin_msgs::TransitionPlacement::inside);
+    EXPECT_EQ(overlap.transition_band, 0.75f);
+    EXPECT_EQ(abutting.transition_placement, plugin_msgs::TransitionPlacement::before);
+    EXPECT_EQ(abutting.transition_band, 0.125f);
+    plugin_msgs::LodRule expected = rule;
+    expected.transition_placement = plugin_msgs::TransitionPlacement::inside;
+    expected.transition_band = 0.75f;
+    EXPECT_EQ(overlap, expected) << "nothing else changes";
+    // Any other placement is the rule itself, whatever the asset.
+    for (const auto placement : {plugin_msgs::TransitionPlacement::inside, plugin_msgs::TransitionPlacement::before,
+                                 plugin_msgs::TransitionPlacement::centred}) {
+        rule.transition_placement = placement;
+        EXPECT_EQ(rule.for_asset(true), rule);
+        EXPECT_EQ(rule.for_asset(false), rule);
+    }
+    // Unresolved, auto shifts as before: no ramp past its switch.
+    const auto shifts = plugin_msgs::transition_shifts(plugin_msgs::TransitionPlacement::automatic, 1.0f);
+    EXPECT_EQ(shifts.small, 0.0f);
+    EXPECT_EQ(shifts.large, 0.0f);
 }
 
 TEST(SplatLodMsgs, LodSettingsEnumsTravelAsNames) {
@@ -144,6 +173,8 @@ TEST(SplatLodMsgs, LodSettingsRejectOutOfRangeValuesNamingTheKey) {
         {R"({"rel_max": -1})", "lod_settings.rel_max"},
         {R"({"transition_band": -0.5})", "lod_settings.transition_band: must be in [0, 4.0] octaves of coverage"},
         {R"({"transition_band": 9})", "lod_settings.transition_band"},
+        {R"({"overlap_transition_band": -1})", "lod_settings.overlap_transition_band: must be in [0, 4.0]"},
+        {R"({"overlap_transition_band": 4.5})", "lod_settings.overlap_transition_band"},
         {R"({"transition_placement": "after"})", "transition_placement"},
         {R"({"transition_placement": 1})", "transition_placement"},
     });

@@ -352,7 +352,9 @@ TEST_F(SplatPipelineTest, LevelColouringTintsEachLevel) {
 // Smooth transitions (the default): the GPU scales each selected Gaussian's opacity by
 // splat_lod::lod_weight, so the image equals the reference render of the cloud with opacities scaled
 // by the CPU's weights, and the same frame drawn twice is the same bytes (a pure function of the view).
-// The same for every placement of the band (before, the default; inside; centred on the switches).
+// The same for every placement of the band (inside; before; centred on the switches), and for the default
+// `auto`, which resolves it per cloud by its level handover (LodRule::for_asset): two clouds of the two
+// kinds in one frame fade each by its own.
 TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     std::vector<GaussianSpec> specs;
     for (int i = 0; i < 400; ++i) {
@@ -368,40 +370,37 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
     const auto ref_camera = ref::make_reference_camera(camera);
     const ref::ReferenceSettings settings;
     splat_lod::SplatRenderer pass(harness.engine().renderer());
-    std::shared_ptr<const splat_lod::SplatCloud> shared_cloud;
-    engine::Image smooth_image;
-    for (const auto placement : {plugin_msgs::TransitionPlacement::inside, plugin_msgs::TransitionPlacement::before,
-                                 plugin_msgs::TransitionPlacement::centred}) {
-        SCOPED_TRACE(std::string(plugin_msgs::to_string(placement)));
+    // Levels and bounds whose switches spread from 1.2 bands past this view's coverage to 1.2 bands before
+    // it: wherever the band lies against its switch, many are inside it.
+    const auto make_banded = [&](const splat_lod::LodRule& rule, splat_lod::LevelHandover handover,
+                                 glm::vec3 offset = glm::vec3(0.0f)) {
         auto cloud = engine::test::make_cloud(specs);
-        plugin_msgs::LodSettings lod;  // full, the default band
-        lod.rule.transition_placement = placement;
-        harness.engine().bus().publish(lod);
-        const splat_lod::LodRule rule = pass.lod().rule;
-        const double band = plugin_msgs::LodRule::kDefaultTransitionBand;
-        ASSERT_EQ(rule.transition_band, band);
-        ASSERT_EQ(rule.transition_placement, placement);
+        for (auto& position : cloud.positions) position += offset;
+        cloud.level_handover = handover;
+        const double band = rule.for_asset(handover == splat_lod::LevelHandover::overlapping).transition_band;
         for (std::size_t i = 0; i < cloud.size(); ++i) {
             const auto p = ref::project_gaussian(cloud, i, glm::dmat4(1.0), ref_camera, settings);
             const glm::dvec3 c = p.cov2d - glm::dvec3(settings.dilation, 0.0, settings.dilation);
             const double coverage = splat_lod::pixel_coverage(c.x, c.y, c.z, p.opacity);
             cloud.lod_level[i] = static_cast<std::uint8_t>(1 + i % 4);
-            // Switches spread from 1.2 bands past this view's coverage to 1.2 bands before it: wherever
-            // the band lies against its switch, many are inside it.
             const double octaves = band * 1.2 * std::sin(0.37 * static_cast<double>(i));
             cloud.coverage_max[i] = static_cast<float>(coverage / (rule.rel_max * std::exp2(octaves)));
             cloud.coverage_min[i] =
                 (i % 2 == 0) ? -1.0f : static_cast<float>(coverage / (rule.rel_min * std::exp2(octaves)));
         }
-        // The weights of what the GPU stores (compact: quantised bounds and opacities).
+        return cloud;
+    };
+    // The Gaussians the CPU draws of what the GPU stores (compact: quantised bounds and opacities), each
+    // with its weight in its opacity; `partial` counts those inside a band.
+    const auto cpu_weighted = [&](const splat_lod::SplatCloud& cloud, const splat_lod::LodRule& rule, int& partial) {
+        const splat_lod::LodRule asset = rule.for_asset(cloud.level_handover == splat_lod::LevelHandover::overlapping);
         auto weighted = splat_lod::compact_round_trip(cloud, cloud.sh_degree);
         std::vector<std::uint8_t> keep(cloud.size());
-        int partial = 0;
         for (std::size_t i = 0; i < weighted.size(); ++i) {
             const auto p = ref::project_gaussian(weighted, i, glm::dmat4(1.0), ref_camera, settings);
             const glm::dvec3 c = p.cov2d - glm::dvec3(settings.dilation, 0.0, settings.dilation);
             const double coverage = splat_lod::pixel_coverage(c.x, c.y, c.z, p.opacity);
-            const double w = splat_lod::lod_weight(rule, weighted.lod_level[i], coverage, weighted.coverage_min[i],
+            const double w = splat_lod::lod_weight(asset, weighted.lod_level[i], coverage, weighted.coverage_min[i],
                                                    weighted.coverage_max[i]);
             if (w > 0.0 && w < 1.0) ++partial;
             const double opacity = p.opacity * w;
@@ -409,6 +408,30 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
             if (keep[i]) weighted.opacity_logits[i] = static_cast<float>(std::log(opacity / (1.0 - opacity)));
         }
         weighted.keep_only(keep);
+        return weighted;
+    };
+    using plugin_msgs::TransitionPlacement;
+    using splat_lod::LevelHandover;
+    std::shared_ptr<const splat_lod::SplatCloud> shared_cloud;
+    engine::Image smooth_image;
+    const std::vector<std::pair<TransitionPlacement, LevelHandover>> cases{
+        {TransitionPlacement::inside, LevelHandover::overlapping},
+        {TransitionPlacement::before, LevelHandover::unknown},
+        {TransitionPlacement::centred, LevelHandover::abutting},
+        {TransitionPlacement::automatic, LevelHandover::overlapping},
+        {TransitionPlacement::automatic, LevelHandover::abutting}};
+    for (const auto& [placement, handover] : cases) {
+        SCOPED_TRACE(std::string(plugin_msgs::to_string(placement)) + ", levels " +
+                     splat_lod::level_handover_name(handover));
+        plugin_msgs::LodSettings lod;  // full, the default bands
+        lod.rule.transition_placement = placement;
+        harness.engine().bus().publish(lod);
+        const splat_lod::LodRule rule = pass.lod().rule;
+        ASSERT_EQ(rule.transition_band, plugin_msgs::LodRule::kDefaultTransitionBand);
+        ASSERT_EQ(rule.transition_placement, placement);
+        const auto cloud = make_banded(rule, handover);
+        int partial = 0;
+        const auto weighted = cpu_weighted(cloud, rule, partial);
         EXPECT_GT(partial, 60) << "the case is not vacuous: many Gaussians are inside the band";
         shared_cloud = shared(cloud);
         const auto gpu = harness.render({shared_cloud}, camera);
@@ -416,12 +439,35 @@ TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
         // Float on the GPU, double here: a weight at the 1/255 edge may fall either way.
         EXPECT_NEAR(static_cast<double>(pass.latest_statistics()->visible), static_cast<double>(weighted.size()), 2.0);
         EXPECT_EQ(harness.render({shared_cloud}, camera).rgba, gpu.rgba) << "the same frame twice";
-        if (placement == plugin_msgs::TransitionPlacement::before) smooth_image = gpu;
+        if (placement == TransitionPlacement::before) smooth_image = gpu;
     }
-    // The default placement (smooth_image) with the last cloud's levels and bounds, which are the same:
+    {
+        // Two clouds of the two kinds in one frame under auto, one moved a little (no two Gaussians at one
+        // depth): each fades by its own kind.
+        SCOPED_TRACE("auto, an overlapping and an abutting cloud in one frame");
+        plugin_msgs::LodSettings lod;
+        harness.engine().bus().publish(lod);
+        const splat_lod::LodRule rule = pass.lod().rule;
+        auto overlapping = make_banded(rule, LevelHandover::overlapping);
+        const auto abutting = make_banded(rule, LevelHandover::abutting, {0.05f, 0.03f, -0.02f});
+        int partial = 0;
+        auto expected = cpu_weighted(overlapping, rule, partial);
+        splat_lod::append_cloud(expected, cpu_weighted(abutting, rule, partial));
+        EXPECT_GT(partial, 120);
+        const auto gpu = harness.render({shared(overlapping), shared(abutting)}, camera);
+        EXPECT_GE(engine::compare_images(gpu, reference(expected, camera)).psnr_db, 40.0);
+        EXPECT_NEAR(static_cast<double>(pass.latest_statistics()->visible), static_cast<double>(expected.size()), 4.0);
+        // Both drawn as the abutting kind is another image.
+        overlapping.level_handover = LevelHandover::abutting;
+        auto both_before = cpu_weighted(overlapping, rule, partial);
+        splat_lod::append_cloud(both_before, cpu_weighted(abutting, rule, partial));
+        EXPECT_LT(engine::compare_images(reference(both_before, camera), reference(expected, camera)).psnr_db, 40.0);
+    }
+    // The placement before (smooth_image) with the last cloud's levels and bounds, which are the same:
     // hard switching draws another image from the same cloud.
     plugin_msgs::LodSettings hard;
     hard.rule.transition_band = 0.0f;
+    hard.rule.overlap_transition_band = 0.0f;
     harness.engine().bus().publish(hard);
     const auto hard_image = harness.render({shared_cloud}, camera);
     EXPECT_LT(engine::compare_images(hard_image, smooth_image).psnr_db, 40.0);

@@ -96,6 +96,7 @@ private:
     }
 
     void read_lod_attributes(SplatCloud& cloud, LoadReport& report) const {
+        read_level_handover(cloud, report);
         if (vertex_.find("coverage_min")) cloud.coverage_min = required("coverage_min");
         if (vertex_.find("coverage_max")) cloud.coverage_max = required("coverage_max");
         if (!vertex_.find("lod_level")) return;
@@ -115,6 +116,20 @@ private:
         if (clamped > 0)
             report.warnings.push_back(std::to_string(clamped) +
                                       " lod_level values were not integers in 0..255 and were rounded/clamped");
+    }
+
+    // The header comment write_inria_ply leaves for a baked cloud (kLevelHandoverComment).
+    void read_level_handover(SplatCloud& cloud, LoadReport& report) const {
+        const std::string prefix = std::string(kLevelHandoverComment) + " ";
+        for (const std::string& comment : ply_.comments) {
+            if (comment.rfind(prefix, 0) != 0) continue;
+            const std::string value = comment.substr(prefix.size());
+            if (const auto handover = parse_level_handover(value)) {
+                cloud.level_handover = *handover;
+            } else {
+                report.warnings.push_back("unknown level handover \"" + value + "\" in the header, read as unknown");
+            }
+        }
     }
 
     void read_extras(SplatCloud& cloud) const {

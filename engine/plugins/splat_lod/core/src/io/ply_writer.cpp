@@ -31,6 +31,8 @@ private:
 
 std::string make_header(const SplatCloud& cloud, bool lod) {
     std::string h = "ply\nformat binary_little_endian 1.0\ncomment written by splat_lod\n";
+    if (lod && cloud.level_handover != LevelHandover::unknown)
+        h += "comment " + std::string(kLevelHandoverComment) + " " + level_handover_name(cloud.level_handover) + "\n";
     h += "element vertex " + std::to_string(cloud.size()) + "\n";
     auto prop = [&h](const std::string& name) { h += "property float " + name + "\n"; };
     for (const char* name : {"x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1", "f_dc_2"}) prop(name);

@@ -20,9 +20,15 @@ bool lod_selected(uint level, float coverage, float coverage_min, float coverage
     return not_too_large && not_too_small;
 }
 
-bool smooth_transitions() {
+// The fade of an instance's Gaussians (GpuInstance::info.z): x the band in octaves, y and z the shifts
+// of its "too small" and "too large" ramps (FrameUniforms::transitions).
+vec3 instance_transition(uint info_z) {
+    return frame.transitions[(info_z & SPLAT_INSTANCE_OVERLAPPING_LEVELS) != 0u ? 1 : 0].xyz;
+}
+
+bool smooth_transitions(vec3 transition) {
     const uint both = SPLAT_LOD_COVERAGE_RULE | SPLAT_LOD_TRANSITIONS;
-    return (frame.lod_flags & both) == both && frame.transition_band > 0.0;
+    return (frame.lod_flags & both) == both && transition.x > 0.0;
 }
 
 // The rule's two tests as log2 distances from their switches (> 0: the test fails by that many
@@ -36,15 +42,15 @@ vec2 lod_switch_octaves(uint level, float coverage, float coverage_min, float co
 }
 
 // The opacity weight of lod_weight in splat_lod/core/lod_selection.h: linear ramps in log2 coverage,
-// transition_band octaves wide, each lying transition_shifts octaves past its switch toward the coarser
-// side; 0/1 by lod_selected when transitions are hard.
-float lod_weight(uint level, float coverage, float coverage_min, float coverage_max) {
-    if (!smooth_transitions() || !(coverage > 0.0))
+// transition.x octaves wide, the "too small" one lying transition.y and the "too large" one transition.z
+// octaves past its switch toward the coarser side (instance_transition); 0/1 by lod_selected when
+// transitions are hard.
+float lod_weight(uint level, float coverage, float coverage_min, float coverage_max, vec3 transition) {
+    if (!smooth_transitions(transition) || !(coverage > 0.0))
         return lod_selected(level, coverage, coverage_min, coverage_max) ? 1.0 : 0.0;
     vec2 o = lod_switch_octaves(level, coverage, coverage_min, coverage_max);
-    float band = frame.transition_band;
-    vec2 shift = frame.transition_shifts;  // x: the "too small" ramp's, y: the "too large" ramp's
-    return clamp(1.0 - (o.x + shift.y) / band, 0.0, 1.0) * clamp((o.y + shift.x) / band, 0.0, 1.0);
+    float band = transition.x;
+    return clamp(1.0 - (o.x + transition.z) / band, 0.0, 1.0) * clamp((o.y + transition.y) / band, 0.0, 1.0);
 }
 
 // Debug view: each level tinted (1 grey, 2 green, 3 blue, 4 red), keeping the shading's brightness.
@@ -60,16 +66,16 @@ vec3 level_colour(uint level, vec3 colour) {
 // log2 β > x − b + s_large on, "not too small" up to log2 β < y + s_small, with x, y of
 // lod_switch_octaves, b the transition band and s the ramps' shifts (all 0 when transitions are hard:
 // then the bounds are inclusive, as in lod_selected).
-ivec2 budget_bins(uint level, float coverage, float coverage_min, float coverage_max) {
+ivec2 budget_bins(uint level, float coverage, float coverage_min, float coverage_max, vec3 transition) {
     const ivec2 none = ivec2(1, 0);
     bool all_levels = (frame.lod_flags & SPLAT_LOD_ALL_LEVELS) != 0u;
     if (!all_levels && level != frame.finest_level) return none;
     if ((frame.lod_flags & SPLAT_LOD_COVERAGE_RULE) == 0u) return ivec2(0, SPLAT_BUDGET_BINS - 1);
     if (!(coverage > 0.0)) return lod_selected(level, coverage, coverage_min, coverage_max) ? ivec2(0) : none;
     vec2 o = lod_switch_octaves(level, coverage, coverage_min, coverage_max);
-    bool smooth_fade = smooth_transitions();
-    float b = smooth_fade ? frame.transition_band : 0.0;
-    vec2 shift = smooth_fade ? frame.transition_shifts : vec2(0.0);
+    bool smooth_fade = smooth_transitions(transition);
+    float b = smooth_fade ? transition.x : 0.0;
+    vec2 shift = smooth_fade ? transition.yz : vec2(0.0);
     // With a ramp the weight is 0 exactly at x = b − s_large and y = −s_small, so those bounds are
     // exclusive: nudged by a hair.
     float lo_octaves = o.x - b + shift.y + (smooth_fade ? 1e-6 : 0.0);

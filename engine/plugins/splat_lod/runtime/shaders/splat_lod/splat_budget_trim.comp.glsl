@@ -14,6 +14,7 @@ layout(std430, binding = SPLAT_BINDING_CLUSTER_SPLATS) readonly buffer ClusterSp
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
 layout(std430, binding = SPLAT_BINDING_BUDGET) readonly buffer Budget { SplatBudgetState budget; };
+layout(std430, binding = SPLAT_BINDING_INSTANCES) readonly buffer Instances { GpuInstance instances[]; };
 
 #include "common_splat_storage.glsl"
 #include "common_splat_lod.glsl"
@@ -31,10 +32,14 @@ uint trim(uint cluster, uint entry) {
     float opacity = projected[entry].mean_depth.w;
     if (!(lo <= chosen && chosen <= hi && coverage_bin(coverage) >= cut)) {
         opacity = 0.0;
-    } else if (smooth_transitions()) {
-        vec4 lod = load_lod(index);
-        float beta = chosen == 0u ? 1.0 : exp2(float(chosen) / SPLAT_BUDGET_BINS_PER_OCTAVE);
-        opacity *= lod_weight(level, coverage / beta, lod.x, lod.y);
+    } else {
+        uint instance = floatBitsToUint(load_gaussian(index).covariance_b.w);
+        vec3 transition = instance_transition(instances[instance].info.z);
+        if (smooth_transitions(transition)) {
+            vec4 lod = load_lod(index);
+            float beta = chosen == 0u ? 1.0 : exp2(float(chosen) / SPLAT_BUDGET_BINS_PER_OCTAVE);
+            opacity *= lod_weight(level, coverage / beta, lod.x, lod.y, transition);
+        }
     }
     // The footprint shrinks with the opacity; one that holds no pixel centre any more draws nothing.
     uint tiles = splat_tile_count(projected[entry].mean_depth.xy, projected[entry].conic, opacity);

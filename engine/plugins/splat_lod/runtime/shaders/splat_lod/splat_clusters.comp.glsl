@@ -12,6 +12,8 @@ layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats
 layout(std430, binding = SPLAT_BINDING_CLUSTERS) readonly buffer Clusters { GpuCluster clusters[]; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
 
+#include "common_splat_lod.glsl"
+
 const mat3 VIEW_TO_CAMERA = mat3(1, 0, 0, 0, -1, 0, 0, 0, -1);
 
 // True when no Gaussian of the cluster can pass "not too small" (docs/algorithms.md §3) this frame. For a
@@ -67,10 +69,11 @@ bool skip_cluster(uint cluster) {
     float jacobian = sqrt(fx * fx * (1.0 + lx * lx) + fy * fy * (1.0 + ly * ly)) / z_min;
     // × the coverage scale: selection uses the coverage at the output resolution (splat_project).
     float scale = 2.0 * stretch * jacobian * frame.coverage_scale * 1.001;  // margin for float rounding
-    // With smooth transitions a Gaussian's weight is 0 from transition_shifts.x octaves past its "too
-    // small" switch on (lod_weight): the thresholds move down by that much (by nothing when its fade
-    // lies before the switch, placements inside and before, or the mode has no transitions).
-    float shift = exp2(-frame.transition_shifts.x);
+    // With smooth transitions a Gaussian's weight is 0 from its instance's "too small" shift past that
+    // switch on (lod_weight): the thresholds move down by that much (by nothing when its fade lies
+    // before the switch, placements inside and before, or the mode has no transitions).
+    vec3 transition = instance_transition(inst.info.z);
+    float shift = exp2(smooth_transitions(transition) ? -transition.y : 0.0);
     return c.bounds.x * scale < frame.size_threshold * shift && c.bounds.y * scale < frame.rel_min * shift;
 }
 

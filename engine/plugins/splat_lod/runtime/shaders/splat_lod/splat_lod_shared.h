@@ -132,10 +132,14 @@ using mat4 = glm::mat4;
 // GpuInstance::info.z: the SH degree in the low byte; SPLAT_INSTANCE_HIDDEN set for a component that is
 // resident but not drawn (SplatComponent::visible false): step 1a drops its clusters before any other
 // test; SPLAT_INSTANCE_DISSOLVE set when the opacity factor (info.x) is the fraction of the Gaussians
-// drawn rather than a factor on every opacity (SplatComponent::dissolve).
+// drawn rather than a factor on every opacity (SplatComponent::dissolve); SPLAT_INSTANCE_OVERLAPPING_LEVELS
+// (below).
 #define SPLAT_INSTANCE_SH_DEGREE_MASK 0xFFu
 #define SPLAT_INSTANCE_HIDDEN 0x100u
 #define SPLAT_INSTANCE_DISSOLVE 0x200u
+// Set for a cloud whose levels overlap at their switches (LevelHandover::overlapping): its Gaussians
+// fade by FrameUniforms::transitions[1], the others by transitions[0].
+#define SPLAT_INSTANCE_OVERLAPPING_LEVELS 0x400u
 
 // Gaussians with their 3D covariance precomputed (local space of the cloud).
 SPLAT_LOD_STRUCT(GpuGaussian) {
@@ -224,18 +228,20 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     float render_scale;          // s (1 natively)
     float inverse_render_scale;  // 1/s
     uint splat_budget;           // at most this many Gaussians drawn (0: no budget)
-    float transition_band;       // octaves of coverage over which a Gaussian fades (0: hard switching)
-    uint exact_tiles;            // 1: a splat's keys are the tiles its ellipse touches, 0: its bounding box
-    uint key_depth_bits;         // D > 0: one-word sort keys (tile << D | depth_q), 0: (depth bits, tile)
-    uint splat_capacity;         // ProjectedSplat entries SPLAT_BINDING_PROJECTED holds
-    uint sh_storage_degree;      // SH degree the scene stores (compact: how its SH words are laid out)
-    uint separate_selection;     // 1: coverage and skipping by selection_view (a stereo eye), 0: by view
+    uint pad0;
+    uint exact_tiles;         // 1: a splat's keys are the tiles its ellipse touches, 0: its bounding box
+    uint key_depth_bits;      // D > 0: one-word sort keys (tile << D | depth_q), 0: (depth bits, tile)
+    uint splat_capacity;      // ProjectedSplat entries SPLAT_BINDING_PROJECTED holds
+    uint sh_storage_degree;   // SH degree the scene stores (compact: how its SH words are laid out)
+    uint separate_selection;  // 1: coverage and skipping by selection_view (a stereo eye), 0: by view
     uint pad1;
     mat4 selection_view;  // world → view of the camera that selects (CameraView::selection_view)
-    // Octaves each ramp lies past its switch (plugin_msgs::transition_shifts; 0 without transitions):
-    // x for the "too small" fade-out, y for the "too large" fade-in.
-    vec2 transition_shifts;
-    vec2 pad2;
+    // How Gaussians fade at the rule's switches, [0] for instances without SPLAT_INSTANCE_OVERLAPPING_LEVELS
+    // and [1] for those with it (the rule resolved per asset, plugin_msgs::LodRule::for_asset): x the
+    // band in octaves of coverage (0: hard switching, and always 0 in modes without transitions), y and
+    // z how far the "too small" fade-out and the "too large" fade-in lie past their switch
+    // (plugin_msgs::transition_shifts), w unused.
+    vec4 transitions[2];
 };
 
 // Written by the GPU each frame; the CPU reads `projected` and the pair total after step 2, and the

@@ -106,8 +106,9 @@ uint project(uint index, out ProjectedSplat p) {
     // scale after the mip filter, so that a budget that does not bind draws the same bytes.
     bool budgeted = frame.splat_budget != 0u;
     uint level = clamp(uint(g.lod.z), 1u, 4u);
-    ivec2 bins = budgeted ? budget_bins(uint(g.lod.z), coverage, g.lod.x, g.lod.y) : ivec2(0);
-    float weight = budgeted ? 1.0 : lod_weight(uint(g.lod.z), coverage, g.lod.x, g.lod.y);
+    vec3 transition = instance_transition(inst.info.z);
+    ivec2 bins = budgeted ? budget_bins(uint(g.lod.z), coverage, g.lod.x, g.lod.y, transition) : ivec2(0);
+    float weight = budgeted ? 1.0 : lod_weight(uint(g.lod.z), coverage, g.lod.x, g.lod.y, transition);
     if (bins.y < bins.x || !(weight > 0.0)) return 0u;
     float dilation = frame.dilation;
     cov[0][0] += dilation;
@@ -137,7 +138,7 @@ uint project(uint index, out ProjectedSplat p) {
     // drops those at any β. The tiles counted here are the unweighted footprint's, which holds every
     // weight's; the trim recounts them at its β.
     if (budgeted && bins.x == 0) {
-        float weighted = opacity * lod_weight(uint(g.lod.z), coverage, g.lod.x, g.lod.y);
+        float weighted = opacity * lod_weight(uint(g.lod.z), coverage, g.lod.x, g.lod.y, transition);
         if (splat_tile_count(mean, conic, weighted) == 0u) {
             bins.x = 1;
             if (bins.y < 1) return 0u;

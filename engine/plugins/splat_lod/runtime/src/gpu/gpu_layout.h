@@ -19,7 +19,7 @@ static_assert(sizeof(GpuCluster) == 48);
 static_assert(sizeof(GpuPageCodec) == 80);
 static_assert(SPLAT_COMPACT_WORDS == kCompactWords && SPLAT_PROJECT_WORKGROUP_SIZE == kCompactPageSize);
 static_assert(sizeof(ProjectedSplat) == 48);
-static_assert(sizeof(FrameUniforms) == 320);
+static_assert(sizeof(FrameUniforms) == 336);
 // std140 offsets of every FrameUniforms member.
 static_assert(offsetof(FrameUniforms, camera_position) == 64);
 static_assert(offsetof(FrameUniforms, znear) == 76);
@@ -36,12 +36,11 @@ static_assert(offsetof(FrameUniforms, lod_flags) == 176);
 static_assert(offsetof(FrameUniforms, output_size) == 192);
 static_assert(offsetof(FrameUniforms, render_scale) == 200);
 static_assert(offsetof(FrameUniforms, splat_budget) == 208);
-static_assert(offsetof(FrameUniforms, transition_band) == 212);
 static_assert(offsetof(FrameUniforms, exact_tiles) == 216);
 static_assert(offsetof(FrameUniforms, key_depth_bits) == 220);
 static_assert(offsetof(FrameUniforms, splat_capacity) == 224);
 static_assert(offsetof(FrameUniforms, selection_view) == 240);
-static_assert(offsetof(FrameUniforms, transition_shifts) == 304);
+static_assert(offsetof(FrameUniforms, transitions) == 304);
 static_assert(sizeof(FrameCounters) == 80);
 static_assert(offsetof(FrameCounters, depth_range) == 64);
 static_assert(offsetof(FrameCounters, budget) == 48);
@@ -60,13 +59,16 @@ inline void write_lod_rule(FrameUniforms& u, const plugin_msgs::LodRule& rule) {
     u.rel_max = rule.rel_max;
     u.lod_flags = lod_flags(plugin_msgs::traits(rule.mode));
     u.finest_level = static_cast<std::uint32_t>(kFinestLevel);
-    u.transition_band = rule.transition_band;
-    // 0 without transitions, so that skipping keeps the hard rule's thresholds there.
-    const plugin_msgs::TransitionShifts shifts =
-        plugin_msgs::traits(rule.mode).transitions
-            ? plugin_msgs::transition_shifts(rule.transition_placement, rule.transition_band)
-            : plugin_msgs::TransitionShifts{};
-    u.transition_shifts = glm::vec2(shifts.small, shifts.large);
+    // Per asset kind (FrameUniforms::transitions); 0 without transitions, so that skipping keeps the
+    // hard rule's thresholds there.
+    for (const bool overlap : {false, true}) {
+        const plugin_msgs::LodRule asset = rule.for_asset(overlap);
+        const plugin_msgs::TransitionShifts shifts =
+            plugin_msgs::transition_shifts(asset.transition_placement, asset.transition_band);
+        u.transitions[overlap ? 1 : 0] = plugin_msgs::traits(rule.mode).transitions
+                                             ? glm::vec4(asset.transition_band, shifts.small, shifts.large, 0.0f)
+                                             : glm::vec4(0.0f);
+    }
 }
 
 static_assert(static_cast<int>(plugin_msgs::Upscaler::spline) == SPLAT_UPSCALER_SPLINE);

@@ -424,7 +424,10 @@ void GpuScene::upload_instances(const std::vector<const SplatComponent*>& compon
         inst.info = glm::uvec4(std::bit_cast<std::uint32_t>(opacity), static_cast<std::uint32_t>(slot.cloud->size()),
                                static_cast<std::uint32_t>(slot.sh_degree) |
                                    (hidden ? std::uint32_t{SPLAT_INSTANCE_HIDDEN} : 0u) |
-                                   (component.dissolve ? std::uint32_t{SPLAT_INSTANCE_DISSOLVE} : 0u),
+                                   (component.dissolve ? std::uint32_t{SPLAT_INSTANCE_DISSOLVE} : 0u) |
+                                   (slot.cloud->level_handover == LevelHandover::overlapping
+                                        ? std::uint32_t{SPLAT_INSTANCE_OVERLAPPING_LEVELS}
+                                        : 0u),
                                std::bit_cast<std::uint32_t>(spectral_norm(glm::mat3(inst.model))));
     }
     const std::size_t bytes = std::max<std::size_t>(instances.size(), 1) * sizeof(GpuInstance);

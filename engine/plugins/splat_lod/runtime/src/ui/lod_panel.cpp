@@ -62,6 +62,8 @@ void LodPanel::draw() {
     ImGui::DragFloat("transition band (octaves, 0: hard)", &rule.transition_band, 0.005f, 0.0f,
                      plugin_msgs::LodRule::kMaxTransitionBand, "%.4f");
     enum_combo("transition placement", rule.transition_placement, plugin_msgs::kTransitionPlacementNames);
+    ImGui::DragFloat("overlapping levels' band (auto)", &rule.overlap_transition_band, 0.01f, 0.0f,
+                     plugin_msgs::LodRule::kMaxTransitionBand, "%.3f");
     ImGui::Checkbox("mip filter", &edit.mip_filter);
     ImGui::Checkbox("level colouring", &edit.level_colouring);
     // The splat budget in thousands of Gaussians per frame (0: none).

@@ -21,7 +21,7 @@
 namespace splat_lod::bake {
 
 // Part of every cache key: raised whenever the bake or the asset format changes what a key stands for.
-inline constexpr int kLodCacheFormatVersion = 1;
+inline constexpr int kLodCacheFormatVersion = 2;  // 2: the level handover in the header
 
 // $XDG_CACHE_HOME/splat_engine/lod when XDG_CACHE_HOME is an absolute path, else
 // $HOME/.cache/splat_engine/lod. Throws engine::Error when neither variable gives one.

@@ -30,13 +30,14 @@ bool lod_selected(const LodRule& rule, int level, double coverage, double covera
 //   not too large: x = log2(S / (S_max·S_rel_max)),             w_large = clamp(1 − (x + s_large)/b, 0, 1);
 //   not too small: y = log2(max(S / S_T, S / (S_min·S_rel_min))), w_small = clamp((y + s_small)/b, 0, 1);
 // the weight is w_large·w_small (the exemptions of the finest and coarsest level and of unset bounds
-// give 1). Placed `inside` (the default) a Gaussian fades out over the b octaves before its "too small"
-// switch and fades in over the b octaves past its "too large" switch: both ramps lie where the hard
-// rule draws it, so nothing is drawn that the hard rule does not draw. Placed `before`, a coarse
-// Gaussian fades in over the b octaves before its "too large" switch, so that w_small(t) and
-// w_large(t) of one log distance sum to 1 (a hand-over at one coverage is continuous in opacity);
-// `centred` puts both ramps half past their switch. Outside the band the weight equals the hard rule.
-// With b = 0 or in a mode without transitions it is 1 where lod_selected holds and 0 elsewhere.
+// give 1). Placed `inside` a Gaussian fades out over the b octaves before its "too small" switch and
+// fades in over the b octaves past its "too large" switch: both ramps lie where the hard rule draws
+// it, so nothing is drawn that the hard rule does not draw. Placed `before`, a coarse Gaussian fades
+// in over the b octaves before its "too large" switch, so that w_small(t) and w_large(t) of one log
+// distance sum to 1 (a hand-over at one coverage is continuous in opacity); `centred` puts both ramps
+// half past their switch. The placement `auto` is resolved per asset by LodRule::for_asset (unresolved
+// it weighs as `before`). Outside the band the weight equals the hard rule. With b = 0 or in a mode
+// without transitions it is 1 where lod_selected holds and 0 elsewhere.
 double lod_weight(const LodRule& rule, int level, double coverage, double coverage_min, double coverage_max,
                   int coarsest_level = kDefaultCoarsestLevel);
 

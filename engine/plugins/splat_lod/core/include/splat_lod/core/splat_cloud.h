@@ -4,6 +4,7 @@
 // Every reader returns one of these after sanitise(); every writer takes one.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,18 @@ constexpr int sh_rest_coeffs(int degree) {
     return (degree + 1) * (degree + 1) - 1;
 }
 
+// How a baked cloud's levels hand over, which decides where its fades lie under the transition
+// placement `auto` (plugin_msgs::LodRule::for_asset): `overlapping` where the bake left the ranges of
+// consecutive levels overlapping (a fine Gaussian and its coarser replacement both drawn over a range
+// of distances), `abutting` where it capped them to meet at one coverage (splat_bake's member ranges,
+// the forward-capture recipe), `unknown` for anything else (files from elsewhere, world chunks). Kept
+// in a baked PLY's header (splat_io.h).
+enum class LevelHandover { unknown, overlapping, abutting };
+const char* level_handover_name(LevelHandover handover);
+std::optional<LevelHandover> parse_level_handover(const std::string& name);
+// The PLY header comment that carries it: "comment splat_lod level_handover <name>".
+inline constexpr const char* kLevelHandoverComment = "splat_lod level_handover";
+
 struct SplatCloud {
     std::vector<glm::vec3> positions;
     std::vector<Rotation> rotations;
@@ -70,6 +83,7 @@ struct SplatCloud {
     std::vector<std::uint8_t> lod_level;
     std::vector<float> coverage_min;
     std::vector<float> coverage_max;
+    LevelHandover level_handover = LevelHandover::unknown;
 
     std::vector<ExtraProperty> extras;
 
@@ -103,8 +117,8 @@ struct SplatCloud {
 };
 
 // Appends `part` to `into` (a capture read in pieces): the result has the higher of the two SH degrees
-// (missing coefficients zero), and keeps only the extra properties both have (by name). An empty
-// `into` without extras simply becomes `part`.
+// (missing coefficients zero), keeps only the extra properties both have (by name), and its level
+// handover becomes unknown where the two differ. An empty `into` without extras simply becomes `part`.
 void append_cloud(SplatCloud& into, SplatCloud&& part);
 
 // Drops every Gaussian with a NaN or Inf in any attribute or a zero quaternion, normalises the

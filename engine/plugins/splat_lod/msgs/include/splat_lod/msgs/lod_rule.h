@@ -64,17 +64,20 @@ inline void from_json(const nlohmann::json& json, LodMode& mode) {
 
 // Where each Gaussian's fade lies against its switch (docs/algorithms.md §3, "Smooth transitions").
 enum class TransitionPlacement {
-    inside,   // within the range where the hard rule draws it: a fine Gaussian fades out over the band
-              // before its "too small" switch, a coarse one fades in over the band past its "too large"
-              // switch; nothing is drawn that the hard rule does not draw, and a hand-over at one
-              // coverage dips (docs/lod.md, "Transitions": better on orbit captures, worse on forward ones)
-    before,   // both on the finer side (the default): a coarse Gaussian fades in over the band before its
-              // "too large" switch (drawn where the hard rule does not yet draw it), so a hand-over at
-              // one coverage sums to 1
-    centred,  // both centred on their switch: a hand-over sums to 1, and a fine Gaussian is drawn past
-              // its "too small" switch
+    inside,     // within the range where the hard rule draws it: a fine Gaussian fades out over the band
+                // before its "too small" switch, a coarse one fades in over the band past its "too large"
+                // switch; nothing is drawn that the hard rule does not draw, and a hand-over at one
+                // coverage dips (docs/lod.md, "Transitions": better on orbit captures, worse on forward ones)
+    before,     // both on the finer side: a coarse Gaussian fades in over the band before its "too large"
+                // switch (drawn where the hard rule does not yet draw it), so a hand-over at one coverage
+                // sums to 1
+    centred,    // both centred on their switch: a hand-over sums to 1, and a fine Gaussian is drawn past
+                // its "too small" switch
+    automatic,  // "auto", the default: per asset, by how its levels hand over (LevelHandover in
+                // splat_lod/core/splat_cloud.h): `inside` with overlap_transition_band where its bake left
+                // the levels' ranges overlapping, `before` with transition_band everywhere else
 };
-inline constexpr std::array<std::string_view, 3> kTransitionPlacementNames{"inside", "before", "centred"};
+inline constexpr std::array<std::string_view, 4> kTransitionPlacementNames{"inside", "before", "centred", "auto"};
 
 inline std::string_view to_string(TransitionPlacement placement) {
     return detail::enum_name(kTransitionPlacementNames, placement);
@@ -96,6 +99,7 @@ constexpr TransitionShifts transition_shifts(TransitionPlacement placement, floa
         case TransitionPlacement::inside:
             return {0.0f, band};
         case TransitionPlacement::before:
+        case TransitionPlacement::automatic:  // unresolved (LodRule::for_asset): as `before`
             return {0.0f, 0.0f};
         case TransitionPlacement::centred:
             return {0.5f * band, 0.5f * band};
@@ -115,7 +119,16 @@ struct LodRule {
     float transition_band = kDefaultTransitionBand;
     static constexpr float kDefaultTransitionBand = 0.0625f;
     static constexpr float kMaxTransitionBand = 4.0f;
-    TransitionPlacement transition_placement = TransitionPlacement::before;
+    TransitionPlacement transition_placement = TransitionPlacement::automatic;
+    // The band of an asset whose levels overlap at their switches, under the placement `auto` (placed
+    // `inside` there; docs/lod.md, "Transitions", has how it was chosen).
+    float overlap_transition_band = kDefaultOverlapTransitionBand;
+    static constexpr float kDefaultOverlapTransitionBand = 0.5f;
+
+    // The rule one asset is drawn with: under `auto` its placement and band resolved by whether the
+    // asset's levels overlap at their switches (`inside`, overlap_transition_band) or not (`before`,
+    // transition_band); any other placement is the rule itself.
+    LodRule for_asset(bool levels_overlap) const;
 
     // Empty when the rule is usable, otherwise "<kind>.<key>: <why>". NaN fails every check.
     std::string validate(std::string_view kind = "lod_rule") const;
@@ -147,9 +160,21 @@ inline std::string LodRule::validate(std::string_view kind) const {
     if (!(transition_band >= 0.0f && transition_band <= kMaxTransitionBand))
         return error("transition_band", "must be in [0, " + number_text(kMaxTransitionBand) +
                                             "] octaves of coverage, got " + number_text(transition_band));
+    if (!(overlap_transition_band >= 0.0f && overlap_transition_band <= kMaxTransitionBand))
+        return error("overlap_transition_band", "must be in [0, " + number_text(kMaxTransitionBand) +
+                                                    "] octaves of coverage, got " +
+                                                    number_text(overlap_transition_band));
     if (detail::enum_name(kTransitionPlacementNames, transition_placement) == "<invalid>")
         return error("transition_placement", "invalid enumerator");
     return {};
+}
+
+inline LodRule LodRule::for_asset(bool levels_overlap) const {
+    if (transition_placement != TransitionPlacement::automatic) return *this;
+    LodRule rule = *this;
+    rule.transition_placement = levels_overlap ? TransitionPlacement::inside : TransitionPlacement::before;
+    if (levels_overlap) rule.transition_band = overlap_transition_band;
+    return rule;
 }
 
 // The rule's keys, written into (and read from) the object of whatever carries it: a LodSettings
@@ -161,6 +186,7 @@ inline void write_rule(nlohmann::json& object, const LodRule& rule) {
     object["rel_max"] = rule.rel_max;
     object["transition_band"] = rule.transition_band;
     object["transition_placement"] = rule.transition_placement;
+    object["overlap_transition_band"] = rule.overlap_transition_band;
 }
 inline void read_rule(const nlohmann::json& object, std::string_view kind, LodRule& rule) {
     detail::read(object, kind, "mode", rule.mode);
@@ -169,6 +195,7 @@ inline void read_rule(const nlohmann::json& object, std::string_view kind, LodRu
     detail::read(object, kind, "rel_max", rule.rel_max);
     detail::read(object, kind, "transition_band", rule.transition_band);
     detail::read(object, kind, "transition_placement", rule.transition_placement);
+    detail::read(object, kind, "overlap_transition_band", rule.overlap_transition_band);
 }
 
 }  // namespace plugin_msgs

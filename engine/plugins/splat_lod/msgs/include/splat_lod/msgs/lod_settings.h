@@ -73,9 +73,10 @@ inline void to_json(nlohmann::json& json, const LodSettings& s) {
 inline void from_json(const nlohmann::json& json, LodSettings& s) {
     constexpr auto kind = LodSettings::kind;
     detail::require_object(json, kind);
-    detail::only_keys(json, kind,
-                      {"mode", "size_threshold_px", "rel_min", "rel_max", "render_scale", "upscaler", "mip_filter",
-                       "level_colouring", "splat_budget", "transition_band", "transition_placement"});
+    detail::only_keys(
+        json, kind,
+        {"mode", "size_threshold_px", "rel_min", "rel_max", "render_scale", "upscaler", "mip_filter", "level_colouring",
+         "splat_budget", "transition_band", "transition_placement", "overlap_transition_band"});
     LodSettings read;
     read_rule(json, kind, read.rule);
     detail::read(json, kind, "render_scale", read.render_scale);
