@@ -147,6 +147,10 @@ int run(Options& o) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::fprintf(stdout, "%s", bake::format_summary(summary).c_str());
     std::fprintf(stdout, "wrote %s (%zu Gaussians) in %.1f s\n", o.output.c_str(), baked.size(), seconds);
+    std::fprintf(
+        stdout, "level handover: %s (the default transition placement, auto, fades the levels %s)\n",
+        splat_lod::level_handover_name(baked.level_handover),
+        baked.level_handover == splat_lod::LevelHandover::overlapping ? "inside their ranges" : "before each switch");
     return 0;
 }
 

@@ -1,6 +1,7 @@
 #include "splat_lod/core/splat_cloud.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "engine/core/error.h"
@@ -150,21 +151,18 @@ void SplatCloud::keep_only(const std::vector<std::uint8_t>& keep) {
     for (auto& extra : extras) compact(extra.values, keep, 1);
 }
 
+namespace {
+constexpr std::array<const char*, 3> kLevelHandoverNames{"unknown", "overlapping", "abutting"};  // enum order
+}  // namespace
+
 const char* level_handover_name(LevelHandover handover) {
-    switch (handover) {
-        case LevelHandover::overlapping:
-            return "overlapping";
-        case LevelHandover::abutting:
-            return "abutting";
-        case LevelHandover::unknown:
-            break;
-    }
-    return "unknown";
+    const auto index = static_cast<std::size_t>(handover);
+    return index < kLevelHandoverNames.size() ? kLevelHandoverNames[index] : "unknown";
 }
 
 std::optional<LevelHandover> parse_level_handover(const std::string& name) {
-    for (const LevelHandover h : {LevelHandover::unknown, LevelHandover::overlapping, LevelHandover::abutting})
-        if (name == level_handover_name(h)) return h;
+    for (std::size_t i = 0; i < kLevelHandoverNames.size(); ++i)
+        if (name == kLevelHandoverNames[i]) return static_cast<LevelHandover>(i);
     return std::nullopt;
 }
 
