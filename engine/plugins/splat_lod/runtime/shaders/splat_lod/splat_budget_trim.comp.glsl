@@ -30,10 +30,10 @@ uint trim(uint cluster, uint entry) {
     float coverage = projected[entry].color.w;
     uint chosen = budget.choice.x, cut = budget.choice.y;
     float opacity = projected[entry].mean_depth.w;
+    uint instance = floatBitsToUint(load_gaussian(index).covariance_b.w);
     if (!(lo <= chosen && chosen <= hi && coverage_bin(coverage) >= cut)) {
         opacity = 0.0;
     } else {
-        uint instance = floatBitsToUint(load_gaussian(index).covariance_b.w);
         vec3 transition = instance_transition(instances[instance].info.z);
         if (smooth_transitions(transition)) {
             vec4 lod = load_lod(index);
@@ -45,7 +45,7 @@ uint trim(uint cluster, uint entry) {
     uint tiles = splat_tile_count(projected[entry].mean_depth.xy, projected[entry].conic, opacity);
     projected[entry].mean_depth.w = tiles > 0u ? opacity : 0.0;
     // The coverage is read: the instance takes its place, for picking (ProjectedSplat::color).
-    projected[entry].color.w = uintBitsToFloat(SPLAT_BUDGET_PACK_FLAG | floatBitsToUint(load_gaussian(index).covariance_b.w));
+    projected[entry].color.w = uintBitsToFloat(SPLAT_BUDGET_PACK_FLAG | instance);
     if (tiles > 0u) {
         atomicAdd(stats.visible, 1u);
         atomicAdd(stats.per_level[level - 1u], 1u);
