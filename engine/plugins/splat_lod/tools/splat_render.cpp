@@ -178,11 +178,8 @@ int run(const Options& o) {
     return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    Options o;
-    CLI::App app{"Render a Gaussian splat file to PNG (headless OpenGL compute)"};
+// The file, the image and the camera.
+void add_view_options(CLI::App& app, Options& o) {
     app.add_option("--in", o.in,
                    "splat file (.ply, .compressed.ply, .splat, .spz, SOG meta.json, .glb, .gltf), a streamed SOG "
                    "lod-meta.json[#level], or a folder or .txt list of tiles")
@@ -205,6 +202,10 @@ int main(int argc, char** argv) {
     app.add_option("--tile", o.tile, "raster tile side at render scale 1")->check(CLI::IsMember({4u, 8u, 16u}));
     app.add_option("--low-res-tile", o.low_res_tile, "raster tile side below render scale 1")
         ->check(CLI::IsMember({4u, 8u, 16u}));
+}
+
+// Which Gaussians a baked file draws, and how they fade at the rule's switches.
+void add_lod_options(CLI::App& app, Options& o) {
     app.add_option("--lod-mode", o.lod_mode, "LOD selection of a baked file (plugin_msgs::LodMode)")
         ->check(CLI::IsMember(
             std::vector<std::string>(plugin_msgs::kLodModeNames.begin(), plugin_msgs::kLodModeNames.end())))
@@ -224,6 +225,10 @@ int main(int argc, char** argv) {
                    "mode full, placement auto: the band of a bake whose levels overlap at their switches")
         ->check(CLI::Range(0.0f, plugin_msgs::LodRule::kMaxTransitionBand))
         ->capture_default_str();
+}
+
+// How the splat pass stores, bins and rasterises them, and stereo.
+void add_raster_options(CLI::App& app, Options& o) {
     app.add_option("--raster-fetch", o.raster_fetch, "how the raster reads splats: automatic, texel or shared")
         ->check(CLI::IsMember({"automatic", "texel", "shared"}));
     app.add_option("--gpu-storage", o.gpu_storage, "how the GPU stores Gaussians: compact or full (floats)")
@@ -233,6 +238,16 @@ int main(int argc, char** argv) {
     app.add_flag("--stereo", o.stereo, "draw both eyes side by side and compare the stereo frame with the mono one");
     app.add_option("--ipd", o.ipd, "with --stereo: the distance between the eyes, in the scene's units")
         ->check(CLI::Range(0.0f, 1e6f));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
+    CLI::App app{"Render a Gaussian splat file to PNG (headless OpenGL compute)"};
+    add_view_options(app, o);
+    add_lod_options(app, o);
+    add_raster_options(app, o);
     CLI11_PARSE(app, argc, argv);
     try {
         return run(o);

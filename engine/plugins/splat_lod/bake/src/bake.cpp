@@ -230,7 +230,7 @@ SplatCloud bake_once(const SplatCloud& fine, const std::vector<reference::Refere
 
     clock.start("order");
     SplatCloud result = cloud.permuted(detail::output_order(cloud, normaliser));
-    // The member ranges cap each coarse Gaussian's range where its members' ends (step 6): the levels
+    // The member ranges cap each coarse Gaussian's range where its members end (step 6): the levels
     // then meet at one coverage; without them the ranges of consecutive levels overlap.
     result.level_handover = options.member_ranges ? LevelHandover::abutting : LevelHandover::overlapping;
     clock.stop();
