@@ -42,10 +42,12 @@ inline void add_lod_options(CLI::App& app, GameCommandLine& c) {
     app.add_option("--lod-transition-band", lod.rule.transition_band,
                    "Octaves of coverage over which a Gaussian fades into its coarser level (0: hard switching)")
         ->capture_default_str();
-    app.add_option("--lod-transition-placement", c.transition_placement,
-                   "Where each fade lies against its switch: auto (default: inside for a bake whose levels "
-                   "overlap, before for any other cloud, the world's chunks included), before, inside (within the "
-                   "hard rule's ranges), centred")
+    app.add_option(
+           "--lod-transition-placement", c.transition_placement,
+           "Where each fade lies against its switch: auto (default: inside for a bake whose levels "
+           "overlap, centred for one whose levels abut, before for any other cloud, the world's chunks included), "
+           "before, inside (within the "
+           "hard rule's ranges), centred")
         ->check(CLI::IsMember(std::vector<std::string>(plugin_msgs::kTransitionPlacementNames.begin(),
                                                        plugin_msgs::kTransitionPlacementNames.end())));
     app.add_option("--lod-overlap-transition-band", lod.rule.overlap_transition_band,

@@ -147,10 +147,13 @@ int run(Options& o) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::fprintf(stdout, "%s", bake::format_summary(summary).c_str());
     std::fprintf(stdout, "wrote %s (%zu Gaussians) in %.1f s\n", o.output.c_str(), baked.size(), seconds);
-    std::fprintf(
-        stdout, "level handover: %s (the default transition placement, auto, fades the levels %s)\n",
-        splat_lod::level_handover_name(baked.level_handover),
-        baked.level_handover == splat_lod::LevelHandover::overlapping ? "inside their ranges" : "before each switch");
+    const plugin_msgs::LodRule fades = plugin_msgs::LodRule{}.for_asset(baked.level_handover);
+    std::fprintf(stdout,
+                 "level handover: %s (the default transition placement, auto, fades its levels %s their switches "
+                 "over %g octaves)\n",
+                 splat_lod::level_handover_name(baked.level_handover),
+                 std::string(plugin_msgs::to_string(fades.transition_placement)).c_str(),
+                 static_cast<double>(fades.transition_band));
     return 0;
 }
 

@@ -217,7 +217,7 @@ void add_lod_options(CLI::App& app, Options& o) {
     app.add_option("--transition-placement", o.transition_placement,
                    "mode full: where each fade lies against its switch: before, inside (the hard rule's ranges), "
                    "centred, or auto (inside with --overlap-transition-band for a bake whose levels overlap, "
-                   "before with --transition-band otherwise)")
+                   "centred with --transition-band for abutting levels, before with it for a file that does not say)")
         ->check(CLI::IsMember(std::vector<std::string>(plugin_msgs::kTransitionPlacementNames.begin(),
                                                        plugin_msgs::kTransitionPlacementNames.end())))
         ->capture_default_str();

@@ -72,15 +72,18 @@ TEST(LodWeight, HardSwitchingIsTheSelectionRule) {
 }
 
 TEST(LodWeight, PlacedBeforeTheRampsLieOnTheFineSideOfEachSwitch) {
-    // The default, auto, weighs a cloud whose levels do not overlap (or are not known to) as `before`.
+    // The default, auto, weighs a cloud whose level handover is not known as `before`, and so does an
+    // unresolved auto rule.
     const LodRule defaults;
     ASSERT_EQ(defaults.transition_placement, plugin_msgs::TransitionPlacement::automatic) << "the default";
-    ASSERT_EQ(defaults.for_asset(false).transition_placement, plugin_msgs::TransitionPlacement::before);
+    ASSERT_EQ(defaults.for_asset(plugin_msgs::LevelHandover::unknown).transition_placement,
+              plugin_msgs::TransitionPlacement::before);
     LodRule rule;
     rule.transition_band = 1.0;
     for (const double s : {1.0, 1.2, 1.5, 15.0, 20.0, 25.0})
         for (const int level : {1, 2})
-            EXPECT_EQ(lod_weight(rule, level, s, 2.0, 10.0), lod_weight(rule.for_asset(false), level, s, 2.0, 10.0));
+            EXPECT_EQ(lod_weight(rule, level, s, 2.0, 10.0),
+                      lod_weight(rule.for_asset(plugin_msgs::LevelHandover::unknown), level, s, 2.0, 10.0));
     rule.transition_placement = plugin_msgs::TransitionPlacement::before;
     // Too large: switch at S = S_max·rel_max = 15; 1 up to there (as the hard rule), then down to 0 at
     // 30, one octave past it.

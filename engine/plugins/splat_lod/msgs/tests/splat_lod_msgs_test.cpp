@@ -106,12 +106,18 @@ TEST(SplatLodMsgs, AutoPlacementIsResolvedPerAsset) {
     rule.transition_band = 0.125f;
     rule.overlap_transition_band = 0.75f;
     ASSERT_EQ(rule.transition_placement, plugin_msgs::TransitionPlacement::automatic);
-    // Levels that overlap at their switches: inside, with the overlap band; otherwise before, with the band.
-    const plugin_msgs::LodRule overlap = rule.for_asset(true), abutting = rule.for_asset(false);
+    // Levels that overlap at their switches: inside, with the overlap band; levels that abut: centred,
+    // with the band; not known: before, with the band.
+    using plugin_msgs::LevelHandover;
+    const plugin_msgs::LodRule overlap = rule.for_asset(LevelHandover::overlapping);
+    const plugin_msgs::LodRule abutting = rule.for_asset(LevelHandover::abutting);
+    const plugin_msgs::LodRule unknown = rule.for_asset(LevelHandover::unknown);
     EXPECT_EQ(overlap.transition_placement, plugin_msgs::TransitionPlacement::inside);
     EXPECT_EQ(overlap.transition_band, 0.75f);
-    EXPECT_EQ(abutting.transition_placement, plugin_msgs::TransitionPlacement::before);
+    EXPECT_EQ(abutting.transition_placement, plugin_msgs::TransitionPlacement::centred);
     EXPECT_EQ(abutting.transition_band, 0.125f);
+    EXPECT_EQ(unknown.transition_placement, plugin_msgs::TransitionPlacement::before);
+    EXPECT_EQ(unknown.transition_band, 0.125f);
     plugin_msgs::LodRule expected = rule;
     expected.transition_placement = plugin_msgs::TransitionPlacement::inside;
     expected.transition_band = 0.75f;
@@ -120,10 +126,10 @@ TEST(SplatLodMsgs, AutoPlacementIsResolvedPerAsset) {
     for (const auto placement : {plugin_msgs::TransitionPlacement::inside, plugin_msgs::TransitionPlacement::before,
                                  plugin_msgs::TransitionPlacement::centred}) {
         rule.transition_placement = placement;
-        EXPECT_EQ(rule.for_asset(true), rule);
-        EXPECT_EQ(rule.for_asset(false), rule);
+        for (int kind = 0; kind < plugin_msgs::kLevelHandoverCount; ++kind)
+            EXPECT_EQ(rule.for_asset(static_cast<LevelHandover>(kind)), rule);
     }
-    // Unresolved, auto shifts as before: no ramp past its switch.
+    // Unresolved, auto shifts as for an unknown handover (before): no ramp past its switch.
     const auto shifts = plugin_msgs::transition_shifts(plugin_msgs::TransitionPlacement::automatic, 1.0f);
     EXPECT_EQ(shifts.small, 0.0f);
     EXPECT_EQ(shifts.large, 0.0f);

@@ -7,44 +7,18 @@
 #include "engine/render/render_target.h"
 #include "engine/render/scene_camera.h"
 #include "engine/scene/scene_loader.h"
-#include "gpu_fixture.h"
 #include "splat_lod/core/compact_gaussians.h"
 #include "splat_lod/core/reference_renderer.h"
 #include "splat_lod/core/splat_io.h"
 #include "splat_lod/splat_component.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_lod/splat_renderer.h"
+#include "splat_pipeline_fixture.h"
 #include "splat_test_scenes.h"
 #include "test_support.h"
 
 namespace ref = splat_lod::reference;
 using engine::test::GaussianSpec;
-
-namespace {
-
-class SplatPipelineTest : public engine::test::GpuTest {
-protected:
-    engine::test::SplatRenderHarness harness;
-
-    engine::Image reference(const splat_lod::SplatCloud& cloud, const engine::CameraView& camera,
-                            const glm::vec3& background = glm::vec3(0.0f)) {
-        const ref::ReferenceInstance instance{&cloud, glm::dmat4(1.0), splat_lod::kMaxShDegree};
-        ref::ReferenceSettings settings;
-        settings.background = glm::dvec3(background);
-        return ref::to_image8(ref::render_reference(std::span(&instance, 1), camera, settings));
-    }
-
-    void expect_no_garbage(const engine::Image& image) {
-        // RGBA8 cannot hold NaN; garbage shows as an alpha other than 1.
-        for (std::size_t i = 3; i < image.rgba.size(); i += 4) ASSERT_EQ(image.rgba[i], 255) << "pixel " << i / 4;
-    }
-};
-
-std::shared_ptr<const splat_lod::SplatCloud> shared(splat_lod::SplatCloud cloud) {
-    return std::make_shared<const splat_lod::SplatCloud>(std::move(cloud));
-}
-
-}  // namespace
 
 // Done-when of the GPU renderer: >= 40 dB PSNR against the reference on every real scene.
 TEST_F(SplatPipelineTest, RealScenesMatchTheReference) {
@@ -347,136 +321,6 @@ TEST_F(SplatPipelineTest, LevelColouringTintsEachLevel) {
     EXPECT_GT(int(grey[0]), 100);
     EXPECT_GT(int(green[1]), int(green[0]) + 60);
     EXPECT_GT(int(green[1]), int(green[2]) + 60);
-}
-
-// Smooth transitions (the default): the GPU scales each selected Gaussian's opacity by
-// splat_lod::lod_weight, so the image equals the reference render of the cloud with opacities scaled
-// by the CPU's weights, and the same frame drawn twice is the same bytes (a pure function of the view).
-// The same for every placement of the band (inside; before; centred on the switches), and for the default
-// `auto`, which resolves it per cloud by its level handover (LodRule::for_asset): two clouds of the two
-// kinds in one frame fade each by its own.
-TEST_F(SplatPipelineTest, SmoothTransitionsScaleOpacityByTheCpuWeight) {
-    std::vector<GaussianSpec> specs;
-    for (int i = 0; i < 400; ++i) {
-        const float t = static_cast<float>(i);
-        specs.push_back({{1.6f * std::sin(t * 1.3f), 1.2f * std::cos(t * 0.7f), -1.5f * std::sin(t * 0.23f)},
-                         glm::vec3(-3.5f + 0.8f * std::sin(t * 0.5f)),
-                         {1, 0, 0, 0},
-                         1.5f,
-                         {0.5f + 0.5f * std::sin(t), 0.4f, 0.5f + 0.5f * std::cos(t)}});
-    }
-    const auto camera =
-        engine::make_look_at_camera({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, glm::radians(50.0f), 160, 120, 0.1f, 100.0f);
-    const auto ref_camera = ref::make_reference_camera(camera);
-    const ref::ReferenceSettings settings;
-    splat_lod::SplatRenderer pass(harness.engine().renderer());
-    // Levels and bounds whose switches spread from 1.2 bands past this view's coverage to 1.2 bands before
-    // it: wherever the band lies against its switch, many are inside it.
-    const auto make_banded = [&](const splat_lod::LodRule& rule, splat_lod::LevelHandover handover,
-                                 glm::vec3 offset = glm::vec3(0.0f)) {
-        auto cloud = engine::test::make_cloud(specs);
-        for (auto& position : cloud.positions) position += offset;
-        cloud.level_handover = handover;
-        const double band = rule.for_asset(handover == splat_lod::LevelHandover::overlapping).transition_band;
-        for (std::size_t i = 0; i < cloud.size(); ++i) {
-            const auto p = ref::project_gaussian(cloud, i, glm::dmat4(1.0), ref_camera, settings);
-            const glm::dvec3 c = p.cov2d - glm::dvec3(settings.dilation, 0.0, settings.dilation);
-            const double coverage = splat_lod::pixel_coverage(c.x, c.y, c.z, p.opacity);
-            cloud.lod_level[i] = static_cast<std::uint8_t>(1 + i % 4);
-            const double octaves = band * 1.2 * std::sin(0.37 * static_cast<double>(i));
-            cloud.coverage_max[i] = static_cast<float>(coverage / (rule.rel_max * std::exp2(octaves)));
-            cloud.coverage_min[i] =
-                (i % 2 == 0) ? -1.0f : static_cast<float>(coverage / (rule.rel_min * std::exp2(octaves)));
-        }
-        return cloud;
-    };
-    // The Gaussians the CPU draws of what the GPU stores (compact: quantised bounds and opacities), each
-    // with its weight in its opacity; `partial` counts those inside a band.
-    const auto cpu_weighted = [&](const splat_lod::SplatCloud& cloud, const splat_lod::LodRule& rule, int& partial) {
-        const splat_lod::LodRule asset = rule.for_asset(cloud.level_handover == splat_lod::LevelHandover::overlapping);
-        auto weighted = splat_lod::compact_round_trip(cloud, cloud.sh_degree);
-        std::vector<std::uint8_t> keep(cloud.size());
-        for (std::size_t i = 0; i < weighted.size(); ++i) {
-            const auto p = ref::project_gaussian(weighted, i, glm::dmat4(1.0), ref_camera, settings);
-            const glm::dvec3 c = p.cov2d - glm::dvec3(settings.dilation, 0.0, settings.dilation);
-            const double coverage = splat_lod::pixel_coverage(c.x, c.y, c.z, p.opacity);
-            const double w = splat_lod::lod_weight(asset, weighted.lod_level[i], coverage, weighted.coverage_min[i],
-                                                   weighted.coverage_max[i]);
-            if (w > 0.0 && w < 1.0) ++partial;
-            const double opacity = p.opacity * w;
-            keep[i] = p.drawn() && opacity > 1.0 / 255.0;
-            if (keep[i]) weighted.opacity_logits[i] = static_cast<float>(std::log(opacity / (1.0 - opacity)));
-        }
-        weighted.keep_only(keep);
-        return weighted;
-    };
-    using plugin_msgs::TransitionPlacement;
-    using splat_lod::LevelHandover;
-    std::shared_ptr<const splat_lod::SplatCloud> shared_cloud;
-    engine::Image smooth_image;
-    const std::vector<std::pair<TransitionPlacement, LevelHandover>> cases{
-        {TransitionPlacement::inside, LevelHandover::overlapping},
-        {TransitionPlacement::before, LevelHandover::unknown},
-        {TransitionPlacement::centred, LevelHandover::abutting},
-        {TransitionPlacement::automatic, LevelHandover::overlapping},
-        {TransitionPlacement::automatic, LevelHandover::abutting}};
-    for (const auto& [placement, handover] : cases) {
-        SCOPED_TRACE(std::string(plugin_msgs::to_string(placement)) + ", levels " +
-                     splat_lod::level_handover_name(handover));
-        plugin_msgs::LodSettings lod;  // full, the default bands
-        lod.rule.transition_placement = placement;
-        harness.engine().bus().publish(lod);
-        const splat_lod::LodRule rule = pass.lod().rule;
-        ASSERT_EQ(rule.transition_band, plugin_msgs::LodRule::kDefaultTransitionBand);
-        ASSERT_EQ(rule.transition_placement, placement);
-        const auto cloud = make_banded(rule, handover);
-        int partial = 0;
-        const auto weighted = cpu_weighted(cloud, rule, partial);
-        EXPECT_GT(partial, 60) << "the case is not vacuous: many Gaussians are inside the band";
-        shared_cloud = shared(cloud);
-        const auto gpu = harness.render({shared_cloud}, camera);
-        EXPECT_GE(engine::compare_images(gpu, reference(weighted, camera)).psnr_db, 40.0);
-        // Float on the GPU, double here: a weight at the 1/255 edge may fall either way.
-        EXPECT_NEAR(static_cast<double>(pass.latest_statistics()->visible), static_cast<double>(weighted.size()), 2.0);
-        EXPECT_EQ(harness.render({shared_cloud}, camera).rgba, gpu.rgba) << "the same frame twice";
-        if (placement == TransitionPlacement::before) smooth_image = gpu;
-    }
-    {
-        // Two clouds of the two kinds in one frame under auto, one moved a little (no two Gaussians at one
-        // depth): each fades by its own kind.
-        SCOPED_TRACE("auto, an overlapping and an abutting cloud in one frame");
-        plugin_msgs::LodSettings lod;
-        harness.engine().bus().publish(lod);
-        const splat_lod::LodRule rule = pass.lod().rule;
-        auto overlapping = make_banded(rule, LevelHandover::overlapping);
-        const auto abutting = make_banded(rule, LevelHandover::abutting, {0.05f, 0.03f, -0.02f});
-        int partial = 0;
-        auto expected = cpu_weighted(overlapping, rule, partial);
-        splat_lod::append_cloud(expected, cpu_weighted(abutting, rule, partial));
-        EXPECT_GT(partial, 120);
-        const auto gpu = harness.render({shared(overlapping), shared(abutting)}, camera);
-        EXPECT_GE(engine::compare_images(gpu, reference(expected, camera)).psnr_db, 40.0);
-        EXPECT_NEAR(static_cast<double>(pass.latest_statistics()->visible), static_cast<double>(expected.size()), 4.0);
-        // Both drawn as the abutting kind is another image.
-        overlapping.level_handover = LevelHandover::abutting;
-        auto both_before = cpu_weighted(overlapping, rule, partial);
-        splat_lod::append_cloud(both_before, cpu_weighted(abutting, rule, partial));
-        EXPECT_LT(engine::compare_images(reference(both_before, camera), reference(expected, camera)).psnr_db, 40.0);
-    }
-    // The placement before (smooth_image) with the last cloud's levels and bounds, which are the same:
-    // hard switching draws another image from the same cloud.
-    plugin_msgs::LodSettings hard;
-    hard.rule.transition_band = 0.0f;
-    hard.rule.overlap_transition_band = 0.0f;
-    harness.engine().bus().publish(hard);
-    const auto hard_image = harness.render({shared_cloud}, camera);
-    EXPECT_LT(engine::compare_images(hard_image, smooth_image).psnr_db, 40.0);
-    // The mode full_hard is that image whatever the band.
-    plugin_msgs::LodSettings full_hard;
-    full_hard.rule.mode = plugin_msgs::LodMode::full_hard;
-    full_hard.rule.transition_placement = plugin_msgs::TransitionPlacement::centred;
-    harness.engine().bus().publish(full_hard);
-    EXPECT_EQ(harness.render({shared_cloud}, camera).rgba, hard_image.rgba);
 }
 
 // SplatComponent::dissolve (the streamer's fades): at opacity f a component draws about the fraction f of

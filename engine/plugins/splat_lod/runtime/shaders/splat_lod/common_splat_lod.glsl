@@ -23,7 +23,7 @@ bool lod_selected(uint level, float coverage, float coverage_min, float coverage
 // The fade of an instance's Gaussians (GpuInstance::info.z): x the band in octaves, y and z the shifts
 // of its "too small" and "too large" ramps (FrameUniforms::transitions).
 vec3 instance_transition(uint info_z) {
-    return frame.transitions[(info_z & SPLAT_INSTANCE_OVERLAPPING_LEVELS) != 0u ? 1 : 0].xyz;
+    return frame.transitions[min((info_z & SPLAT_INSTANCE_HANDOVER_MASK) >> SPLAT_INSTANCE_HANDOVER_SHIFT, 2u)].xyz;
 }
 
 bool smooth_transitions(vec3 transition) {

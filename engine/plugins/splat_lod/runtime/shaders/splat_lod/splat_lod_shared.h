@@ -132,14 +132,14 @@ using mat4 = glm::mat4;
 // GpuInstance::info.z: the SH degree in the low byte; SPLAT_INSTANCE_HIDDEN set for a component that is
 // resident but not drawn (SplatComponent::visible false): step 1a drops its clusters before any other
 // test; SPLAT_INSTANCE_DISSOLVE set when the opacity factor (info.x) is the fraction of the Gaussians
-// drawn rather than a factor on every opacity (SplatComponent::dissolve); SPLAT_INSTANCE_OVERLAPPING_LEVELS
-// (below).
+// drawn rather than a factor on every opacity (SplatComponent::dissolve); the level handover (below).
 #define SPLAT_INSTANCE_SH_DEGREE_MASK 0xFFu
 #define SPLAT_INSTANCE_HIDDEN 0x100u
 #define SPLAT_INSTANCE_DISSOLVE 0x200u
-// Set for a cloud whose levels overlap at their switches (LevelHandover::overlapping): its Gaussians
-// fade by FrameUniforms::transitions[1], the others by transitions[0].
-#define SPLAT_INSTANCE_OVERLAPPING_LEVELS 0x400u
+// Bits 10–11: how the cloud's levels hand over (plugin_msgs::LevelHandover: 0 unknown, 1 overlapping,
+// 2 abutting); its Gaussians fade by FrameUniforms::transitions[that value].
+#define SPLAT_INSTANCE_HANDOVER_SHIFT 10u
+#define SPLAT_INSTANCE_HANDOVER_MASK 0xC00u
 
 // Gaussians with their 3D covariance precomputed (local space of the cloud).
 SPLAT_LOD_STRUCT(GpuGaussian) {
@@ -236,12 +236,12 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     uint separate_selection;  // 1: coverage and skipping by selection_view (a stereo eye), 0: by view
     uint pad1;
     mat4 selection_view;  // world → view of the camera that selects (CameraView::selection_view)
-    // How Gaussians fade at the rule's switches, [0] for instances without SPLAT_INSTANCE_OVERLAPPING_LEVELS
-    // and [1] for those with it (the rule resolved per asset, plugin_msgs::LodRule::for_asset): x the
+    // How Gaussians fade at the rule's switches, one per level handover (the instance's
+    // SPLAT_INSTANCE_HANDOVER bits; the rule resolved per asset, plugin_msgs::LodRule::for_asset): x the
     // band in octaves of coverage (0: hard switching, and always 0 in modes without transitions), y and
     // z how far the "too small" fade-out and the "too large" fade-in lie past their switch
     // (plugin_msgs::transition_shifts), w unused.
-    vec4 transitions[2];
+    vec4 transitions[3];
 };
 
 // Written by the GPU each frame; the CPU reads `projected` and the pair total after step 2, and the

@@ -19,7 +19,11 @@ static_assert(sizeof(GpuCluster) == 48);
 static_assert(sizeof(GpuPageCodec) == 80);
 static_assert(SPLAT_COMPACT_WORDS == kCompactWords && SPLAT_PROJECT_WORKGROUP_SIZE == kCompactPageSize);
 static_assert(sizeof(ProjectedSplat) == 48);
-static_assert(sizeof(FrameUniforms) == 336);
+static_assert(sizeof(FrameUniforms) == 352);
+static_assert(sizeof(FrameUniforms::transitions) / sizeof(FrameUniforms::transitions[0]) ==
+              plugin_msgs::kLevelHandoverCount);
+static_assert((static_cast<std::uint32_t>(plugin_msgs::kLevelHandoverCount - 1) << SPLAT_INSTANCE_HANDOVER_SHIFT &
+               ~SPLAT_INSTANCE_HANDOVER_MASK) == 0u);
 // std140 offsets of every FrameUniforms member.
 static_assert(offsetof(FrameUniforms, camera_position) == 64);
 static_assert(offsetof(FrameUniforms, znear) == 76);
@@ -61,13 +65,13 @@ inline void write_lod_rule(FrameUniforms& u, const plugin_msgs::LodRule& rule) {
     u.finest_level = static_cast<std::uint32_t>(kFinestLevel);
     // Per asset kind (FrameUniforms::transitions); 0 without transitions, so that skipping keeps the
     // hard rule's thresholds there.
-    for (const bool overlap : {false, true}) {
-        const plugin_msgs::LodRule asset = rule.for_asset(overlap);
+    for (int kind = 0; kind < plugin_msgs::kLevelHandoverCount; ++kind) {
+        const plugin_msgs::LodRule asset = rule.for_asset(static_cast<plugin_msgs::LevelHandover>(kind));
         const plugin_msgs::TransitionShifts shifts =
             plugin_msgs::transition_shifts(asset.transition_placement, asset.transition_band);
-        u.transitions[overlap ? 1 : 0] = plugin_msgs::traits(rule.mode).transitions
-                                             ? glm::vec4(asset.transition_band, shifts.small, shifts.large, 0.0f)
-                                             : glm::vec4(0.0f);
+        u.transitions[kind] = plugin_msgs::traits(rule.mode).transitions
+                                  ? glm::vec4(asset.transition_band, shifts.small, shifts.large, 0.0f)
+                                  : glm::vec4(0.0f);
     }
 }
 

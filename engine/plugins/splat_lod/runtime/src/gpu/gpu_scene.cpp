@@ -421,14 +421,12 @@ void GpuScene::upload_instances(const std::vector<const SplatComponent*>& compon
         const float opacity = std::isnan(component.opacity) ? 1.0f : std::clamp(component.opacity, 0.0f, 1.0f);
         const bool hidden = !component.visible || opacity == 0.0f;
         slots_[static_cast<std::size_t>(slot_of[i])].drawn = !hidden;
-        inst.info = glm::uvec4(std::bit_cast<std::uint32_t>(opacity), static_cast<std::uint32_t>(slot.cloud->size()),
-                               static_cast<std::uint32_t>(slot.sh_degree) |
-                                   (hidden ? std::uint32_t{SPLAT_INSTANCE_HIDDEN} : 0u) |
-                                   (component.dissolve ? std::uint32_t{SPLAT_INSTANCE_DISSOLVE} : 0u) |
-                                   (slot.cloud->level_handover == LevelHandover::overlapping
-                                        ? std::uint32_t{SPLAT_INSTANCE_OVERLAPPING_LEVELS}
-                                        : 0u),
-                               std::bit_cast<std::uint32_t>(spectral_norm(glm::mat3(inst.model))));
+        inst.info = glm::uvec4(
+            std::bit_cast<std::uint32_t>(opacity), static_cast<std::uint32_t>(slot.cloud->size()),
+            static_cast<std::uint32_t>(slot.sh_degree) | (hidden ? std::uint32_t{SPLAT_INSTANCE_HIDDEN} : 0u) |
+                (component.dissolve ? std::uint32_t{SPLAT_INSTANCE_DISSOLVE} : 0u) |
+                (static_cast<std::uint32_t>(slot.cloud->level_handover) << SPLAT_INSTANCE_HANDOVER_SHIFT),
+            std::bit_cast<std::uint32_t>(spectral_norm(glm::mat3(inst.model))));
     }
     const std::size_t bytes = std::max<std::size_t>(instances.size(), 1) * sizeof(GpuInstance);
     instances_.ensure_size(bytes, "splat instances");

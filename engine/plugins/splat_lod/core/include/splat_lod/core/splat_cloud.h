@@ -10,6 +10,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "splat_lod/msgs/level_handover.h"
+
 namespace splat_lod {
 
 // Unit quaternion in the INRIA PLY order rot_0..rot_3 = (w, x, y, z). A named struct rather than
@@ -52,13 +54,10 @@ constexpr int sh_rest_coeffs(int degree) {
     return (degree + 1) * (degree + 1) - 1;
 }
 
-// How a baked cloud's levels hand over, which decides where its fades lie under the transition
-// placement `auto` (plugin_msgs::LodRule::for_asset): `overlapping` where the bake left the ranges of
-// consecutive levels overlapping (a fine Gaussian and its coarser replacement both drawn over a range
-// of distances), `abutting` where it capped them to meet at one coverage (splat_bake's member ranges,
-// the forward-capture recipe), `unknown` for anything else (files from elsewhere, world chunks). Kept
-// in a baked PLY's header (splat_io.h).
-enum class LevelHandover { unknown, overlapping, abutting };
+// How a baked cloud's levels hand over (plugin_msgs::LevelHandover, where its kinds are defined), which
+// decides where its fades lie under the transition placement `auto`. Kept in a baked PLY's header
+// (splat_io.h).
+using LevelHandover = plugin_msgs::LevelHandover;
 const char* level_handover_name(LevelHandover handover);
 std::optional<LevelHandover> parse_level_handover(const std::string& name);
 // The PLY header comment that carries it: "comment splat_lod level_handover <name>".

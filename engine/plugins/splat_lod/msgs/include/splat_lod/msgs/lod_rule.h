@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "plugin_msgs/detail/json_read.h"
+#include "splat_lod/msgs/level_handover.h"
 
 namespace plugin_msgs {
 
@@ -73,9 +74,10 @@ enum class TransitionPlacement {
                 // sums to 1
     centred,    // both centred on their switch: a hand-over sums to 1, and a fine Gaussian is drawn past
                 // its "too small" switch
-    automatic,  // "auto", the default: per asset, by how its levels hand over (LevelHandover in
-                // splat_lod/core/splat_cloud.h): `inside` with overlap_transition_band where its bake left
-                // the levels' ranges overlapping, `before` with transition_band everywhere else
+    automatic,  // "auto", the default: per asset, by how its levels hand over (LevelHandover):
+                // `inside` with overlap_transition_band where its bake left the levels' ranges
+                // overlapping, `centred` with transition_band where it made them abut, `before` with
+                // transition_band where nothing says (a streamed world's chunks and groups)
 };
 inline constexpr std::array<std::string_view, 4> kTransitionPlacementNames{"inside", "before", "centred", "auto"};
 
@@ -99,7 +101,7 @@ constexpr TransitionShifts transition_shifts(TransitionPlacement placement, floa
         case TransitionPlacement::inside:
             return {0.0f, band};
         case TransitionPlacement::before:
-        case TransitionPlacement::automatic:  // unresolved (LodRule::for_asset): as `before`
+        case TransitionPlacement::automatic:  // unresolved (LodRule::for_asset): as for an unknown handover
             return {0.0f, 0.0f};
         case TransitionPlacement::centred:
             return {0.5f * band, 0.5f * band};
@@ -117,7 +119,7 @@ struct LodRule {
     // this many octaves; transition_placement says on which side of the switch. 0: hard switching.
     // Only in modes whose traits have transitions.
     float transition_band = kDefaultTransitionBand;
-    static constexpr float kDefaultTransitionBand = 0.0625f;
+    static constexpr float kDefaultTransitionBand = 0.375f;
     static constexpr float kMaxTransitionBand = 4.0f;
     TransitionPlacement transition_placement = TransitionPlacement::automatic;
     // The band of an asset whose levels overlap at their switches, under the placement `auto` (placed
@@ -125,10 +127,11 @@ struct LodRule {
     float overlap_transition_band = kDefaultOverlapTransitionBand;
     static constexpr float kDefaultOverlapTransitionBand = 0.5f;
 
-    // The rule one asset is drawn with: under `auto` its placement and band resolved by whether the
-    // asset's levels overlap at their switches (`inside`, overlap_transition_band) or not (`before`,
-    // transition_band); any other placement is the rule itself.
-    LodRule for_asset(bool levels_overlap) const;
+    // The rule one asset is drawn with: under `auto` its placement and band resolved by how the
+    // asset's levels hand over (`inside` with overlap_transition_band where they overlap, `centred` with
+    // transition_band where they abut, `before` with transition_band where it is unknown); any other
+    // placement is the rule itself.
+    LodRule for_asset(LevelHandover handover) const;
 
     // Empty when the rule is usable, otherwise "<kind>.<key>: <why>". NaN fails every check.
     std::string validate(std::string_view kind = "lod_rule") const;
@@ -169,11 +172,21 @@ inline std::string LodRule::validate(std::string_view kind) const {
     return {};
 }
 
-inline LodRule LodRule::for_asset(bool levels_overlap) const {
+inline LodRule LodRule::for_asset(LevelHandover handover) const {
     if (transition_placement != TransitionPlacement::automatic) return *this;
     LodRule rule = *this;
-    rule.transition_placement = levels_overlap ? TransitionPlacement::inside : TransitionPlacement::before;
-    if (levels_overlap) rule.transition_band = overlap_transition_band;
+    switch (handover) {
+        case LevelHandover::overlapping:
+            rule.transition_placement = TransitionPlacement::inside;
+            rule.transition_band = overlap_transition_band;
+            break;
+        case LevelHandover::abutting:
+            rule.transition_placement = TransitionPlacement::centred;
+            break;
+        case LevelHandover::unknown:
+            rule.transition_placement = TransitionPlacement::before;
+            break;
+    }
     return rule;
 }
 
