@@ -149,8 +149,8 @@ int run(Options& o) {
     std::fprintf(stdout, "wrote %s (%zu Gaussians) in %.1f s\n", o.output.c_str(), baked.size(), seconds);
     const plugin_msgs::LodRule fades = plugin_msgs::LodRule{}.for_asset(baked.level_handover);
     std::fprintf(stdout,
-                 "level handover: %s (the default transition placement, auto, fades its levels %s their switches "
-                 "over %g octaves)\n",
+                 "level handover: %s (the default transition placement, auto, fades its Gaussians placed %s over "
+                 "%g octaves of coverage at each switch)\n",
                  splat_lod::level_handover_name(baked.level_handover),
                  std::string(plugin_msgs::to_string(fades.transition_placement)).c_str(),
                  static_cast<double>(fades.transition_band));
