@@ -81,6 +81,42 @@ TEST(GltfSplats, ReadAndWrittenAgainGivesTheSameBytes) {
         }
 }
 
+// A baked cloud's level handover travels in the splat primitive's extras, as in the PLY header: each
+// kind reads back, a cloud without LOD attributes or of unknown handover writes none, and an unknown
+// name is a warning that reads as unknown.
+TEST(GltfSplats, TheLevelHandoverTravelsInThePrimitivesExtras) {
+    using splat_lod::LevelHandover;
+    for (const bool binary : {true, false})
+        for (const auto handover : {LevelHandover::overlapping, LevelHandover::abutting, LevelHandover::unknown}) {
+            SplatCloud cloud = make_cloud(50, 0, 5u, true, false);
+            cloud.level_handover = handover;
+            const auto bytes = splat_lod::encode_gltf_splats(cloud, binary);
+            splat_lod::LoadReport report;
+            const SplatCloud back = splat_lod::read_gltf_splats(span_of(bytes), "a.glb", &report);
+            EXPECT_EQ(back.level_handover, handover) << splat_lod::level_handover_name(handover);
+            EXPECT_TRUE(report.warnings.empty());
+            const std::string text(bytes.begin(), bytes.end());
+            EXPECT_EQ(text.find("splat_lod_level_handover") != std::string::npos, handover != LevelHandover::unknown);
+            EXPECT_EQ(splat_lod::encode_gltf_splats(back, binary), bytes) << "the same bytes again";
+        }
+    SplatCloud plain = make_cloud(50, 0, 5u, false, false);
+    plain.level_handover = LevelHandover::overlapping;  // no LOD attributes: nothing to hand over
+    const auto plain_bytes = splat_lod::encode_gltf_splats(plain, false);
+    EXPECT_EQ(std::string(plain_bytes.begin(), plain_bytes.end()).find("splat_lod_level_handover"), std::string::npos);
+    SplatCloud baked = make_cloud(50, 0, 5u, true, false);
+    baked.level_handover = LevelHandover::abutting;
+    const auto bytes = splat_lod::encode_gltf_splats(baked, false);
+    std::string text(bytes.begin(), bytes.end());
+    text.replace(text.find("\"abutting\""), 10, "\"sideways\"");
+    splat_lod::LoadReport report;
+    const SplatCloud back =
+        splat_lod::read_gltf_splats(span_of(std::vector<std::uint8_t>(text.begin(), text.end())), "a.gltf", &report);
+    EXPECT_EQ(back.level_handover, LevelHandover::unknown);
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings.front().find("unknown level handover \"sideways\""), std::string::npos)
+        << report.warnings.front();
+}
+
 // A real capture: PLY → .glb file → load_splat_file gives the PLY's Gaussians, and the .glb rewrites
 // to the same bytes.
 TEST(GltfSplats, GlbOfARealCaptureLoadsAsItsPly) {

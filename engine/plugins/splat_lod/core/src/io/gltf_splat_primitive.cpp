@@ -298,6 +298,18 @@ void decode_lod_attributes(const PrimitiveDecoder& d, SplatCloud& cloud) {
         cloud.add_extra(name.substr(kAttrExtraPrefix.size())).values = d.read(name, TINYGLTF_TYPE_SCALAR, kFloatOnly);
 }
 
+// The level handover a baked cloud's writer leaves in the primitive's extras (kExtrasLevelHandover).
+void decode_level_handover(const tinygltf::Primitive& primitive, const PrimitiveDecoder& d, SplatCloud& cloud) {
+    if (!primitive.extras.IsObject() || !primitive.extras.Has(kExtrasLevelHandover)) return;
+    const tinygltf::Value& value = primitive.extras.Get(kExtrasLevelHandover);
+    const std::string name = value.IsString() ? value.Get<std::string>() : std::string("(not a string)");
+    if (const auto handover = parse_level_handover(name))
+        cloud.level_handover = *handover;
+    else
+        d.report.warnings.push_back(d.label + ": unknown level handover \"" + name +
+                                    "\" in its extras, read as unknown");
+}
+
 // The extension object: unknown kernels and the linear colour space are warned about.
 struct ExtensionInfo {
     bool srgb = true;
@@ -358,6 +370,7 @@ SplatCloud decode_splat_primitive(const tinygltf::Model& model, const tinygltf::
     decode_scales_and_opacity(d, cloud);
     decode_colour(d, cloud, info.srgb);
     decode_lod_attributes(d, cloud);
+    decode_level_handover(primitive, d, cloud);
     return cloud;
 }
 

@@ -71,6 +71,11 @@ void apply_node_transform(SplatCloud& cloud, const glm::dmat4& world, const std:
 void append_cloud(SplatCloud& cloud, const SplatCloud& part) {
     if (part.sh_degree > cloud.sh_degree) cloud.set_sh_degree(part.sh_degree);
     const std::size_t base = cloud.size();
+    // Primitives of one kind keep it; a mix hands over in no one way.
+    if (base == 0)
+        cloud.level_handover = part.level_handover;
+    else if (cloud.level_handover != part.level_handover)
+        cloud.level_handover = LevelHandover::unknown;
     cloud.resize(base + part.size());
     std::copy(part.positions.begin(), part.positions.end(),
               cloud.positions.begin() + static_cast<std::ptrdiff_t>(base));

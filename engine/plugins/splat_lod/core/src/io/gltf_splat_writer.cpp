@@ -203,8 +203,10 @@ std::vector<std::uint8_t> encode_gltf_splats(const SplatCloud& cloud, bool binar
     add_gaussian_attributes(b, cloud);
     add_lod_attributes(b, cloud);
     const Json extension = {{"kernel", "ellipse"}, {"colorSpace", "srgb_rec709_display"}};
-    const Json primitive = {
+    Json primitive = {
         {"attributes", b.attributes}, {"mode", 0}, {"extensions", {{io::kGltfSplatExtension, extension}}}};
+    if (cloud.has_lod_attributes() && cloud.level_handover != LevelHandover::unknown)
+        primitive["extras"] = {{io::kExtrasLevelHandover, level_handover_name(cloud.level_handover)}};
     Json buffer = {{"byteLength", b.buffer.size()}};
     if (!binary) buffer["uri"] = "data:application/octet-stream;base64," + base64(b.buffer);
     const Json doc = {{"asset", {{"version", "2.0"}, {"generator", "splat_lod"}}},

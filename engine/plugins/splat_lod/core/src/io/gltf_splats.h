@@ -26,6 +26,8 @@ inline const std::string kAttrLodLevel = kLodPrefix + "LEVEL";
 inline const std::string kAttrCoverageMin = kLodPrefix + "COVERAGE_MIN";
 inline const std::string kAttrCoverageMax = kLodPrefix + "COVERAGE_MAX";
 inline const std::string kAttrExtraPrefix = kLodPrefix + "EXTRA_";
+// A baked cloud's level handover (SplatCloud::level_handover), a name in the splat primitive's extras.
+inline constexpr const char* kExtrasLevelHandover = "splat_lod_level_handover";
 
 // Scales below this (zero in quantised files) are raised to it: its log stays finite.
 inline constexpr float kGltfMinScale = 1e-12f;
@@ -52,7 +54,8 @@ SplatCloud decode_spz_primitive(const tinygltf::Model& model, const tinygltf::Pr
 void apply_node_transform(SplatCloud& cloud, const glm::dmat4& world, const std::string& name, const std::string& label,
                           LoadReport& report);
 
-// Appends `part` to `cloud`: the higher SH degree of the two, extras matched by name (zero where absent).
+// Appends `part` to `cloud`: the higher SH degree of the two, extras matched by name (zero where absent),
+// the level handover kept where the parts agree (unknown where they do not).
 void append_cloud(SplatCloud& cloud, const SplatCloud& part);
 
 }  // namespace splat_lod::io
