@@ -55,8 +55,8 @@ constexpr int sh_rest_coeffs(int degree) {
 }
 
 // How a baked cloud's levels hand over (plugin_msgs::LevelHandover, where its kinds are defined), which
-// decides where its fades lie under the transition placement `auto`. Kept in a baked PLY's header
-// (splat_io.h).
+// decides where its fades lie under the transition placement `auto`. Kept in a baked PLY's header and
+// a glTF splat primitive's extras (splat_io.h).
 using LevelHandover = plugin_msgs::LevelHandover;
 const char* level_handover_name(LevelHandover handover);
 std::optional<LevelHandover> parse_level_handover(const std::string& name);
