@@ -86,6 +86,7 @@ GameWorld::GameWorld(engine::Engine& engine, const std::filesystem::path& folder
     sink_ = std::make_unique<sw::SceneResidencySink>(*chunks_root_, settings_.sh_degree);
     start_streamer(streamer_settings(settings_));
     pass_->settings().gpu_storage = settings_.gpu_storage;
+    pass_->settings().frame_memory_limit = settings_.frame_memory_bytes;
     publish_lod_settings();
 }
 

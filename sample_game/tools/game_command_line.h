@@ -18,7 +18,7 @@ namespace sample_game::cli {
 struct GameCommandLine {
     std::string world = "out/world/default";
     int width = 0, height = 0, frames = -1;  // 0 / −1: the program's own default
-    double memory_budget_mib = -1.0, upload_budget_mib = -1.0;
+    double memory_budget_mib = -1.0, upload_budget_mib = -1.0, frame_memory_mib = -1.0;
     std::string mode, upscaler, gpu_storage, transition_placement;
     GameSettings settings;
 };
@@ -74,6 +74,10 @@ inline void add_streaming_options(CLI::App& app, GameCommandLine& c) {
         ->check(CLI::Range(0.01, 1e6));
     app.add_option("--upload-budget-mib", c.upload_budget_mib, "Upload budget per frame (default 8)")
         ->check(CLI::Range(0.01, 1e5));
+    app.add_option("--frame-memory-mib", c.frame_memory_mib,
+                   "GPU memory the splat pass's per-frame buffers may take; a view that needs more is drawn in "
+                   "strips (default 16; 0: no limit)")
+        ->check(CLI::Range(0.0, 1e6));
     app.add_flag("--sync-streaming", c.settings.sync_streaming,
                  "Read chunks inside each update (deterministic; tests)");
     app.add_option("--load-distance-scale", c.settings.load_distance_scale,
@@ -133,6 +137,8 @@ inline void apply(GameCommandLine& c) {
         c.settings.memory_budget_bytes = static_cast<std::uint64_t>(c.memory_budget_mib * static_cast<double>(kMiB));
     if (c.upload_budget_mib > 0.0)
         c.settings.upload_budget_bytes = static_cast<std::uint64_t>(c.upload_budget_mib * static_cast<double>(kMiB));
+    if (c.frame_memory_mib >= 0.0)
+        c.settings.frame_memory_bytes = static_cast<std::uint64_t>(c.frame_memory_mib * static_cast<double>(kMiB));
 }
 
 // Parses the command line and runs `body`; exit code 1 with "<program>: <problem>" on stderr for a bad

@@ -40,7 +40,8 @@ void record_spans(engine::Engine& engine, FrameRecord& r) {
                         : span.name == "splat.upscale" ? &r.gpu_upscale_ms
                         : span.name == "fog"           ? &r.gpu_fog_ms
                                                        : nullptr;
-        if (field) *field = span.milliseconds;
+        if (!field) continue;
+        *field = std::max(*field, 0.0) + span.milliseconds;  // a frame drawn in strips has a span per strip
     }
 }
 
@@ -87,6 +88,7 @@ void draw_and_measure(GameWorld& world, engine::Engine& engine, const engine::Ca
     record.gpu_scene_bytes = memory.scene_bytes;
     record.gpu_frame_bytes = memory.frame_bytes;
     record.selection_runs = static_cast<int>(memory.selection_runs);
+    record.strips = static_cast<int>(memory.strips);
     record_streaming(world, record);
 }
 

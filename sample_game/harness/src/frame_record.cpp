@@ -154,8 +154,12 @@ std::vector<FrameColumn> memory_columns() {
          [](R r) { return integer(r.gpu_scene_bytes); }},
         {"gpu_frame_bytes", "of gpu_total_bytes, the per-frame buffers and low-resolution images",
          [](R r) { return integer(r.gpu_frame_bytes); }},
-        {"selection_runs", "times the splat pass ran its selection (2: the projected splats outgrew their buffer)",
+        {"selection_runs",
+         "times the splat pass ran its selection (more than 1: the projected splats outgrew their buffer, or a strip "
+         "was split)",
          [](R r) { return integer(r.selection_runs); }},
+        {"strips", "strips of tile rows the splat pass drew the frame in (its frame memory limit)",
+         [](R r) { return integer(r.strips); }},
         {"upload_bytes", "bytes the streamer handed to the GPU this frame (held to the upload budget)",
          [](R r) { return integer(r.stream_upload_bytes); }},
         {"gpu_upload_bytes",

@@ -26,6 +26,10 @@ struct GameSettings {
     // frame lets a chunk's fine level arrive within a frame or two.
     std::uint64_t memory_budget_bytes = 384 * kMiB;
     std::uint64_t upload_budget_bytes = 8 * kMiB;
+    // GPU bytes the splat pass's buffers that follow the view may take in a frame (the projected splats and
+    // the sort keys; SplatPassSettings::frame_memory_limit): a view that needs more is drawn in strips.
+    // 0: no limit. See sample_game/README.md, "Budgets".
+    std::uint64_t frame_memory_bytes = 16 * kMiB;
     int sh_degree = 0;  // SH degree the GPU stores (the generated world carries degree 0)
     // How the GPU stores the Gaussians (docs/gpu_storage.md): compact, 20 bytes each at degree 0, or
     // full floats, 76. The budgets above are bytes either way, so compact holds 3.8 times the Gaussians.

@@ -3,7 +3,7 @@
 //                --out OUT.png [--background R,G,B] [--sh-degree N] [--frames N] [--mip-filter]
 //                [--render-scale S --upscaler spline|bicubic|bilinear|lanczos3] [--tile 4|8|16]
 //                [--low-res-tile 4|8|16] [--raster-fetch automatic|texel|shared] [--bbox-tiles] [--wide-sort-keys]
-//                [--stereo [--ipd M]]
+//                [--frame-memory-mib M] [--stereo [--ipd M]]
 // Prints the Gaussians drawn and the per-pass GPU times (median over the frames after the first 2).
 // --stereo: draws the left and right eyes of engine::stereo_eyes (one selection, the centre's) side by
 // side into OUT.png (2W × H), and prints the stereo frame's time against the mono frame's, at the eye's
@@ -49,6 +49,7 @@ struct Options {
     float overlap_transition_band = plugin_msgs::LodRule::kDefaultOverlapTransitionBand;
     bool stereo = false;
     float ipd = 0.063f;
+    double frame_memory_mib = 0.0;
 };
 
 void apply_settings(splat_lod::SplatPassSettings& settings, plugin_msgs::LodSettings& lod, const Options& o) {
@@ -63,6 +64,7 @@ void apply_settings(splat_lod::SplatPassSettings& settings, plugin_msgs::LodSett
     settings.exact_tiles = !o.bbox_tiles;
     settings.gpu_storage = o.gpu_storage == "full" ? splat_lod::GpuStorage::full : splat_lod::GpuStorage::compact;
     settings.compact_sort_keys = !o.wide_sort_keys;
+    settings.frame_memory_limit = static_cast<std::uint64_t>(o.frame_memory_mib * 1024.0 * 1024.0);
     lod.rule.mode = plugin_msgs::detail::enum_from_json<plugin_msgs::LodMode>(plugin_msgs::kLodModeNames, o.lod_mode);
     lod.rule.transition_band = o.transition_band;
     lod.rule.overlap_transition_band = o.overlap_transition_band;
@@ -160,8 +162,10 @@ int run(const Options& o) {
     for (int i = 0; i < o.frames; ++i) {
         engine.renderer().render(scene, camera, target_image);
         engine.renderer().timers().wait_all();
+        std::map<std::string, double> frame_ms;  // a frame drawn in strips has a span per strip
         for (const auto& span : engine.renderer().timers().latest().value_or(std::vector<engine::gl::GpuSpan>{}))
-            gpu_ms[span.name].push_back(span.milliseconds);
+            frame_ms[span.name] += span.milliseconds;
+        for (const auto& [name, ms] : frame_ms) gpu_ms[name].push_back(ms);
     }
     pass.wait_for_statistics(engine.bus());
     engine::write_png(o.out, target_image.read_color());
@@ -170,10 +174,14 @@ int run(const Options& o) {
     std::printf("%s: %zu Gaussians (%s, SH degree %d, %zu dropped) -> %s %dx%d on %s\n", o.in.c_str(), cloud->size(),
                 report.format.c_str(), cloud->sh_degree, report.dropped(), o.out.c_str(), o.width, o.height,
                 context->info().renderer.c_str());
-    std::printf("  visible %llu, tile-splat pairs %llu (capacity %llu), GPU memory %.1f MiB, raster fetch %s\n",
-                static_cast<unsigned long long>(s.visible), static_cast<unsigned long long>(s.tile_splat_pairs),
-                static_cast<unsigned long long>(s.key_capacity), static_cast<double>(s.resident_bytes) / (1 << 20),
-                splat_lod::to_string(pass.raster_fetch_in_use()));
+    const splat_lod::SplatMemory memory = pass.memory();
+    std::printf(
+        "  visible %llu, tile-splat pairs %llu (capacity %llu), GPU memory %.1f MiB (frame %.1f MiB, %u "
+        "strip%s), raster fetch %s\n",
+        static_cast<unsigned long long>(s.visible), static_cast<unsigned long long>(s.tile_splat_pairs),
+        static_cast<unsigned long long>(s.key_capacity), static_cast<double>(s.resident_bytes) / (1 << 20),
+        static_cast<double>(memory.frame_bytes) / (1 << 20), memory.strips, memory.strips == 1 ? "" : "s",
+        splat_lod::to_string(pass.raster_fetch_in_use()));
     for (const auto& [name, times] : gpu_ms) std::printf("  gpu %-16s %9.2f ms\n", name.c_str(), median(times));
     return 0;
 }
@@ -235,6 +243,9 @@ void add_raster_options(CLI::App& app, Options& o) {
         ->check(CLI::IsMember({"compact", "full"}));
     app.add_flag("--bbox-tiles", o.bbox_tiles, "bin splats into every tile of their bounding box (to measure)");
     app.add_flag("--wide-sort-keys", o.wide_sort_keys, "sort (depth bits, tile) key pairs (to measure)");
+    app.add_option("--frame-memory-mib", o.frame_memory_mib,
+                   "GPU memory the per-frame splat buffers may take; more is drawn in strips (0: no limit)")
+        ->check(CLI::Range(0.0, 1e6));
     app.add_flag("--stereo", o.stereo, "draw both eyes side by side and compare the stereo frame with the mono one");
     app.add_option("--ipd", o.ipd, "with --stereo: the distance between the eyes, in the scene's units")
         ->check(CLI::Range(0.0f, 1e6f));

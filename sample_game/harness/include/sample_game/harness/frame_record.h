@@ -45,6 +45,7 @@ struct FrameRecord {
     std::uint64_t gpu_scene_bytes = 0;  // of which the scene buffers' capacity (SplatMemory::scene_bytes)
     std::uint64_t gpu_frame_bytes = 0;  // and the per-frame buffers (SplatMemory::frame_bytes)
     int selection_runs = 1;             // 2: the frame's steps 1–2 ran again (SplatMemory::selection_runs)
+    int strips = 1;                     // strips of tile rows the frame was drawn in (SplatMemory::strips)
     std::uint64_t stream_upload_bytes =
         0;                               // bytes the streamer handed to the GPU side this frame (the budgeted amount)
     std::uint64_t gpu_upload_bytes = 0;  // bytes the GPU scene sent this frame (+48 per freed page's cluster record)

@@ -84,6 +84,12 @@ struct SplatPassSettings {
     // image at the output size that read_splat_depth() returns: 8 bytes a pixel. The target's view depth
     // gets the median depth merged with the meshes' either way (docs/algorithms.md §1, "Depth").
     bool splat_depth = false;
+    // The most bytes the buffers that follow the view may take (the projected splats, the sort keys with
+    // the sort's own copy); 0: no limit. A view that needs more is drawn in strips of tile rows, each
+    // running the steps from the selection to the raster over the splats that touch its rows, with the
+    // same pixels (docs/gpu_storage.md, "Strips"). Under a splat budget a frame is one strip: the budget
+    // chooses over the whole view, and it bounds the splats already.
+    std::uint64_t frame_memory_limit = 0;
 };
 
 // The splats' view depths z = −z_view of a frame, per output pixel, rows top first, +inf where there is
@@ -112,9 +118,14 @@ struct SplatMemory {
     // low-resolution images.
     std::uint64_t scene_bytes = 0;
     std::uint64_t frame_bytes = 0;
+    // Of frame_bytes, those SplatPassSettings::frame_memory_limit bounds: the projected splats, the keys
+    // and the sort's own buffers.
+    std::uint64_t view_bytes = 0;
     // How often the latest frame ran its selection (steps 1–2): 2 when it projected more splats than
     // the buffer sized by the frame before held, which then grew.
     std::uint32_t selection_runs = 0;
+    // Strips the latest frame was drawn in (SplatPassSettings::frame_memory_limit): 1 without a limit.
+    std::uint32_t strips = 1;
     GpuStorage storage = GpuStorage::compact;  // how the scene is stored (docs/gpu_storage.md)
 };
 

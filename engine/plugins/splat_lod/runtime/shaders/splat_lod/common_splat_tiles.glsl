@@ -23,7 +23,8 @@ struct TileFootprint {
     uvec4 rect;        // tiles [x0, x1) × [y0, y1) of the bounding box
 };
 
-TileFootprint tile_footprint(vec2 mean, vec4 conic, float opacity) {
+// The footprint within the raster's pixel rows [row_lo, row_hi] (all of them, or a strip's).
+TileFootprint tile_footprint_in_rows(vec2 mean, vec4 conic, float opacity, float row_lo, float row_hi) {
     TileFootprint f;
     f.mean = mean;
     f.qx = conic.x;
@@ -36,16 +37,25 @@ TileFootprint tile_footprint(vec2 mean, vec4 conic, float opacity) {
     precise vec2 radius = sqrt(f.level_set * vec2(f.qz, f.qx) / det_q);
     precise vec2 lo = ceil(mean - radius - 0.5 - TILE_SPAN_MARGIN_PX);
     precise vec2 hi = floor(mean + radius - 0.5 + TILE_SPAN_MARGIN_PX);
-    vec2 last = frame.raster_size - 1.0;
+    vec2 first = vec2(0.0, row_lo), last = vec2(frame.raster_size.x - 1.0, row_hi);
     bool valid = det_q > 0.0 && f.level_set > 0.0 && !any(isnan(lo)) && !any(isnan(hi));
-    f.lo = valid ? ivec2(clamp(lo, vec2(0.0), last + 1.0)) : ivec2(1);
-    f.hi = valid ? ivec2(clamp(hi, vec2(-1.0), last)) : ivec2(0);
+    f.lo = valid ? ivec2(clamp(lo, first, last + 1.0)) : ivec2(1);
+    f.hi = valid ? ivec2(clamp(hi, first - 1.0, last)) : ivec2(0);
     if (any(greaterThan(f.lo, f.hi))) {
         f.rect = uvec4(0u);
         return f;
     }
     f.rect = uvec4(uvec2(f.lo) / frame.tile_size, uvec2(f.hi) / frame.tile_size + 1u);
     return f;
+}
+
+// The footprint within the rows this run of the steps draws: the whole raster, or with
+// SplatPassSettings::frame_memory_limit one strip of tile rows, [strip_first_row, strip_end_row). A
+// strip's edges are tile edges, so every tile of a strip gets the pairs it gets without strips.
+TileFootprint tile_footprint(vec2 mean, vec4 conic, float opacity) {
+    float row_lo = float(frame.strip_first_row * frame.tile_size);
+    float row_hi = min(float(frame.strip_end_row * frame.tile_size), frame.raster_size.y) - 1.0;
+    return tile_footprint_in_rows(mean, conic, opacity, row_lo, row_hi);
 }
 
 // Tiles [x0, x1) of tile row `ty` (within rect.y ≤ ty < rect.w). For pixel-centre offsets
@@ -77,6 +87,18 @@ uint tile_footprint_count(TileFootprint f) {
         count += span.y - span.x;
     }
     return count;
+}
+
+// The first tile row in which a splat touches a tile over the whole raster (rect.w when none): in strips,
+// the strip that holds it counts the splat in the frame's statistics, so that each is counted once.
+uint first_tile_row(vec2 mean, vec4 conic, float opacity) {
+    TileFootprint f = tile_footprint_in_rows(mean, conic, opacity, 0.0, frame.raster_size.y - 1.0);
+    if (frame.exact_tiles == 0u) return f.rect.y;
+    for (uint ty = f.rect.y; ty < f.rect.w; ++ty) {
+        uvec2 span = tile_row_span(f, ty);
+        if (span.y > span.x) return ty;
+    }
+    return f.rect.w;
 }
 
 // The number of tiles a stored splat touches (its keys): 0 for one at or below α = 1/255.

@@ -31,8 +31,9 @@ const mat3 VIEW_TO_CAMERA = mat3(1, 0, 0, 0, -1, 0, 0, 0, -1);
 // fx·x − a·z > reach·‖M‖₂·j with a = W + 1 + √(L_max·dilation) − cx (one pixel of margin), a
 // half-space test; the smallest value over the sphere of means is the centre's minus the radius
 // times the plane normal's length. Likewise left, top and bottom; and when the whole sphere lies
-// at z ≤ znear, step 1b culls every member at the near plane.
-bool cull_cluster(GpuCluster c) {
+// at z ≤ znear, step 1b culls every member at the near plane. The top and bottom sides are those of
+// the pixel rows [top, bottom): the raster's, or a strip's (SplatPassSettings::frame_memory_limit).
+bool cull_cluster(GpuCluster c, float top, float bottom) {
     if (frame.frustum_culling == 0u || !(c.reach.x >= 0.0) || c.bounds.w < 0.0) return false;
     GpuInstance inst = instances[floatBitsToUint(c.bounds.w)];
     float stretch = uintBitsToFloat(inst.info.w);
@@ -46,8 +47,8 @@ bool cull_cluster(GpuCluster c) {
     // Planes n·p > reach with n = (±f, 0, −a) or (0, ±f, −a): a member is outside when n·p > reach.
     vec4 sides[4] = vec4[](vec4(fx, 0.0, -(frame.raster_size.x + margin - frame.principal.x), 0.0),
                            vec4(-fx, 0.0, -(frame.principal.x + margin), 0.0),
-                           vec4(0.0, fy, -(frame.raster_size.y + margin - frame.principal.y), 0.0),
-                           vec4(0.0, -fy, -(frame.principal.y + margin), 0.0));
+                           vec4(0.0, fy, -(bottom + margin - frame.principal.y), 0.0),
+                           vec4(0.0, -fy, -(frame.principal.y - top + margin), 0.0));
     for (int k = 0; k < 4; ++k) {
         vec3 n = sides[k].xyz;
         if (dot(n, p) - radius * length(n) > reach) return true;
@@ -86,16 +87,22 @@ void main() {
     // A resident component that is not drawn now (a streamed part the cut does not use).
     float instance = clusters[cluster].bounds.w;
     if (instance >= 0.0 && (instances[floatBitsToUint(instance)].info.z & SPLAT_INSTANCE_HIDDEN) != 0u) {
-        atomicAdd(stats.skipping.z, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
+        if (frame.strip_first_row == 0u)
+            atomicAdd(stats.skipping.z, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
         return;
     }
-    if (cull_cluster(clusters[cluster])) {
-        atomicAdd(stats.skipping.y, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
+    // The frame's statistics count each cluster once: in strips, by the whole raster in the first strip.
+    bool counted = frame.strip_first_row == 0u;
+    if (cull_cluster(clusters[cluster], 0.0, frame.raster_size.y)) {
+        if (counted) atomicAdd(stats.skipping.y, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
         return;
     }
     if (skip_cluster(cluster)) {
-        atomicAdd(stats.skipping.x, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
+        if (counted) atomicAdd(stats.skipping.x, min(uint(SPLAT_PROJECT_WORKGROUP_SIZE), count - first));
         return;
     }
+    float top = float(frame.strip_first_row * frame.tile_size);
+    float bottom = min(float(frame.strip_end_row * frame.tile_size), frame.raster_size.y);
+    if (drawn_in_strips() && cull_cluster(clusters[cluster], top, bottom)) return;  // outside this strip
     cluster_list.ids[atomicAdd(cluster_list.dispatch.x, 1u)] = cluster;
 }

@@ -1,5 +1,6 @@
 // Step 3, before binning: turns the key total (on the GPU) into the clamped sort count, the
-// overflow flag and the indirect dispatch size of the tile-range pass, without a CPU read-back.
+// overflow flag and the indirect dispatch size of the tile-range pass, without a CPU read-back. The
+// frame's statistics add the pairs up (counters cleared at the frame's start, SplatPass).
 #include "common_splat_bindings.glsl"
 
 layout(local_size_x = 1) in;
@@ -12,7 +13,7 @@ void main() {
     uint clusters = (frame.gaussian_count + SPLAT_PROJECT_WORKGROUP_SIZE - 1u) / SPLAT_PROJECT_WORKGROUP_SIZE;
     uint total = cluster_keys[clusters];
     uint used = min(total, frame.key_capacity);
-    stats.keys_needed = total;
-    stats.overflowed = total > frame.key_capacity ? 1u : 0u;
+    stats.keys_needed += total;  // in strips, summed over the frame's strips
+    stats.overflowed = max(stats.overflowed, total > frame.key_capacity ? 1u : 0u);
     args = uvec4((used + SPLAT_RANGES_WORKGROUP_SIZE - 1u) / SPLAT_RANGES_WORKGROUP_SIZE, 1u, 1u, used);
 }

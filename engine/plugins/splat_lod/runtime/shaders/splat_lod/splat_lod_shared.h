@@ -228,13 +228,14 @@ SPLAT_LOD_STRUCT(FrameUniforms) {
     float render_scale;          // s (1 natively)
     float inverse_render_scale;  // 1/s
     uint splat_budget;           // at most this many Gaussians drawn (0: no budget)
-    uint pad0;
-    uint exact_tiles;         // 1: a splat's keys are the tiles its ellipse touches, 0: its bounding box
-    uint key_depth_bits;      // D > 0: one-word sort keys (tile << D | depth_q), 0: (depth bits, tile)
-    uint splat_capacity;      // ProjectedSplat entries SPLAT_BINDING_PROJECTED holds
-    uint sh_storage_degree;   // SH degree the scene stores (compact: how its SH words are laid out)
-    uint separate_selection;  // 1: coverage and skipping by selection_view (a stereo eye), 0: by view
-    uint pad1;
+    uint strip_first_row;        // the tile rows this run of steps 1–6 draws: [first, end) (all of them
+                                 // unless the frame is drawn in strips, SplatPassSettings::frame_memory_limit)
+    uint exact_tiles;            // 1: a splat's keys are the tiles its ellipse touches, 0: its bounding box
+    uint key_depth_bits;         // D > 0: one-word sort keys (tile << D | depth_q), 0: (depth bits, tile)
+    uint splat_capacity;         // ProjectedSplat entries SPLAT_BINDING_PROJECTED holds
+    uint sh_storage_degree;      // SH degree the scene stores (compact: how its SH words are laid out)
+    uint separate_selection;     // 1: coverage and skipping by selection_view (a stereo eye), 0: by view
+    uint strip_end_row;
     mat4 selection_view;  // world → view of the camera that selects (CameraView::selection_view)
     // How Gaussians fade at the rule's switches, one per level handover (the instance's
     // SPLAT_INSTANCE_HANDOVER bits; the rule resolved per asset, plugin_msgs::LodRule::for_asset): x the

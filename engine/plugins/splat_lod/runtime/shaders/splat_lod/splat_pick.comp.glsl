@@ -3,7 +3,8 @@
 // splats, the same α, the same stop at the mesh surface and before T would fall below 1e-4) and finds
 // the splat with which the accumulated opacity first passes ½: its view depth and its instance
 // (ProjectedSplat::color.w). Below render scale 1 the pixel is the low-resolution texel its centre
-// falls in, stopped at the output pixel's own mesh depth.
+// falls in, stopped at the output pixel's own mesh depth. A frame drawn in strips answers each pixel in
+// the strip that holds its row.
 #include "common_splat_bindings.glsl"
 #include "common_splat_alpha.glsl"
 
@@ -21,6 +22,8 @@ void main() {
     uint k = gl_LocalInvocationIndex;
     if (k >= picks.count.x) return;
     uvec2 pixel = picks.pixels[k].xy;
+    uint row = pixel.y / RASTER_TILE_SIZE;
+    if (row < frame.strip_first_row || row >= frame.strip_end_row) return;
     float mesh_depth = texelFetch(view_depth, ivec2(picks.pixels[k].zw), 0).r;
     uvec2 range = ranges[(pixel.y / RASTER_TILE_SIZE) * frame.tiles.x + pixel.x / RASTER_TILE_SIZE];
     vec2 centre = vec2(pixel) + 0.5;

@@ -157,8 +157,8 @@ uint project(uint index, out ProjectedSplat p) {
         atomicAdd(budget.selected[bins.x], 1u);
         if (bins.y + 1 < SPLAT_BUDGET_BINS) atomicAdd(budget.selected[bins.y + 1], 0xFFFFFFFFu);  // −1
         else atomicAdd(budget.coverage[cbin], 1u);
-    } else {
-        atomicAdd(stats.visible, 1u);
+    } else if (!drawn_in_strips() || first_tile_row(mean, conic, opacity) >= frame.strip_first_row) {
+        atomicAdd(stats.visible, 1u);  // in strips, by the strip of its first tile row (the frame's count)
         atomicAdd(stats.per_level[level - 1u], 1u);
     }
     atomicMax(stats.depth_range.x, floatBitsToUint(z));  // positive floats order like their bits

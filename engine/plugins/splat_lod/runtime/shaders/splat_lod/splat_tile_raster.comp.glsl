@@ -164,10 +164,12 @@ void walk(uvec2 range) {
 #endif
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    // In strips (SplatPassSettings::frame_memory_limit) the dispatch covers the strip's tile rows only.
+    uvec2 tile_xy = gl_WorkGroupID.xy + uvec2(0u, frame.strip_first_row);
+    ivec2 pixel = ivec2(tile_xy * uint(RASTER_TILE_SIZE) + gl_LocalInvocationID.xy);
     ivec2 size = ivec2(frame.raster_size);
     bool inside = all(lessThan(pixel, size));
-    uint tile = gl_WorkGroupID.y * frame.tiles.x + gl_WorkGroupID.x;
+    uint tile = tile_xy.y * frame.tiles.x + tile_xy.x;
     g_centre = vec2(pixel) + 0.5;
     g_median = SPLAT_INFINITY;
 #ifdef SPLAT_GRADIENTS

@@ -74,7 +74,9 @@ SplatMemory SplatRenderer::memory() const {
     m.storage = scene.storage();
     m.scene_bytes = scene.resident_bytes();
     m.frame_bytes = pass_->frame_bytes();
+    m.view_bytes = pass_->view_bytes();
     m.selection_runs = pass_->last_frame_counts().selection_runs;
+    m.strips = pass_->last_frame_counts().strips;
     return m;
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include "engine/gl/compute_step.h"
@@ -25,11 +26,11 @@ engine::gl::Buffer fixed_buffer(const char* label, std::size_t bytes) {
     return buffer;
 }
 
-// A capacity for `need` elements: `capacity` while it holds them and three quarters of it would not,
-// else the need and `spare` of it more, at least `minimum` and at most `limit`.
+// A capacity for `need` elements: `capacity` while it holds them, is within `limit` and three quarters of
+// it would not, else the need and `spare` of it more, at least `minimum` and at most `limit`.
 std::uint32_t follow(std::uint32_t capacity, std::uint32_t need, double spare, std::uint32_t minimum,
                      std::uint32_t limit) {
-    if (capacity >= need && (need >= capacity / 4 * 3 || capacity <= minimum)) return capacity;
+    if (capacity >= need && capacity <= limit && (need >= capacity / 4 * 3 || capacity <= minimum)) return capacity;
     const double wanted = std::max<double>(minimum, std::ceil(need * (1.0 + spare)));
     return static_cast<std::uint32_t>(std::min<double>(wanted, limit));
 }
@@ -40,6 +41,7 @@ void FrameBuffers::ensure(std::uint32_t clusters, std::uint32_t tile_count) {
     if (!uniforms) {
         uniforms = fixed_buffer("splat frame uniforms", sizeof(gpu::FrameUniforms));
         counters = fixed_buffer("splat frame counters", sizeof(gpu::FrameCounters));
+        counters_before = fixed_buffer("splat frame counters before the strip", sizeof(gpu::FrameCounters));
         args = fixed_buffer("splat dispatch args", sizeof(glm::uvec4));
         count = fixed_buffer("splat cluster count", sizeof(std::uint32_t));
         budget = fixed_buffer("splat budget", sizeof(gpu::SplatBudgetState));
@@ -51,18 +53,18 @@ void FrameBuffers::ensure(std::uint32_t clusters, std::uint32_t tile_count) {
     count.upload(0, sizeof(clusters), &clusters);
 }
 
-void FrameBuffers::ensure_splats(std::uint32_t splats) {
-    const std::uint32_t capacity = follow(splat_capacity, splats, splat_spare, minimum_splat_capacity,
-                                          std::numeric_limits<std::uint32_t>::max() / 64);
+void FrameBuffers::ensure_splats(std::uint32_t splats, std::uint32_t most) {
+    const std::uint32_t limit = std::min(std::max(splats, most), std::numeric_limits<std::uint32_t>::max() / 64);
+    const std::uint32_t capacity = follow(splat_capacity, splats, splat_spare, minimum_splat_capacity, limit);
     if (capacity == splat_capacity && projected) return;
     projected = engine::gl::Buffer(engine::gl::NoCreate);
     projected.ensure_size(std::size_t(capacity) * sizeof(gpu::ProjectedSplat), "splat projected");
     splat_capacity = capacity;
 }
 
-void FrameBuffers::ensure_keys(std::uint32_t pairs, std::uint32_t words) {
-    const std::uint32_t capacity =
-        follow(key_capacity, pairs, key_spare, minimum_key_capacity, engine::gl::RadixSort::max_sort_count());
+void FrameBuffers::ensure_keys(std::uint32_t pairs, std::uint32_t words, std::uint32_t most) {
+    const std::uint32_t limit = std::min(std::max(pairs, most), engine::gl::RadixSort::max_sort_count());
+    const std::uint32_t capacity = follow(key_capacity, pairs, key_spare, minimum_key_capacity, limit);
     if (capacity == key_capacity && words == key_words && keys) return;
     keys = engine::gl::Buffer(engine::gl::NoCreate);
     values = engine::gl::Buffer(engine::gl::NoCreate);
@@ -73,8 +75,25 @@ void FrameBuffers::ensure_keys(std::uint32_t pairs, std::uint32_t words) {
 }
 
 void FrameBuffers::clear(bool with_budget) {
+    counters_kept_ = false;
     engine::gl::clear_to_zero(counters);
     if (with_budget) engine::gl::clear_to_zero(budget);
+    clear_selection();
+}
+
+void FrameBuffers::clear_strip() {
+    engine::gl::memory_barrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the strip before wrote the counters
+    if (!counters_kept_)
+        engine::gl::copy_buffer(counters, counters_before, sizeof(gpu::FrameCounters));
+    else
+        engine::gl::copy_buffer(counters_before, counters, sizeof(gpu::FrameCounters));
+    counters_kept_ = true;
+    const std::uint32_t none = 0;
+    counters.upload(offsetof(gpu::FrameCounters, projected), sizeof(none), &none);
+    clear_selection();
+}
+
+void FrameBuffers::clear_selection() {
     engine::gl::clear_to_zero(tile_ranges);
     // Clusters step 1b does not project keep no pairs.
     engine::gl::clear_to_zero(cluster_pairs);

@@ -81,21 +81,38 @@ inline constexpr GLbitfield kStepBarrier =
 inline constexpr GLbitfield kImageBarrier = GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                                             GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
 
-// What steps 1–2 found: the splats projected and the tile-splat pairs they need.
+// What steps 1–2 found: the splats projected and the tile-splat pairs they need. For a frame (SplatPass),
+// the sums over its strips, the most splats one strip projected and the strips drawn.
 struct FrameCounts {
     std::uint32_t splats = 0;
     std::uint32_t pairs = 0;
-    std::uint32_t selection_runs = 0;  // 1, or 2 when the splats did not fit at first
+    std::uint32_t selection_runs = 0;  // 1, or more when steps 1–2 ran again (the splats did not fit)
+    bool fits = true;                  // within the strip's room (StripRoom)
+    std::uint32_t largest_strip = 0;   // splats
+    std::uint32_t strips = 1;
 };
+
+// The most splats and pairs one strip may hold (SplatPassSettings::frame_memory_limit): no limit by
+// default. strip_room() splits the limit between the two buffers by what the last frame needed of each.
+struct StripRoom {
+    std::uint32_t splats = ~0u;
+    std::uint32_t pairs = ~0u;
+};
+StripRoom strip_room(std::uint64_t limit, const FrameCounts& last, std::uint32_t key_words);
 
 void record_selection(const FrameSteps& steps, std::uint32_t gaussians);
 void record_scan(const FrameSteps& steps, std::uint32_t clusters);
-// Steps 1–2 with `uniforms` (their splat capacity set here), then a blocking read of the two counts; when
-// the splats did not fit, the array grows to hold them and steps 1–2 run again.
-FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms, std::uint32_t gaussians);
+// Steps 1–2 of the strip in `uniforms` (their splat capacity set here), then a blocking read of the two
+// counts. When the splats did not fit, the array grows to hold them and steps 1–2 run again, unless they
+// exceed the room and the strip can be split (more than one tile row): then it returns, not `fits`.
+FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms, std::uint32_t gaussians,
+                          const StripRoom& room);
 void record_sort(const FrameSteps& steps);
 // 5½: answers the frame's picks (gpu::SplatPicks, uploaded) into the same buffer.
 void record_picks(const FrameSteps& steps);
-void record_raster(const FrameSteps& steps);
+// 6: the raster of `tile_rows` rows of tiles from the strip's first (FrameUniforms::strip_first_row).
+void record_raster(const FrameSteps& steps, std::uint32_t tile_rows);
+// 7: below render scale 1, the upscale of the whole frame (after every strip's raster).
+void record_upscale(const FrameSteps& steps);
 
 }  // namespace splat_lod

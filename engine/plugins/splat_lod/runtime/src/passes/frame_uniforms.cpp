@@ -65,6 +65,8 @@ gpu::FrameUniforms frame_uniforms(const SplatPassSettings& settings, const plugi
     u.tiles = glm::uvec2(raster.tiles_x, raster.tiles_y);
     u.tile_count = raster.tile_count();
     u.tile_size = raster.tile_size;
+    u.strip_first_row = 0;  // every row; SplatPass sets a strip's
+    u.strip_end_row = raster.tiles_y;
     gpu::write_lod_rule(u, lod.rule);
     u.coverage_scale = 1.0f / s;
     u.coarsest_level = scene.coarsest_level();

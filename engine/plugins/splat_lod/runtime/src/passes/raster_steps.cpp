@@ -19,28 +19,29 @@ void record_picks(const FrameSteps& steps) {
                      .barrier = kStepBarrier});
 }
 
-void record_raster(const FrameSteps& steps) {
-    using engine::gl::GpuTimerScope;
-    using engine::gl::groups_for;
+void record_raster(const FrameSteps& steps, std::uint32_t tile_rows) {
     const RasterSize& raster = steps.raster;
-    {  // 6. per-tile front-to-back raster, stopping at the mesh depth; composite C + T·mesh, or below
-       //    render scale 1, C and A with their derivatives at low resolution
-        GpuTimerScope t(steps.frame.timers, "splat.raster");
-        steps.bind_all();
-        std::vector<std::string> defines = steps.depth_defines();
-        defines.push_back("RASTER_TILE_SIZE=" + std::to_string(raster.tile_size));
-        if (raster.upscaled) defines.push_back("SPLAT_GRADIENTS");
-        if (steps.fetch == RasterFetch::shared)
-            defines.push_back("RASTER_FETCH_SHARED");
-        else
-            steps.texels.bind_raster(steps.buffers);
-        engine::gl::run({.program = &steps.program("splat_tile_raster.comp.glsl", defines),
-                         .groups = {raster.tiles_x, raster.tiles_y, 1},
-                         .barrier = kImageBarrier});
-    }
-    if (!raster.upscaled) return;
+    // 6. per-tile front-to-back raster, stopping at the mesh depth; composite C + T·mesh, or below render
+    //    scale 1, C and A with their derivatives at low resolution
+    engine::gl::GpuTimerScope t(steps.frame.timers, "splat.raster");
+    steps.bind_all();
+    std::vector<std::string> defines = steps.depth_defines();
+    defines.push_back("RASTER_TILE_SIZE=" + std::to_string(raster.tile_size));
+    if (raster.upscaled) defines.push_back("SPLAT_GRADIENTS");
+    if (steps.fetch == RasterFetch::shared)
+        defines.push_back("RASTER_FETCH_SHARED");
+    else
+        steps.texels.bind_raster(steps.buffers);
+    engine::gl::run({.program = &steps.program("splat_tile_raster.comp.glsl", defines),
+                     .groups = {raster.tiles_x, tile_rows, 1},
+                     .barrier = kImageBarrier});
+}
+
+void record_upscale(const FrameSteps& steps) {
+    using engine::gl::groups_for;
+    if (!steps.raster.upscaled) return;
     {  // 7. upscale to the output and composite over the mesh pass
-        GpuTimerScope t(steps.frame.timers, "splat.upscale");
+        engine::gl::GpuTimerScope t(steps.frame.timers, "splat.upscale");
         const auto method = static_cast<int>(steps.lod.upscaler);
         const auto width = static_cast<std::uint32_t>(steps.frame.target.width());
         const auto height = static_cast<std::uint32_t>(steps.frame.target.height());

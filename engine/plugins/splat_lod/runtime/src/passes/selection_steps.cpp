@@ -1,5 +1,7 @@
 // Steps 1 and 2 of the splat frame (frame_steps.h): which Gaussians the view draws, and how many splats
 // and tile-splat pairs that makes.
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <string>
 
@@ -31,25 +33,46 @@ void record_selection(const FrameSteps& steps, std::uint32_t gaussians) {
                      .barrier = kStepBarrier});
 }
 
-FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms, std::uint32_t gaussians) {
+StripRoom strip_room(std::uint64_t limit, const FrameCounts& last, std::uint32_t key_words) {
+    if (limit == 0) return {};
+    // A pair is its key and value, the sort's copy of both and half a byte of the sort's histograms
+    // (RadixSort::bytes); a byte covers that and the scan's.
+    const double splat_bytes = sizeof(gpu::ProjectedSplat), pair_bytes = 2.0 * 4.0 * (key_words + 1) + 1.0;
+    const double splats = last.splats * splat_bytes, pairs = last.pairs * pair_bytes;
+    const double share = splats + pairs > 0 ? std::clamp(splats / (splats + pairs), 0.25, 0.75) : 0.5;
+    const auto most = [](double bytes, double each) {
+        return static_cast<std::uint32_t>(std::clamp(std::floor(bytes / each), 1.0, 4294967295.0));
+    };
+    return {most(double(limit) * share, splat_bytes), most(double(limit) * (1.0 - share), pair_bytes)};
+}
+
+FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms, std::uint32_t gaussians,
+                          const StripRoom& room) {
     FrameBuffers& b = steps.buffers;
     const std::uint32_t clusters = engine::gl::groups_for(gaussians, SPLAT_PROJECT_WORKGROUP_SIZE);
+    const bool splittable = uniforms.strip_end_row - uniforms.strip_first_row > 1;
     FrameCounts counts;
     for (counts.selection_runs = 1;; ++counts.selection_runs) {
         uniforms.splat_capacity = b.splat_capacity;
         b.uniforms.upload(0, sizeof(uniforms), &uniforms);
-        b.clear(steps.lod.splat_budget > 0);
+        if (uniforms.strip_first_row == 0)
+            b.clear(steps.lod.splat_budget > 0);
+        else
+            b.clear_strip();
         record_selection(steps, gaussians);
         record_scan(steps, clusters);
-        // The frame's one wait: the two counts, before the steps that are sized by them are recorded.
+        // The strip's one wait: the two counts, before the steps that are sized by them are recorded.
         engine::gl::memory_barrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         engine::gl::read_buffer(b.counters, offsetof(gpu::FrameCounters, projected), sizeof(std::uint32_t),
                                 &counts.splats);
         engine::gl::read_buffer(b.cluster_pairs, std::size_t(clusters) * sizeof(std::uint32_t), sizeof(std::uint32_t),
                                 &counts.pairs);
+        counts.fits = counts.splats <= room.splats && counts.pairs <= room.pairs;
+        if (!counts.fits && splittable) return counts;  // drawn in two halves instead
         if (counts.splats <= b.splat_capacity || counts.selection_runs == 2) break;
-        b.ensure_splats(counts.splats);  // the clusters that did not fit wrote nothing: again, with room
+        b.ensure_splats(counts.splats, room.splats);  // the clusters that did not fit wrote nothing: again, with room
     }
+    counts.largest_strip = counts.splats;
     if (counts.splats <= b.splat_capacity) return counts;
     engine::log_warning("splat_lod: " + std::to_string(counts.splats) + " projected splats exceed the " +
                         std::to_string(b.splat_capacity) + " the frame can hold; some are not drawn");

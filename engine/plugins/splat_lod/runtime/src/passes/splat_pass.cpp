@@ -1,5 +1,10 @@
 #include "passes/splat_pass.h"
 
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
 #include "engine/core/message_bus.h"
 #include "engine/gl/compute_step.h"
 #include "engine/gl/prefix_scan.h"
@@ -41,27 +46,21 @@ void SplatPass::execute(engine::FrameContext& frame) {
     else if (depth_.width > 0)
         depth_ = SplatDepthImage{};
     // Step 1 walks the scene's n Gaussian slots, a cluster of them per workgroup. The dense splat array
-    // starts at what the last frame projected; the keys are sized by what this one needs.
+    // starts at what the last frame's largest strip projected; the keys are sized by what each strip needs.
+    const StripRoom room = lod_.splat_budget > 0 ? StripRoom{}
+                                                 : strip_room(settings.frame_memory_limit, last_counts_,
+                                                              raster.key_depth_bits > 0 ? 1u : 2u);
     buffers_.ensure(engine::gl::groups_for(n, SPLAT_PROJECT_WORKGROUP_SIZE), raster.tile_count());
-    buffers_.ensure_splats(last_counts_.splats);
+    buffers_.ensure_splats(last_counts_.largest_strip, room.splats);
     fetch_in_use_ =
         texels_.resolve(settings.raster_fetch, buffers_.splat_capacity, buffers_.key_capacity, scene_, fetch_in_use_);
     gpu::FrameUniforms uniforms = frame_uniforms(settings, lod_, frame, raster, scene_);
     FrameSteps steps{frame, settings, lod_,    raster,        scene_, buffers_,
                      low_,  depth_,   texels_, fetch_in_use_, *scan_, *sort_};
-    last_counts_ = select_splats(steps, uniforms, n);  // 1. a–d: cull, skip, project, the budget; 2. scan
-    buffers_.ensure_keys(last_counts_.pairs, steps.one_word_keys() ? 1 : 2);
-    fetch_in_use_ =
-        texels_.resolve(settings.raster_fetch, buffers_.splat_capacity, buffers_.key_capacity, scene_, fetch_in_use_);
-    steps.fetch = fetch_in_use_;  // the buffers may have outgrown the driver's buffer textures
-    uniforms.key_capacity = buffers_.key_capacity;
-    buffers_.uniforms.upload(0, sizeof(uniforms), &uniforms);
-    record_sort(steps);  // 3–5. bin, sort, tile ranges
-    if (picks_.upload(frame.picks, raster.scale, {raster.width, raster.height}, buffers_.picks)) {
-        record_picks(steps);  // 5½. the splats under the pixels picked
-        picks_.record(buffers_.picks, frame.camera, scene_.instance_components());
-    }
-    record_raster(steps);  // 6. raster; 7. upscale below render scale 1
+    const bool picked = picks_.upload(frame.picks, raster.scale, {raster.width, raster.height}, buffers_.picks);
+    last_counts_ = draw_strips(steps, uniforms, room, picked);  // 1–6 per strip of tile rows
+    record_upscale(steps);                                      // 7. below render scale 1
+    if (picked) picks_.record(buffers_.picks, frame.camera, scene_.instance_components());
     engine::gl::end_steps();
 
     FrameStatistics::Frame facts;
@@ -73,9 +72,60 @@ void SplatPass::execute(engine::FrameContext& frame) {
     statistics_.record(facts, buffers_, frame.bus);
 }
 
+// Strips of tile rows from the top, as many as the last frame needed for the room; a strip that needs more
+// is drawn in two halves, down to single rows (SplatPassSettings::frame_memory_limit).
+FrameCounts SplatPass::draw_strips(FrameSteps& steps, gpu::FrameUniforms& uniforms, const StripRoom& room,
+                                   bool picked) {
+    const std::uint32_t rows = steps.raster.tiles_y;
+    const double need = std::max(double(last_counts_.splats) / room.splats, double(last_counts_.pairs) / room.pairs);
+    const auto planned = static_cast<std::uint32_t>(std::clamp(std::ceil(need * 1.25), 1.0, double(rows)));
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> todo;  // [first, end) tile rows, the next at the back
+    for (std::uint32_t k = planned; k-- > 0;) todo.emplace_back(rows * k / planned, rows * (k + 1) / planned);
+    FrameCounts counts{.selection_runs = 1, .strips = 0};
+    while (!todo.empty()) {
+        const auto [first, end] = todo.back();
+        todo.pop_back();
+        uniforms.strip_first_row = first;
+        uniforms.strip_end_row = end;
+        const FrameCounts strip = select_splats(steps, uniforms, scene_.gaussian_count(), room);
+        const bool split = !strip.fits && end - first > 1;
+        counts.selection_runs += strip.selection_runs - (split ? 0 : 1);
+        if (split) {
+            todo.emplace_back((first + end) / 2, end);
+            todo.emplace_back(first, (first + end) / 2);
+            continue;
+        }
+        draw_strip(steps, uniforms, strip, room, picked);
+        counts.splats += strip.splats;
+        counts.pairs += strip.pairs;
+        counts.largest_strip = std::max(counts.largest_strip, strip.splats);
+        ++counts.strips;
+    }
+    return counts;
+}
+
+// Steps 3–6 of a strip whose steps 1–2 have run.
+void SplatPass::draw_strip(FrameSteps& steps, gpu::FrameUniforms& uniforms, const FrameCounts& strip,
+                           const StripRoom& room, bool picked) {
+    buffers_.ensure_keys(strip.pairs, steps.one_word_keys() ? 1 : 2, room.pairs);
+    fetch_in_use_ =
+        texels_.resolve(settings.raster_fetch, buffers_.splat_capacity, buffers_.key_capacity, scene_, fetch_in_use_);
+    steps.fetch = fetch_in_use_;  // the buffers may have outgrown the driver's buffer textures
+    uniforms.key_capacity = buffers_.key_capacity;
+    buffers_.uniforms.upload(0, sizeof(uniforms), &uniforms);
+    record_sort(steps);               // 3–5. bin, sort, tile ranges
+    if (picked) record_picks(steps);  // 5½. the splats under the pixels picked in the strip
+    record_raster(steps, uniforms.strip_end_row - uniforms.strip_first_row);  // 6. raster
+    buffers_.strip_drawn();
+}
+
 std::uint64_t SplatPass::frame_bytes() const {
     return buffers_.bytes() + low_.bytes() + depth_.bytes() + (scan_ ? scan_->bytes() : 0) +
            (sort_ ? sort_->bytes() : 0);
+}
+
+std::uint64_t SplatPass::view_bytes() const {
+    return buffers_.projected.size() + buffers_.keys.size() + buffers_.values.size() + (sort_ ? sort_->bytes() : 0);
 }
 
 // The readback waits for each copy, so reading with `wait` blocks until every frame's is done.

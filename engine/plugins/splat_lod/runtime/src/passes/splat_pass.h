@@ -51,6 +51,8 @@ public:
     std::uint32_t key_capacity() const { return buffers_.key_capacity; }
     // GPU bytes of the per-frame buffers, the scan's and the sort's own, and the low-resolution images.
     std::uint64_t frame_bytes() const;
+    // Of those, the buffers SplatPassSettings::frame_memory_limit bounds: projected splats, keys, the sort's.
+    std::uint64_t view_bytes() const;
     // Splats the latest frame projected (the dense array's need) and the tile-splat pairs it sorted.
     FrameCounts last_frame_counts() const { return last_counts_; }
     RasterFetch raster_fetch_in_use() const { return fetch_in_use_; }
@@ -66,6 +68,10 @@ public:
     SplatDepth read_splat_depth() const { return depth_.read(); }
 
 private:
+    FrameCounts draw_strips(FrameSteps& steps, gpu::FrameUniforms& uniforms, const StripRoom& room, bool picked);
+    void draw_strip(FrameSteps& steps, gpu::FrameUniforms& uniforms, const FrameCounts& strip, const StripRoom& room,
+                    bool picked);
+
     plugin_msgs::LodSettings lod_;
     gpu::GpuScene scene_;
     FrameBuffers buffers_;
