@@ -57,6 +57,8 @@ void budget_checks(const std::vector<FrameRecord>& lod, ProfileSummary& s) {
         s.frames_pages_differ += r.gpu_page_bytes != r.resident_bytes + r.props_gpu_bytes ? 1 : 0;
         s.failures = std::max(s.failures, r.failures_total);
         s.reselected_frames += r.selection_runs > 1 ? 1 : 0;
+        s.striped_frames += r.strips > 1 ? 1 : 0;
+        s.most_strips = std::max(s.most_strips, r.strips);
     }
     s.memory.measured = !lod.empty();
     s.memory.pass = s.memory.measured && s.frames_over_memory == 0 && s.frames_pages_differ == 0;
@@ -73,10 +75,10 @@ void budget_checks(const std::vector<FrameRecord>& lod, ProfileSummary& s) {
     const double ratio = s.pass_memory.measured ? double(s.peak_gpu_total_bytes) / double(s.peak_resident_bytes) : 0.0;
     s.pass_memory.pass = s.pass_memory.measured && ratio <= kMaxPassMemoryRatio;
     s.pass_memory.text = formatted(
-        "splat pass memory: peak %.1f MiB, %.2fx the peak resident %.1f MiB (bar %.1fx); steps 1-2 ran twice on %d "
-        "of %d frames",
+        "splat pass memory: peak %.1f MiB, %.2fx the peak resident %.1f MiB (bar %.1fx); steps 1-2 ran again on %d "
+        "of %d frames; %d frames drawn in strips (at most %d)",
         mib(s.peak_gpu_total_bytes), ratio, mib(s.peak_resident_bytes), kMaxPassMemoryRatio, s.reselected_frames,
-        s.frames);
+        s.frames, s.striped_frames, s.most_strips);
 }
 
 void fog_check(const std::vector<FrameRecord>& lod, ProfileSummary& s) {

@@ -91,6 +91,9 @@ ReferenceOutcome make_reference(const ReferenceOptions& o, std::FILE* progress) 
     // The reference is the truth the profile scores against: the Gaussians as trained, full floats.
     GameSettings settings = o.settings;
     settings.gpu_storage = splat_lod::GpuStorage::full;
+    // Drawn in one piece: a supersampled frame in strips (the game's frame memory limit) would be the same
+    // to within a step of 255 (one-word keys), at the cost of many strips.
+    settings.frame_memory_bytes = 0;
     GameWorld world(engine, o.world, settings);
     const std::vector<PathPose> poses = world.path(o.frames);
     const ReferenceKey key = reference_key(o.world, o.width, o.height, poses, o.settings.fov_y_deg, o.supersample);

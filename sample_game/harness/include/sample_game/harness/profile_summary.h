@@ -116,7 +116,9 @@ struct ProfileSummary {
     Check scale_time, scale_density, scale_culling, scale_memory, splat_budget;
     Check pass_memory;
     Check fog;
-    int reselected_frames = 0;  // frames whose steps 1–2 ran twice (FrameRecord::selection_runs)
+    int reselected_frames = 0;  // frames whose steps 1–2 ran again (FrameRecord::selection_runs)
+    int striped_frames = 0;     // frames drawn in more than one strip (FrameRecord::strips)
+    int most_strips = 1;
 };
 
 ProfileSummary summarize(const std::vector<FrameRecord>& lod, const std::vector<FrameRecord>& baseline,

@@ -11,6 +11,7 @@ layout(std430, binding = SPLAT_BINDING_INSTANCES) readonly buffer Instances { Gp
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
 layout(std430, binding = SPLAT_BINDING_CLUSTERS) readonly buffer Clusters { GpuCluster clusters[]; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
+layout(std430, binding = SPLAT_BINDING_CLUSTER_ROWS) readonly buffer ClusterRows { uint cluster_rows[]; };
 
 #include "common_splat_lod.glsl"
 
@@ -103,6 +104,11 @@ void main() {
     }
     float top = float(frame.strip_first_row * frame.tile_size);
     float bottom = min(float(frame.strip_end_row * frame.tile_size), frame.raster_size.y);
-    if (drawn_in_strips() && cull_cluster(clusters[cluster], top, bottom)) return;  // outside this strip
+    if (drawn_in_strips()) {
+        if (cull_cluster(clusters[cluster], top, bottom)) return;  // outside this strip
+        // A strip above projected it, and none of its members reaches this strip's rows (splat_project).
+        uint rows = cluster_rows[cluster];
+        if (rows > 0u && rows - 1u <= frame.strip_first_row) return;
+    }
     cluster_list.ids[atomicAdd(cluster_list.dispatch.x, 1u)] = cluster;
 }

@@ -66,7 +66,10 @@ using mat4 = glm::mat4;
 // uvec2[C]: per projected cluster, its first splat in SPLAT_BINDING_PROJECTED and how many it wrote
 // there (0 when they did not fit: the CPU then grows the array and runs steps 1 and 2 again).
 #define SPLAT_BINDING_CLUSTER_SPLATS 14
-#define SPLAT_BINDING_PICKS 15      // SplatPicks: the pixels picked this frame and their answers
+#define SPLAT_BINDING_PICKS 15  // SplatPicks: the pixels picked this frame and their answers
+// uint[C], in strips (SplatPassSettings::frame_memory_limit): per cluster, 0 until a strip projects it, then
+// 1 + the end (exclusive) of the tile rows its members can touch, so that the strips below skip it.
+#define SPLAT_BINDING_CLUSTER_ROWS 16
 #define SPLAT_COMPACT_WORDS 5       // 32-bit words of one compact record
 #define SPLAT_UNIFORM_FRAME 0       // FrameUniforms (uniform block binding)
 #define SPLAT_IMAGE_COLOR 0         // the frame's display-space colour (rgba8), read and written

@@ -15,6 +15,7 @@ layout(std430, binding = SPLAT_BINDING_CLUSTER_SPLATS) writeonly buffer ClusterS
 layout(std430, binding = SPLAT_BINDING_STATS) buffer Stats { FrameCounters stats; };
 layout(std430, binding = SPLAT_BINDING_CLUSTER_LIST) readonly buffer ClusterList { uvec4 dispatch; uint ids[]; } cluster_list;
 layout(std430, binding = SPLAT_BINDING_BUDGET) buffer Budget { SplatBudgetState budget; };
+layout(std430, binding = SPLAT_BINDING_CLUSTER_ROWS) buffer ClusterRows { uint cluster_rows[]; };
 
 #ifdef SPLAT_INPUT_TEXELS
 // On CPU drivers a storage-buffer load is a loop over the SIMD lanes and a texel fetch one gather
@@ -86,6 +87,32 @@ float dissolve_rank(uint slot) {
     return float(h >> 8) * (1.0 / 16777216.0);
 }
 
+// In strips (SplatPassSettings::frame_memory_limit): true when Gaussian `g` at camera-space `cam` cannot
+// reach the strip's pixel rows, so that the Gaussians of a cluster that straddles a strip's edge skip the
+// rest of their projection when they lie beyond it. Its α = 1/255 ellipsoid reaches at most
+// sqrt(2·ln(255·o)·trace Σ) ≥ sqrt(2·ln(255·o))·σ_max from its mean, which bounds its footprint's
+// half-height as step 1a's cull_cluster bounds a cluster's (splat_clusters.comp.glsl). Exact: such a
+// Gaussian has no tile in the strip.
+// In strips: notes that the Gaussian at `index` may touch tile rows up to `end` (exclusive) over the
+// whole raster (SPLAT_BINDING_CLUSTER_ROWS), so that step 1a leaves its cluster out of the strips below.
+void note_rows(uint index, uint end) {
+    atomicMax(cluster_rows[index / uint(SPLAT_PROJECT_WORKGROUP_SIZE)], 1u + min(end, frame.tiles.y));
+}
+
+bool outside_strip(uint index, GpuGaussian g, vec3 cam, GpuInstance inst) {
+    float trace = g.covariance_a.x + g.covariance_a.w + g.covariance_b.y;
+    float reach = sqrt(max(2.0 * log(255.0 * g.position_opacity.w) * trace, 0.0));
+    float fx = frame.focal.x, fy = frame.focal.y, lx = frame.jacobian_clamp.x, ly = frame.jacobian_clamp.y;
+    float j = sqrt(fx * fx * (1.0 + lx * lx) + fy * fy * (1.0 + ly * ly));
+    float margin = 1.0 + sqrt(2.0 * log(255.0) * frame.dilation) * 1.001;
+    float radius = (reach * uintBitsToFloat(inst.info.w) * j * 1.001 + 1e-3) / cam.z + margin;
+    float y = frame.principal.y + fy * cam.y / cam.z;
+    float top = float(frame.strip_first_row * frame.tile_size);
+    float bottom = min(float(frame.strip_end_row * frame.tile_size), frame.raster_size.y);
+    if (y - radius > bottom) note_rows(index, uint(clamp(floor((y + radius) / float(frame.tile_size)), 0.0, 65535.0)) + 1u);
+    return y + radius < top || y - radius > bottom;
+}
+
 // Returns the tile count; 0 means culled. The projected form goes to `p`.
 uint project(uint index, out ProjectedSplat p) {
     GpuGaussian g = load_gaussian(index);
@@ -95,6 +122,7 @@ uint project(uint index, out ProjectedSplat p) {
     float z = cam.z;
     float opacity = g.position_opacity.w;
     if (!(z > frame.znear) || !(opacity > 1.0 / 255.0)) return 0u;
+    if (drawn_in_strips() && outside_strip(index, g, cam, inst)) return 0u;
 
     mat3 local = local_covariance(g);
     mat2 cov = screen_covariance(frame.view, mat3(inst.model), local, cam);
@@ -130,7 +158,8 @@ uint project(uint index, out ProjectedSplat p) {
     vec2 mean = vec2(frame.principal.x + frame.focal.x * cam.x / z, frame.principal.y + frame.focal.y * cam.y / z);
     vec4 conic = vec4(vec3(cov[1][1], -cov[0][1], cov[0][0]) / det, 0.0);
     // The tiles it touches; a splat whose footprint holds no pixel centre of the raster (or is not a
-    // number) draws nothing and is culled here.
+    // number) draws nothing and is culled here. In strips, first the rows it touches over the whole raster.
+    if (drawn_in_strips()) note_rows(index, tile_footprint_in_rows(mean, conic, opacity, 0.0, frame.raster_size.y - 1.0).rect.w);
     uint tiles = splat_tile_count(mean, conic, opacity);
     if (tiles == 0u) return 0u;
     // Bin 0 (β = 1) counts exactly what the frame without a budget draws: not a splat whose opacity
@@ -181,8 +210,10 @@ void main() {
     // Each visible splat's place among the cluster's and its first key within the cluster.
     scan_cluster(lid, uvec2(tiles > 0u ? 1u : 0u, tiles));
     // One reservation for the cluster; a cluster that does not fit writes nothing (the CPU sees the
-    // count above the capacity and runs the frame's steps 1–2 again with a larger array).
+    // count above the capacity and runs the frame's steps 1–2 again with a larger array). In strips the
+    // cluster is marked as projected: none of its members reaches the rows below those they noted.
     if (lid == 0u) {
+        if (drawn_in_strips()) atomicMax(cluster_rows[cluster], 1u);
         uint count = s_scan_total.x;
         uint first = count > 0u ? atomicAdd(stats.projected, count) : 0u;
         bool fits = first + count <= frame.splat_capacity && first + count >= first;

@@ -49,6 +49,7 @@ void FrameBuffers::ensure(std::uint32_t clusters, std::uint32_t tile_count) {
     cluster_list.ensure_size(sizeof(glm::uvec4) + std::size_t(clusters) * sizeof(std::uint32_t), "splat cluster list");
     cluster_pairs.ensure_size((std::size_t(clusters) + 1) * sizeof(std::uint32_t), "splat cluster pairs");
     cluster_splats.ensure_size(std::max<std::size_t>(clusters, 1) * sizeof(glm::uvec2), "splat cluster splats");
+    cluster_rows.ensure_size(std::max<std::size_t>(clusters, 1) * sizeof(std::uint32_t), "splat cluster rows");
     tile_ranges.ensure_size(std::size_t(tile_count) * sizeof(glm::uvec2), "splat tile ranges");
     count.upload(0, sizeof(clusters), &clusters);
 }
@@ -78,6 +79,7 @@ void FrameBuffers::clear(bool with_budget) {
     counters_kept_ = false;
     engine::gl::clear_to_zero(counters);
     if (with_budget) engine::gl::clear_to_zero(budget);
+    engine::gl::clear_to_zero(cluster_rows);
     clear_selection();
 }
 
@@ -103,8 +105,8 @@ void FrameBuffers::clear_selection() {
 }
 
 std::uint64_t FrameBuffers::bytes() const {
-    return projected.size() + cluster_pairs.size() + cluster_splats.size() + keys.size() + values.size() +
-           tile_ranges.size() + cluster_list.size();
+    return projected.size() + cluster_pairs.size() + cluster_splats.size() + cluster_rows.size() + keys.size() +
+           values.size() + tile_ranges.size() + cluster_list.size();
 }
 
 void LowResImages::ensure(int w, int h) {

@@ -23,6 +23,7 @@ struct FrameBuffers {
     engine::gl::Buffer cluster_list{engine::gl::NoCreate};     // dispatch arguments + the clusters kept
     engine::gl::Buffer cluster_pairs{engine::gl::NoCreate};    // per cluster, then its first key; total at [C]
     engine::gl::Buffer cluster_splats{engine::gl::NoCreate};   // per cluster, its run of projected splats
+    engine::gl::Buffer cluster_rows{engine::gl::NoCreate};     // per cluster, in strips: the rows it reaches
     engine::gl::Buffer tile_ranges{engine::gl::NoCreate};      // per tile, its range of sorted keys
     engine::gl::Buffer keys{engine::gl::NoCreate}, values{engine::gl::NoCreate};  // tile-splat pairs
     engine::gl::Buffer picks{engine::gl::NoCreate};  // gpu::SplatPicks, made on the first pick

@@ -27,7 +27,8 @@ void FrameSteps::bind_all() const {
                                                  {SPLAT_BINDING_BUDGET, &b.budget},
                                                  {SPLAT_BINDING_PAGE_CODECS, &scene.page_codecs()},
                                                  {SPLAT_BINDING_CLUSTER_SPLATS, &b.cluster_splats},
-                                                 {SPLAT_BINDING_PICKS, &b.picks}};
+                                                 {SPLAT_BINDING_PICKS, &b.picks},
+                                                 {SPLAT_BINDING_CLUSTER_ROWS, &b.cluster_rows}};
     std::vector<engine::gl::ImageBinding> images{{SPLAT_IMAGE_COLOR, &frame.target.color(), GL_RGBA8},
                                                  {SPLAT_IMAGE_VIEW_DEPTH, &frame.target.view_depth(), GL_R32F}};
     if (low.width > 0)

@@ -21,6 +21,7 @@
 #include "engine/render/render_pass.h"
 #include "gpu/gpu_scene.h"
 #include "passes/frame_buffers.h"
+#include "passes/frame_strips.h"
 #include "passes/frame_uniforms.h"
 #include "passes/texel_views.h"
 #include "splat_lod/splat_renderer.h"
@@ -91,14 +92,6 @@ struct FrameCounts {
     std::uint32_t largest_strip = 0;   // splats
     std::uint32_t strips = 1;
 };
-
-// The most splats and pairs one strip may hold (SplatPassSettings::frame_memory_limit): no limit by
-// default. strip_room() splits the limit between the two buffers by what the last frame needed of each.
-struct StripRoom {
-    std::uint32_t splats = ~0u;
-    std::uint32_t pairs = ~0u;
-};
-StripRoom strip_room(std::uint64_t limit, const FrameCounts& last, std::uint32_t key_words);
 
 void record_selection(const FrameSteps& steps, std::uint32_t gaussians);
 void record_scan(const FrameSteps& steps, std::uint32_t clusters);

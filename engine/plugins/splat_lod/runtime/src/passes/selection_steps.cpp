@@ -1,7 +1,5 @@
 // Steps 1 and 2 of the splat frame (frame_steps.h): which Gaussians the view draws, and how many splats
 // and tile-splat pairs that makes.
-#include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <string>
 
@@ -31,19 +29,6 @@ void record_selection(const FrameSteps& steps, std::uint32_t gaussians) {
     engine::gl::run({.program = &steps.storage_program("splat_budget_trim.comp.glsl"),
                      .indirect = &steps.buffers.cluster_list,
                      .barrier = kStepBarrier});
-}
-
-StripRoom strip_room(std::uint64_t limit, const FrameCounts& last, std::uint32_t key_words) {
-    if (limit == 0) return {};
-    // A pair is its key and value, the sort's copy of both and half a byte of the sort's histograms
-    // (RadixSort::bytes); a byte covers that and the scan's.
-    const double splat_bytes = sizeof(gpu::ProjectedSplat), pair_bytes = 2.0 * 4.0 * (key_words + 1) + 1.0;
-    const double splats = last.splats * splat_bytes, pairs = last.pairs * pair_bytes;
-    const double share = splats + pairs > 0 ? std::clamp(splats / (splats + pairs), 0.25, 0.75) : 0.5;
-    const auto most = [](double bytes, double each) {
-        return static_cast<std::uint32_t>(std::clamp(std::floor(bytes / each), 1.0, 4294967295.0));
-    };
-    return {most(double(limit) * share, splat_bytes), most(double(limit) * (1.0 - share), pair_bytes)};
 }
 
 FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms, std::uint32_t gaussians,

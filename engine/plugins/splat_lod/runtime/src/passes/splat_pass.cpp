@@ -1,8 +1,6 @@
 #include "passes/splat_pass.h"
 
 #include <algorithm>
-#include <cmath>
-#include <utility>
 #include <vector>
 
 #include "engine/core/message_bus.h"
@@ -48,8 +46,8 @@ void SplatPass::execute(engine::FrameContext& frame) {
     // Step 1 walks the scene's n Gaussian slots, a cluster of them per workgroup. The dense splat array
     // starts at what the last frame's largest strip projected; the keys are sized by what each strip needs.
     const StripRoom room = lod_.splat_budget > 0 ? StripRoom{}
-                                                 : strip_room(settings.frame_memory_limit, last_counts_,
-                                                              raster.key_depth_bits > 0 ? 1u : 2u);
+                                                 : strip_room(settings.frame_memory_limit, last_counts_.splats,
+                                                              last_counts_.pairs, raster.key_depth_bits > 0 ? 1u : 2u);
     buffers_.ensure(engine::gl::groups_for(n, SPLAT_PROJECT_WORKGROUP_SIZE), raster.tile_count());
     buffers_.ensure_splats(last_counts_.largest_strip, room.splats);
     fetch_in_use_ =
@@ -72,30 +70,30 @@ void SplatPass::execute(engine::FrameContext& frame) {
     statistics_.record(facts, buffers_, frame.bus);
 }
 
-// Strips of tile rows from the top, as many as the last frame needed for the room; a strip that needs more
-// is drawn in two halves, down to single rows (SplatPassSettings::frame_memory_limit).
+// The strips planned from the last frame's (frame_strips.h), top to bottom; a strip that needs more than
+// its room is drawn in two halves, down to single rows (SplatPassSettings::frame_memory_limit).
 FrameCounts SplatPass::draw_strips(FrameSteps& steps, gpu::FrameUniforms& uniforms, const StripRoom& room,
                                    bool picked) {
-    const std::uint32_t rows = steps.raster.tiles_y;
-    const double need = std::max(double(last_counts_.splats) / room.splats, double(last_counts_.pairs) / room.pairs);
-    const auto planned = static_cast<std::uint32_t>(std::clamp(std::ceil(need * 1.25), 1.0, double(rows)));
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> todo;  // [first, end) tile rows, the next at the back
-    for (std::uint32_t k = planned; k-- > 0;) todo.emplace_back(rows * k / planned, rows * (k + 1) / planned);
+    std::vector<DrawnStrip> todo = plan_strips(room, last_strips_, steps.raster.tiles_y);
+    std::reverse(todo.begin(), todo.end());  // the next at the back
+    last_strips_.clear();
     FrameCounts counts{.selection_runs = 1, .strips = 0};
     while (!todo.empty()) {
-        const auto [first, end] = todo.back();
+        const DrawnStrip rows = todo.back();
         todo.pop_back();
-        uniforms.strip_first_row = first;
-        uniforms.strip_end_row = end;
+        uniforms.strip_first_row = rows.first_row;
+        uniforms.strip_end_row = rows.end_row;
         const FrameCounts strip = select_splats(steps, uniforms, scene_.gaussian_count(), room);
-        const bool split = !strip.fits && end - first > 1;
+        const bool split = !strip.fits && rows.end_row - rows.first_row > 1;
         counts.selection_runs += strip.selection_runs - (split ? 0 : 1);
         if (split) {
-            todo.emplace_back((first + end) / 2, end);
-            todo.emplace_back(first, (first + end) / 2);
+            const std::uint32_t middle = (rows.first_row + rows.end_row) / 2;
+            todo.push_back({middle, rows.end_row, 0, 0});
+            todo.push_back({rows.first_row, middle, 0, 0});
             continue;
         }
         draw_strip(steps, uniforms, strip, room, picked);
+        last_strips_.push_back({rows.first_row, rows.end_row, strip.splats, strip.pairs});
         counts.splats += strip.splats;
         counts.pairs += strip.pairs;
         counts.largest_strip = std::max(counts.largest_strip, strip.splats);

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "splat_lod/msgs/lod_settings.h"
 #include "splat_lod/msgs/splat_statistics.h"
@@ -84,6 +85,7 @@ private:
     std::unique_ptr<engine::gl::RadixSort> sort_;
     RasterFetch fetch_in_use_ = RasterFetch::automatic;
     FrameCounts last_counts_;
+    std::vector<DrawnStrip> last_strips_;  // the strips of the last frame, which plan the next
 };
 
 // The plugin's pass in a running engine (nullptr when the plugin is not started).
