@@ -137,6 +137,17 @@ TEST_F(SplatStripsTest, AStripThatNeedsMoreIsSplit) {
     EXPECT_EQ(target.read_color().rgba, whole.image.rgba);
 }
 
+// A limit below what one tile row needs: every row is a strip of its own, and the buffers grow past the
+// limit to hold it rather than drop a splat.
+TEST_F(SplatStripsTest, ALimitBelowOneRowDrawsRowByRow) {
+    pass.settings().compact_sort_keys = false;
+    const Drawn whole = draw(0, 2);
+    const Drawn rows = draw(1, 2);
+    EXPECT_EQ(rows.memory.strips, 9u) << "144 px in 16 px rows";
+    EXPECT_GT(rows.memory.view_bytes, 1u);
+    expect_same_frame(whole, rows);
+}
+
 // With one-word keys each strip quantises depth over the depth range of the strips drawn so far, so
 // splats at nearly the same depth may swap within a tile; the pixels stay within one step of 255.
 TEST_F(SplatStripsTest, OneWordKeysStayWithinAStep) {
