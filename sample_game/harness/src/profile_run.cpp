@@ -262,14 +262,17 @@ std::string describe_settings(const ProfileOptions& o, std::size_t path_frames) 
         "%dx%d, %d path frames, LOD mode %s (S_T %.2f px, rel %.2f/%.2f, transition band %.4g octaves placed "
         "%s, overlapping levels' band %.4g), "
         "streamer fades over %d updates, cut anticipates %d, render scale %.3f (%s), "
-        "memory budget %.0f MiB, upload budget %.2f MiB/frame, load distance x%.2f, streaming %s, fov %.0f deg",
+        "memory budget %.0f MiB, upload budget %.2f MiB/frame, splat frame memory %s, load distance x%.2f, "
+        "streaming %s, fov %.0f deg",
         o.width, o.height, static_cast<int>(path_frames), std::string(plugin_msgs::to_string(s.lod.rule.mode)).c_str(),
         s.lod.rule.size_threshold_px, s.lod.rule.rel_min, s.lod.rule.rel_max, s.lod.rule.transition_band,
         std::string(plugin_msgs::to_string(s.lod.rule.transition_placement)).c_str(),
         s.lod.rule.overlap_transition_band, s.fade_frames, s.anticipation_updates, s.lod.render_scale,
         std::string(plugin_msgs::to_string(s.lod.upscaler)).c_str(), mib(s.memory_budget_bytes),
-        mib(s.upload_budget_bytes), s.load_distance_scale,
-        s.sync_streaming ? "synchronous (--sync-streaming)" : "on the background thread", s.fov_y_deg);
+        mib(s.upload_budget_bytes),
+        s.frame_memory_bytes > 0 ? formatted("%.0f MiB", mib(s.frame_memory_bytes)).c_str() : "without a limit",
+        s.load_distance_scale, s.sync_streaming ? "synchronous (--sync-streaming)" : "on the background thread",
+        s.fov_y_deg);
 }
 
 // What an earlier run left in the output folder is removed first, so that nothing stale (a plot
