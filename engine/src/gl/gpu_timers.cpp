@@ -88,6 +88,12 @@ void GpuTimers::end_frame() {
     ++frame_counter_;
 }
 
+std::map<std::string, double> span_totals(const std::vector<GpuSpan>& spans) {
+    std::map<std::string, double> totals;
+    for (const GpuSpan& span : spans) totals[span.name] += span.milliseconds;
+    return totals;
+}
+
 void GpuTimers::wait_all() {
     while (!pending_.empty()) {
         collect(*pending_.front(), true);

@@ -8,6 +8,7 @@
 #include <plugin_msgs/frame_statistics.h>
 
 #include "engine/gl/compute_step.h"
+#include "engine/gl/gpu_timers.h"
 #include "engine/render/camera.h"
 #include "engine/render/image.h"
 #include "splat_lod/eval/temporal_sweep.h"
@@ -28,20 +29,19 @@ double draw(engine::Engine& engine, const engine::Scene& scene, const engine::Ca
 void record_spans(engine::Engine& engine, FrameRecord& r) {
     const auto& spans = engine.renderer().timers().latest();
     if (!spans) return;
-    for (const auto& span : *spans) {
-        double* field = span.name == "mesh"            ? &r.gpu_mesh_ms
-                        : span.name == "splat"         ? &r.gpu_splat_ms
-                        : span.name == "splat.project" ? &r.gpu_project_ms
-                        : span.name == "splat.scan"    ? &r.gpu_scan_ms
-                        : span.name == "splat.bin"     ? &r.gpu_bin_ms
-                        : span.name == "splat.sort"    ? &r.gpu_sort_ms
-                        : span.name == "splat.ranges"  ? &r.gpu_ranges_ms
-                        : span.name == "splat.raster"  ? &r.gpu_raster_ms
-                        : span.name == "splat.upscale" ? &r.gpu_upscale_ms
-                        : span.name == "fog"           ? &r.gpu_fog_ms
-                                                       : nullptr;
-        if (!field) continue;
-        *field = std::max(*field, 0.0) + span.milliseconds;  // a frame drawn in strips has a span per strip
+    for (const auto& [name, ms] : engine::gl::span_totals(*spans)) {  // a strip of the splat pass: a span each
+        double* field = name == "mesh"            ? &r.gpu_mesh_ms
+                        : name == "splat"         ? &r.gpu_splat_ms
+                        : name == "splat.project" ? &r.gpu_project_ms
+                        : name == "splat.scan"    ? &r.gpu_scan_ms
+                        : name == "splat.bin"     ? &r.gpu_bin_ms
+                        : name == "splat.sort"    ? &r.gpu_sort_ms
+                        : name == "splat.ranges"  ? &r.gpu_ranges_ms
+                        : name == "splat.raster"  ? &r.gpu_raster_ms
+                        : name == "splat.upscale" ? &r.gpu_upscale_ms
+                        : name == "fog"           ? &r.gpu_fog_ms
+                                                  : nullptr;
+        if (field) *field = ms;
     }
 }
 

@@ -3,6 +3,7 @@
 // once the driver says they are available, so reading never stalls the frame.
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +17,10 @@ struct GpuSpan {
     std::string name;
     double milliseconds = 0.0;
 };
+
+// A frame's spans summed by name: a pass that runs a step more than once in a frame (the splat pass's
+// strips) has a span per run.
+std::map<std::string, double> span_totals(const std::vector<GpuSpan>& spans);
 
 class GpuTimers {
 public:

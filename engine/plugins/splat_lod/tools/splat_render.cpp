@@ -23,6 +23,7 @@
 #include "engine/core/cli_values.h"
 #include "engine/core/error.h"
 #include "engine/engine.h"
+#include "engine/gl/gpu_timers.h"
 #include "engine/platform/gl_context.h"
 #include "engine/render/image.h"
 #include "engine/render/render_target.h"
@@ -162,10 +163,8 @@ int run(const Options& o) {
     for (int i = 0; i < o.frames; ++i) {
         engine.renderer().render(scene, camera, target_image);
         engine.renderer().timers().wait_all();
-        std::map<std::string, double> frame_ms;  // a frame drawn in strips has a span per strip
-        for (const auto& span : engine.renderer().timers().latest().value_or(std::vector<engine::gl::GpuSpan>{}))
-            frame_ms[span.name] += span.milliseconds;
-        for (const auto& [name, ms] : frame_ms) gpu_ms[name].push_back(ms);
+        const auto spans = engine.renderer().timers().latest().value_or(std::vector<engine::gl::GpuSpan>{});
+        for (const auto& [name, ms] : engine::gl::span_totals(spans)) gpu_ms[name].push_back(ms);
     }
     pass.wait_for_statistics(engine.bus());
     engine::write_png(o.out, target_image.read_color());

@@ -5,6 +5,7 @@
 
 #include "engine/core/error.h"
 #include "engine/gl/compute_step.h"
+#include "engine/gl/gpu_timers.h"
 #include "engine/render/render_target.h"
 #include "splat_lod/splat_lod_plugin.h"
 #include "splat_lod/splat_renderer.h"
@@ -70,8 +71,8 @@ FrameMeasurement FrameMeasurer::measure(const Method& method, const engine::Came
         wall.push_back(draw(camera, target));
         if (pass_.latest_statistics() && pass_.latest_statistics()->overflowed)
             engine::fail("splat_lod::eval::FrameMeasurer: a timed frame overflowed the key buffer");
-        for (const auto& span : engine_.renderer().timers().latest().value_or(std::vector<engine::gl::GpuSpan>{}))
-            gpu[span.name].push_back(span.milliseconds);
+        const auto spans = engine_.renderer().timers().latest().value_or(std::vector<engine::gl::GpuSpan>{});
+        for (const auto& [name, ms] : engine::gl::span_totals(spans)) gpu[name].push_back(ms);
     }
     m.wall_ms = median(wall);
     for (const auto& [name, times] : gpu) m.gpu_ms[name] = median(times);
