@@ -89,10 +89,14 @@ uint tile_footprint_count(TileFootprint f) {
     return count;
 }
 
-// The first tile row in which a splat touches a tile over the whole raster (rect.w when none): in strips,
+// The footprint over the whole raster, whatever rows this run of the steps draws.
+TileFootprint whole_footprint(vec2 mean, vec4 conic, float opacity) {
+    return tile_footprint_in_rows(mean, conic, opacity, 0.0, frame.raster_size.y - 1.0);
+}
+
+// The first tile row in which footprint `f` (whole_footprint) touches a tile (rect.w when none): in strips,
 // the strip that holds it counts the splat in the frame's statistics, so that each is counted once.
-uint first_tile_row(vec2 mean, vec4 conic, float opacity) {
-    TileFootprint f = tile_footprint_in_rows(mean, conic, opacity, 0.0, frame.raster_size.y - 1.0);
+uint first_tile_row(TileFootprint f) {
     if (frame.exact_tiles == 0u) return f.rect.y;
     for (uint ty = f.rect.y; ty < f.rect.w; ++ty) {
         uvec2 span = tile_row_span(f, ty);

@@ -159,7 +159,12 @@ uint project(uint index, out ProjectedSplat p) {
     vec4 conic = vec4(vec3(cov[1][1], -cov[0][1], cov[0][0]) / det, 0.0);
     // The tiles it touches; a splat whose footprint holds no pixel centre of the raster (or is not a
     // number) draws nothing and is culled here. In strips, first the rows it touches over the whole raster.
-    if (drawn_in_strips()) note_rows(index, tile_footprint_in_rows(mean, conic, opacity, 0.0, frame.raster_size.y - 1.0).rect.w);
+    bool strips = drawn_in_strips();
+    TileFootprint whole = TileFootprint(mean, 0.0, 0.0, 0.0, 0.0, ivec2(1), ivec2(0), uvec4(0u));  // unused
+    if (strips) {
+        whole = whole_footprint(mean, conic, opacity);
+        note_rows(index, whole.rect.w);
+    }
     uint tiles = splat_tile_count(mean, conic, opacity);
     if (tiles == 0u) return 0u;
     // Bin 0 (β = 1) counts exactly what the frame without a budget draws: not a splat whose opacity
@@ -186,7 +191,7 @@ uint project(uint index, out ProjectedSplat p) {
         atomicAdd(budget.selected[bins.x], 1u);
         if (bins.y + 1 < SPLAT_BUDGET_BINS) atomicAdd(budget.selected[bins.y + 1], 0xFFFFFFFFu);  // −1
         else atomicAdd(budget.coverage[cbin], 1u);
-    } else if (!drawn_in_strips() || first_tile_row(mean, conic, opacity) >= frame.strip_first_row) {
+    } else if (!strips || first_tile_row(whole) >= frame.strip_first_row) {
         atomicAdd(stats.visible, 1u);  // in strips, by the strip of its first tile row (the frame's count)
         atomicAdd(stats.per_level[level - 1u], 1u);
     }
