@@ -87,18 +87,18 @@ float dissolve_rank(uint slot) {
     return float(h >> 8) * (1.0 / 16777216.0);
 }
 
-// In strips (SplatPassSettings::frame_memory_limit): true when Gaussian `g` at camera-space `cam` cannot
-// reach the strip's pixel rows, so that the Gaussians of a cluster that straddles a strip's edge skip the
-// rest of their projection when they lie beyond it. Its α = 1/255 ellipsoid reaches at most
-// sqrt(2·ln(255·o)·trace Σ) ≥ sqrt(2·ln(255·o))·σ_max from its mean, which bounds its footprint's
-// half-height as step 1a's cull_cluster bounds a cluster's (splat_clusters.comp.glsl). Exact: such a
-// Gaussian has no tile in the strip.
 // In strips: notes that the Gaussian at `index` may touch tile rows up to `end` (exclusive) over the
 // whole raster (SPLAT_BINDING_CLUSTER_ROWS), so that step 1a leaves its cluster out of the strips below.
 void note_rows(uint index, uint end) {
     atomicMax(cluster_rows[index / uint(SPLAT_PROJECT_WORKGROUP_SIZE)], 1u + min(end, frame.tiles.y));
 }
 
+// In strips (SplatPassSettings::frame_memory_limit): true when Gaussian `g` at camera-space `cam` cannot
+// reach the strip's pixel rows, so that the Gaussians of a cluster that straddles a strip's edge skip the
+// rest of their projection when they lie beyond it. Its α = 1/255 ellipsoid reaches at most
+// sqrt(2·ln(255·o)·trace Σ) ≥ sqrt(2·ln(255·o))·σ_max from its mean, which bounds its footprint's
+// half-height as step 1a's cull_cluster bounds a cluster's (splat_clusters.comp.glsl). Exact: such a
+// Gaussian has no tile in the strip. One below the strip notes the rows it may reach.
 bool outside_strip(uint index, GpuGaussian g, vec3 cam, GpuInstance inst) {
     float trace = g.covariance_a.x + g.covariance_a.w + g.covariance_b.y;
     float reach = sqrt(max(2.0 * log(255.0 * g.position_opacity.w) * trace, 0.0));
