@@ -83,13 +83,12 @@ inline constexpr GLbitfield kImageBarrier = GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                                             GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT;
 
 // What steps 1–2 found: the splats projected and the tile-splat pairs they need. For a frame (SplatPass),
-// the sums over its strips, the most splats one strip projected and the strips drawn.
+// the sums over its strips and the strips drawn.
 struct FrameCounts {
     std::uint32_t splats = 0;
     std::uint32_t pairs = 0;
     std::uint32_t selection_runs = 0;  // 1, or more when steps 1–2 ran again (the splats did not fit)
     bool fits = true;                  // within the strip's room (StripRoom)
-    std::uint32_t largest_strip = 0;   // splats
     std::uint32_t strips = 1;
 };
 

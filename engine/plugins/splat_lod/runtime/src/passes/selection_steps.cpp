@@ -57,7 +57,6 @@ FrameCounts select_splats(const FrameSteps& steps, gpu::FrameUniforms& uniforms,
         if (counts.splats <= b.splat_capacity || counts.selection_runs == 2) break;
         b.ensure_splats(counts.splats, room.splats);  // the clusters that did not fit wrote nothing: again, with room
     }
-    counts.largest_strip = counts.splats;
     if (counts.splats <= b.splat_capacity) return counts;
     engine::log_warning("splat_lod: " + std::to_string(counts.splats) + " projected splats exceed the " +
                         std::to_string(b.splat_capacity) + " the frame can hold; some are not drawn");

@@ -49,7 +49,9 @@ void SplatPass::execute(engine::FrameContext& frame) {
                                                  : strip_room(settings.frame_memory_limit, last_counts_.splats,
                                                               last_counts_.pairs, raster.key_depth_bits > 0 ? 1u : 2u);
     buffers_.ensure(engine::gl::groups_for(n, SPLAT_PROJECT_WORKGROUP_SIZE), raster.tile_count());
-    buffers_.ensure_splats(last_counts_.largest_strip, room.splats);
+    std::uint32_t largest_strip = 0;  // splats
+    for (const DrawnStrip& s : last_strips_) largest_strip = std::max(largest_strip, s.splats);
+    buffers_.ensure_splats(largest_strip, room.splats);
     fetch_in_use_ =
         texels_.resolve(settings.raster_fetch, buffers_.splat_capacity, buffers_.key_capacity, scene_, fetch_in_use_);
     gpu::FrameUniforms uniforms = frame_uniforms(settings, lod_, frame, raster, scene_);
@@ -96,7 +98,6 @@ FrameCounts SplatPass::draw_strips(FrameSteps& steps, gpu::FrameUniforms& unifor
         last_strips_.push_back({rows.first_row, rows.end_row, strip.splats, strip.pairs});
         counts.splats += strip.splats;
         counts.pairs += strip.pairs;
-        counts.largest_strip = std::max(counts.largest_strip, strip.splats);
         ++counts.strips;
     }
     return counts;
