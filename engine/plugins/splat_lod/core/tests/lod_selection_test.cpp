@@ -221,3 +221,51 @@ TEST(LodWeight, PlacedInsideTheRampsLieWhereTheHardRuleDraws) {
     EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 4.0, 2.0, -1.0) + lod_weight(rule, 2, 64.0, -1.0, 16.0 / 1.5), 1.0);
     EXPECT_DOUBLE_EQ(lod_weight(rule, 1, 0.25, 2.0, -1.0) + lod_weight(rule, 2, 4.0, -1.0, 16.0 / 1.5), 1.0);
 }
+
+// Levels whose ranges overlap: on a dolly the fine Gaussian's "too small" switch comes `overlap` octaves
+// after its coarse replacement's "too large" one (y = log2 t, the fine switch at y = 0, the coarse one at
+// y = overlap). Placed inside, the fine ramp is y ∈ [0, b] and the coarse one [overlap − b, overlap], so
+// where both are partial they sum to overlap / b: the double cover is thinned when the levels overlap by
+// less than a band. Staggered, the fine ramp is centred on its switch, y ∈ [−b/2, b/2], and they sum to
+// (overlap + b/2) / b: thinned only below half a band. Both are continuous, equal the hard rule outside
+// their bands, and hand over from fine alone to coarse alone (1 at both ends).
+TEST(LodWeight, StaggeredThinsTheDoubleCoverOnlyBelowHalfABand) {
+    using plugin_msgs::TransitionPlacement;
+    for (const double band : {0.5, 1.0})
+        for (const double overlap : {0.2, 0.4, 0.75, 1.5})
+            for (const auto placement : {TransitionPlacement::inside, TransitionPlacement::staggered}) {
+                SCOPED_TRACE("band " + std::to_string(band) + ", overlap " + std::to_string(overlap) + ", " +
+                             std::string(plugin_msgs::to_string(placement)));
+                LodRule rule;
+                rule.transition_band = static_cast<float>(band);
+                rule.transition_placement = placement;
+                const LodRule hard = hard_rule();
+                const double fine_min = 2.0, coarse_max = 16.0 * std::exp2(overlap) / 1.5;
+                const double shift = plugin_msgs::transition_shifts(placement, static_cast<float>(band)).small;
+                double lowest = 2.0, previous = -1.0;
+                for (int i = 0; i <= 8000; ++i) {
+                    const double y = -4.0 + 8.0 * i / 8000.0, t = std::exp2(y);
+                    const double fine = lod_weight(rule, 1, t, fine_min, -1.0);
+                    const double coarse = lod_weight(rule, 2, 16.0 * t, -1.0, coarse_max);
+                    lowest = std::min(lowest, fine + coarse);
+                    if (y < -shift - 1e-9 || y > band - shift + 1e-9) {
+                        EXPECT_EQ(fine, lod_selected(hard, 1, t, fine_min, -1.0) ? 1.0 : 0.0) << "y " << y;
+                    }
+                    if (y < overlap - band - 1e-9 || y > overlap + 1e-9) {
+                        EXPECT_EQ(coarse, lod_selected(hard, 2, 16.0 * t, -1.0, coarse_max) ? 1.0 : 0.0) << "y " << y;
+                    }
+                    if (previous >= 0.0) {
+                        EXPECT_LE(std::abs(fine + coarse - previous), 2.0 * 8.0 / 8000.0 / band + 1e-9);
+                    }
+                    previous = fine + coarse;
+                }
+                EXPECT_DOUBLE_EQ(
+                    lod_weight(rule, 1, 1.0 / 16.0, fine_min, -1.0) + lod_weight(rule, 2, 1.0, -1.0, coarse_max), 1.0)
+                    << "coarse alone far away";
+                EXPECT_DOUBLE_EQ(
+                    lod_weight(rule, 1, 16.0, fine_min, -1.0) + lod_weight(rule, 2, 256.0, -1.0, coarse_max), 1.0)
+                    << "fine alone near";
+                const double expected = std::min(1.0, (overlap + shift) / band);
+                EXPECT_NEAR(lowest, expected, 2e-3) << "the deepest thinning";
+            }
+}

@@ -137,7 +137,7 @@ std::optional<double> number_in(const std::string& text, double lo, double hi) {
 }
 
 // "full@B" or "full@B:PLACEMENT": `full` with a transition band of B octaves placed as PLACEMENT says
-// (inside, before, centred or auto: LodRule::transition_placement; `before` when left out, and with
+// (inside, before, centred, staggered or auto: LodRule::transition_placement; `before` when left out, and with
 // `auto` B is both bands, transition_band and overlap_transition_band), to choose the band by
 // measurement; none when `name` has another form. Throws naming the method when B or the placement is
 // not one the settings accept.
@@ -158,7 +158,7 @@ std::optional<Method> banded_full(const std::string& name) {
     if (!band || !placement_known)
         engine::fail("--methods: \"" + name +
                      "\": expected full@B or full@B:PLACEMENT with a transition band B in [0, 4] octaves and "
-                     "PLACEMENT one of inside, before, centred, auto");
+                     "PLACEMENT one of inside, before, centred, staggered, auto");
     return Method{name,
                   "every level, selected by pixel coverage, transition band " + text.substr(0, colon) +
                       " octaves placed " + std::string(plugin_msgs::to_string(placement)),

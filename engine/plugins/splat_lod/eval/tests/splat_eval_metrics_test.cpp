@@ -149,7 +149,8 @@ TEST(SplatEvalMetrics, FullWithABandIsAMethod) {
                                                 TransitionPlacement::automatic}));
     expect_error([] { eval::select_methods("full@-1"); }, {"full@-1", "[0, 4] octaves"});
     expect_error([] { eval::select_methods("full@wide"); }, {"full@wide"});
-    expect_error([] { eval::select_methods("full@0.5:after"); }, {"full@0.5:after", "inside, before, centred, auto"});
+    expect_error([] { eval::select_methods("full@0.5:after"); },
+                 {"full@0.5:after", "inside, before, centred, staggered, auto"});
     expect_error([] { eval::select_methods("full@0.5:"); }, {"full@0.5:"});
     expect_error([] { eval::select_methods("full@0.5,full@0.5"); }, {"listed twice"});
 }

@@ -123,8 +123,9 @@ TEST(SplatLodMsgs, AutoPlacementIsResolvedPerAsset) {
     expected.transition_band = 0.75f;
     EXPECT_EQ(overlap, expected) << "nothing else changes";
     // Any other placement is the rule itself, whatever the asset.
-    for (const auto placement : {plugin_msgs::TransitionPlacement::inside, plugin_msgs::TransitionPlacement::before,
-                                 plugin_msgs::TransitionPlacement::centred}) {
+    for (const auto placement :
+         {plugin_msgs::TransitionPlacement::inside, plugin_msgs::TransitionPlacement::before,
+          plugin_msgs::TransitionPlacement::centred, plugin_msgs::TransitionPlacement::staggered}) {
         rule.transition_placement = placement;
         for (int kind = 0; kind < plugin_msgs::kLevelHandoverCount; ++kind)
             EXPECT_EQ(rule.for_asset(static_cast<LevelHandover>(kind)), rule);

@@ -96,7 +96,7 @@ protected:
 
 }  // namespace
 
-// Every placement of the band (inside; before; centred on the switches), and the default `auto`, which
+// Every placement of the band (inside; before; centred on the switches; staggered), and the default `auto`, which
 // resolves it per cloud by its level handover (LodRule::for_asset), draws the CPU's weights; the same
 // frame drawn twice is the same bytes (a pure function of the view).
 TEST_F(SplatTransitionsTest, EachPlacementScalesOpacityByTheCpuWeight) {
@@ -104,6 +104,7 @@ TEST_F(SplatTransitionsTest, EachPlacementScalesOpacityByTheCpuWeight) {
         {TransitionPlacement::inside, LevelHandover::overlapping},
         {TransitionPlacement::before, LevelHandover::unknown},
         {TransitionPlacement::centred, LevelHandover::abutting},
+        {TransitionPlacement::staggered, LevelHandover::overlapping},
         {TransitionPlacement::automatic, LevelHandover::overlapping},
         {TransitionPlacement::automatic, LevelHandover::abutting},
         {TransitionPlacement::automatic, LevelHandover::unknown}};

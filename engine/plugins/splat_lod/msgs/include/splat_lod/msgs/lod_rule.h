@@ -74,12 +74,16 @@ enum class TransitionPlacement {
                 // sums to 1
     centred,    // both centred on their switch: a hand-over sums to 1, and a fine Gaussian is drawn past
                 // its "too small" switch
+    staggered,  // a coarse Gaussian fades in as `inside`, a fine one fades out centred on its "too small"
+                // switch: where the levels' ranges overlap, the fine one's fade begins half a band later
+                // than `inside`'s, so the two fades thin the double cover less (docs/lod.md, "Transitions")
     automatic,  // "auto", the default: per asset, by how its levels hand over (LevelHandover):
                 // `inside` with overlap_transition_band where its bake left the levels' ranges
                 // overlapping, `centred` with transition_band where it made them abut, `before` with
                 // transition_band where nothing says (a streamed world's chunks and groups)
 };
-inline constexpr std::array<std::string_view, 4> kTransitionPlacementNames{"inside", "before", "centred", "auto"};
+inline constexpr std::array<std::string_view, 5> kTransitionPlacementNames{"inside", "before", "centred", "staggered",
+                                                                           "auto"};
 
 inline std::string_view to_string(TransitionPlacement placement) {
     return detail::enum_name(kTransitionPlacementNames, placement);
@@ -105,6 +109,8 @@ constexpr TransitionShifts transition_shifts(TransitionPlacement placement, floa
             return {0.0f, 0.0f};
         case TransitionPlacement::centred:
             return {0.5f * band, 0.5f * band};
+        case TransitionPlacement::staggered:
+            return {0.5f * band, band};
     }
     return {};
 }
